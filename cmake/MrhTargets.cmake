@@ -1,0 +1,38 @@
+# SPDX-License-Identifier: Apache-2.0
+# mrh_module(NAME SOURCES ... DEPS ...): one static library per module; its link line fixes the
+# dependency direction between modules (STYLE.md §1).
+function(mrh_set_warnings target)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wconversion
+                                           -ffp-contract=off)
+  if(MRH_WERROR)
+    target_compile_options(${target} PRIVATE -Werror)
+  endif()
+endfunction()
+
+function(mrh_module name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS;PRIVATE_DEPS" ${ARGN})
+  add_library(mrh_${name} STATIC ${ARG_SOURCES})
+  add_library(mrhaptics::${name} ALIAS mrh_${name})
+  target_include_directories(mrh_${name} PUBLIC
+    $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include>
+    $<INSTALL_INTERFACE:include>
+    PRIVATE ${PROJECT_SOURCE_DIR}/src)
+  target_link_libraries(mrh_${name} PUBLIC ${ARG_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
+  mrh_set_warnings(mrh_${name})
+  set_property(GLOBAL APPEND PROPERTY MRH_MODULES mrh_${name})
+endfunction()
+
+# mrh_test(NAME LABEL SOURCES ... DEPS ...): one GoogleTest executable per module.
+function(mrh_test name)
+  cmake_parse_arguments(ARG "" "LABEL" "SOURCES;DEPS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gmock GTest::gtest_main)
+  target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/src ${PROJECT_SOURCE_DIR}/tests)
+  target_compile_definitions(${name} PRIVATE MRH_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+  mrh_set_warnings(${name})
+  if(NOT ARG_LABEL)
+    set(ARG_LABEL unit)
+  endif()
+  gtest_discover_tests(${name} PROPERTIES LABELS "${ARG_LABEL}" DISCOVERY_TIMEOUT 60
+                       WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+endfunction()

@@ -1,0 +1,50 @@
+// SPDX-License-Identifier: Apache-2.0
+// Signed distance and witness points between two convex shapes (FCL GJK/EPA underneath).
+#pragma once
+
+#include <memory>
+
+#include "mrh/core/spatial.h"
+#include "mrh/geometry/shape.h"
+
+namespace mrh::geometry {
+
+/// Result of a signed-distance query between shapes A and B, in the world frame.
+struct DistanceResult {
+  /// Signed distance (m): > 0 separated, < 0 penetrating (minus the penetration depth).
+  double distance = 0.0;
+  /// Witness point on A (m, world). Separated: A's closest point to B. Penetrating: A's point
+  /// deepest inside B.
+  Vec3 p_WA = Vec3::Zero();
+  /// Witness point on B (m, world), defined like p_WA.
+  Vec3 p_WB = Vec3::Zero();
+};
+
+/// A shape prepared once for repeated distance queries (owns the FCL geometry).
+/// Construction is not RT-safe. Queries are not RT-safe either (FCL may allocate): they belong to
+/// the physics thread.
+class CollisionShape {
+ public:
+  /// @throws mrh::InvalidArgument for a degenerate shape (non-positive size, empty mesh).
+  explicit CollisionShape(const Shape& shape);
+  ~CollisionShape();
+  CollisionShape(CollisionShape&&) noexcept;
+  CollisionShape& operator=(CollisionShape&&) noexcept;
+
+  const Shape& shape() const { return shape_; }
+
+ private:
+  friend DistanceResult SignedDistance(const CollisionShape&, const Pose&, const CollisionShape&,
+                                       const Pose&);
+  struct Impl;
+  Shape shape_;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Signed distance between A at pose X_WA and B at pose X_WB (both world frame). Exact for
+/// separated shapes (GJK) and penetrating shapes (EPA, depth to ~1e-8 m); planes are handled
+/// analytically. At most one of A and B may be a plane. Not RT-safe.
+DistanceResult SignedDistance(const CollisionShape& a, const Pose& X_WA, const CollisionShape& b,
+                              const Pose& X_WB);
+
+}  // namespace mrh::geometry

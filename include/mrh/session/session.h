@@ -1,0 +1,69 @@
+// SPDX-License-Identifier: Apache-2.0
+// Session files (JSON): which scene, method, rates, pointer, gains and device a run uses.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mrh/core/spatial.h"
+#include "mrh/device/calibration.h"
+#include "mrh/device/device.h"
+#include "mrh/device/simulated.h"
+#include "mrh/engine/settings.h"
+
+namespace mrh::world {
+class World;
+}
+namespace mrh::engine {
+class Engine;
+}
+
+namespace mrh::session {
+
+/// The `device` block.
+struct DeviceConfig {
+  std::string type = "fixed";               ///< fixed | scripted | hand | replay
+  Pose pose;                                ///< fixed: the held pose
+  std::vector<device::Keyframe> keyframes;  ///< scripted / hand: inline keyframes
+  std::filesystem::path trajectory;         ///< scripted / hand: CSV of keyframes (resolved)
+  std::filesystem::path replay;             ///< replay: a ticks.csv (resolved)
+  device::HandSettings hand;                ///< hand: the simulated user's parameters
+  device::Specifications specs;             ///< max_force, max_torque, ... overrides
+  device::Calibration calibration;          ///< device → world
+};
+
+/// A parsed and validated session.
+struct Session {
+  std::filesystem::path file;               ///< the session file ("<string>" if parsed from text)
+  std::filesystem::path scene;              ///< MJCF path, resolved against the session's folder
+  std::string keyframe;                     ///< MJCF keyframe applied at start (may be empty)
+  std::optional<Vec3> gravity;              ///< m/s², overrides the scene's
+  engine::EngineSettings engine;
+  DeviceConfig device;
+};
+
+/// Reads, overrides and validates a session file. `overrides` are "dotted.key=value" strings
+/// (value parsed as JSON, else taken as a string), applied before validation.
+/// @throws mrh::InvalidArgument with a one-line message naming the file, the key and the fix
+/// (unknown keys, wrong types, bad values, unreadable file).
+Session LoadSession(const std::filesystem::path& file,
+                    const std::vector<std::string>& overrides = {});
+
+/// Same, from JSON text; relative paths resolve against `base_dir`.
+Session ParseSession(const std::string& json_text, const std::filesystem::path& base_dir,
+                     const std::vector<std::string>& overrides = {},
+                     const std::string& origin = "<string>");
+
+/// Loads the scene and applies keyframe, gravity and timestep. @throws mrh::SceneError.
+world::World LoadWorld(const Session& session);
+
+/// Builds the configured device. @throws mrh::InvalidArgument (e.g. unreadable trajectory).
+std::unique_ptr<device::Device> MakeDevice(const Session& session);
+
+/// LoadWorld + MakeDevice + engine construction.
+std::unique_ptr<engine::Engine> MakeEngine(const Session& session);
+
+}  // namespace mrh::session

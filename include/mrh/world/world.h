@@ -1,0 +1,141 @@
+// SPDX-License-Identifier: Apache-2.0
+// The global rigid-body world: a MuJoCo model and its state behind an engine-neutral interface.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "mrh/core/spatial.h"
+#include "mrh/geometry/shape.h"
+
+namespace mrh::world {
+
+/// How a scene is loaded.
+struct LoadOptions {
+  /// Name of the mocap body that is the haptic pointer. Its geoms are made non-colliding inside
+  /// MuJoCo (the haptic rendering handles the pointer's contacts). Empty: no pointer.
+  std::string pointer_body = "pointer";
+};
+
+/// A geom of a body, as a convex shape fixed in the body frame.
+struct GeomInfo {
+  int id = -1;
+  int body = -1;
+  std::string name;               ///< may be empty
+  geometry::Shape shape;          ///< convex shape in the geom frame G
+  Pose X_BG;                      ///< geom frame in its body frame
+  bool collides = true;           ///< MuJoCo contype/conaffinity allow contacts
+};
+
+/// Static properties of a body. Body 0 is the world (static).
+struct BodyInfo {
+  int id = -1;
+  std::string name;               ///< may be empty
+  double mass = 0.0;              ///< kg
+  Mat3 inertia_B = Mat3::Zero();  ///< rotational inertia about the COM, body-frame axes (kg·m²)
+  Vec3 p_BCm = Vec3::Zero();      ///< centre of mass in the body frame (m)
+  bool is_static = true;          ///< world body or welded to it (no degrees of freedom)
+  bool is_mocap = false;
+  std::vector<int> geoms;         ///< ids into World::geom()
+};
+
+/// Kinematic state of a body, world frame.
+struct BodyState {
+  Pose X_WB;                      ///< body frame pose
+  Vec3 p_WCm = Vec3::Zero();      ///< centre of mass (m)
+  Twist V_WCm;                    ///< COM linear velocity and angular velocity (world frame)
+};
+
+/// Preallocated copy of the minimal simulation state (time, qpos, qvel, act, warm start, ctrl,
+/// applied forces, mocap). Make one with World::MakeSnapshot() at setup; Save/Restore copy into
+/// it without allocating.
+class Snapshot {
+ public:
+  Snapshot();
+  ~Snapshot();
+  Snapshot(Snapshot&&) noexcept;
+  Snapshot& operator=(Snapshot&&) noexcept;
+
+ private:
+  friend class World;
+  std::vector<double> data_;
+};
+
+/// One MuJoCo model + data. Single-threaded: all calls from the physics thread (or the lockstep
+/// loop). Nothing here is RT-safe.
+class World {
+ public:
+  /// Loads an MJCF file. @throws mrh::SceneError naming the file and line on a bad scene, or
+  /// when options.pointer_body is set but is not a mocap body of the scene.
+  static World LoadFile(const std::filesystem::path& path, const LoadOptions& options = {});
+  /// Loads MJCF text (`origin` names it in error messages). Same errors as LoadFile.
+  static World LoadString(const std::string& xml, const LoadOptions& options = {},
+                          const std::string& origin = "<string>");
+
+  World(World&&) noexcept;
+  World& operator=(World&&) noexcept;
+  ~World();
+
+  int num_bodies() const;
+  int num_geoms() const;
+  const BodyInfo& body(int id) const;
+  const GeomInfo& geom(int id) const;
+  /// Body id by name, or -1.
+  int FindBody(const std::string& name) const;
+  /// The pointer body id, or -1 when the scene has none.
+  int pointer_body() const;
+
+  double timestep() const;
+  /// @throws mrh::InvalidArgument if dt is not finite and > 0.
+  void set_timestep(double dt);
+  Vec3 gravity() const;
+  void set_gravity(const Vec3& g);
+  double time() const;
+
+  /// Resets the state to the named MJCF keyframe (positions, velocities, mocap, time).
+  /// @throws mrh::SceneError if there is no keyframe of that name (lists the ones there are).
+  void ApplyKeyframe(const std::string& name);
+
+  /// Advances one step of timestep() with the wrenches added since the last step, then clears
+  /// them.
+  void Step();
+
+  /// Adds force f_W (N, world) acting at point p_W (m, world) on body `body` for the next step.
+  void AddForceAtPoint(int body, const Vec3& f_W, const Vec3& p_W);
+  /// Adds a wrench (world frame, torque about the body's COM) for the next step.
+  void AddWrenchAtCom(int body, const Wrench& w_W);
+
+  /// Sets the pose of a mocap body (the pointer). @pre body is a mocap body.
+  void SetMocapPose(int body, const Pose& X_WB);
+  /// Overwrites a free or slide/hinge-jointed body's pose and twist where its joints allow
+  /// (used by synchronization with a local simulation). Returns false if the body's joints
+  /// cannot represent it exactly.
+  bool SetBodyState(int body, const Pose& X_WB, const Twist& V_WCm);
+
+  BodyState body_state(int body) const;
+  /// World pose of a geom.
+  Pose geom_pose(int geom) const;
+
+  /// Contacts in the last step (MuJoCo ncon) and constraint solver iterations used.
+  int num_contacts() const;
+  int solver_iterations() const;
+
+  Snapshot MakeSnapshot() const;
+  void Save(Snapshot* snapshot) const;
+  void Restore(const Snapshot& snapshot);
+
+  /// qpos and qvel, for hashing and tests.
+  std::span<const double> qpos() const;
+  std::span<const double> qvel() const;
+
+ private:
+  struct Impl;
+  explicit World(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace mrh::world
