@@ -100,6 +100,21 @@ class Engine {
   /// an unrecoverable physics failure.
   RunStats Run(Recorder* recorder, const ProgressFn& progress = {});
 
+  /// Embedding in the caller's own servo loop: the calling thread becomes the haptic thread.
+  /// Needs a device::ExternalDevice. Real-time mode starts the physics thread; lockstep runs
+  /// each physics step inline in Tick() at period boundaries (deterministic, not RT-safe).
+  /// @throws mrh::InvalidArgument if the device is not external; mrh::RuntimeError if the engine
+  /// has already run.
+  void Start(Recorder* recorder = nullptr);
+
+  /// One haptic tick at time t (s since Start): feeds `reading` (device frame) to the external
+  /// device, renders, and returns the wrench to display (device frame, after the safety layer).
+  /// RT-safe in real-time mode. @pre Start() was called.
+  Wrench Tick(double t, const device::DeviceState& reading);
+
+  /// Ends an embedded run (zero output, physics thread joined) and returns its statistics.
+  RunStats Stop();
+
   const world::World& world() const;
   const EngineSettings& settings() const;
   double pointer_radius() const;

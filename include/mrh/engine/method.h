@@ -60,6 +60,10 @@ class Method {
   /// True if the method needs physics_dt == haptic_dt (the single-rate baseline).
   virtual bool single_rate() const noexcept { return false; }
 
+  /// Before the first step: fills the snapshot for haptic period 0 from the initial state
+  /// without stepping; `initial` carries the pointer's initial pose. Not RT-safe.
+  virtual void PhysicsStart(const ir::HapticReport& initial, ir::PhysicsSnapshot* out) = 0;
+
   /// Physics step k: consumes the merged report of haptic period k-1 and fills the snapshot for
   /// period k+1. Not RT-safe.
   virtual void PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot* out) = 0;

@@ -36,4 +36,9 @@ void WriteSummary(const std::filesystem::path& dir, const engine::RunStats& stat
 /// Returns false (and a reason in *why) if gnuplot is missing or fails; the run still counts.
 bool PlotReport(const std::filesystem::path& dir, const std::string& title, std::string* why);
 
+/// Runs gnuplot on dir/script (working directory `dir`) and checks that it wrote dir/png.
+/// Returns false with a one-line reason in *why if gnuplot is missing or fails.
+bool RunGnuplotScript(const std::filesystem::path& dir, const std::string& script,
+                      const std::string& png, std::string* why);
+
 }  // namespace mrh::report

@@ -57,7 +57,9 @@ Session ParseSession(const std::string& json_text, const std::filesystem::path& 
                      const std::vector<std::string>& overrides = {},
                      const std::string& origin = "<string>");
 
-/// Loads the scene and applies keyframe, gravity and timestep. @throws mrh::SceneError.
+/// Loads the scene (with the session's pointer body) and applies the keyframe and gravity. The
+/// timestep is left to the engine, which sets physics_dt (haptic_dt for single-rate methods).
+/// @throws mrh::SceneError.
 world::World LoadWorld(const Session& session);
 
 /// Builds the configured device. @throws mrh::InvalidArgument (e.g. unreadable trajectory).

@@ -1,0 +1,49 @@
+# SPDX-License-Identifier: Apache-2.0
+# Entry points. `make demo` and `make test` work on a fresh Debian machine (they install what is
+# missing); `make build` only builds (the CLI is then build/bin/mrh).
+JOBS ?= 2
+BUILD ?= build
+PREFIX ?= /usr/local
+DEMO_OUT ?= out/demo
+
+.PHONY: all deps configure build demo test test-asan test-tsan install example clean
+
+all: build
+
+deps:
+	scripts/install-deps.sh
+
+configure:
+	cmake --preset release >/dev/null
+
+build: configure
+	cmake --build $(BUILD) -j $(JOBS)
+
+demo: deps build
+	$(BUILD)/bin/mrh run scenes/demo.json --out $(DEMO_OUT)
+
+test: deps build
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+test-asan: deps
+	cmake --preset asan >/dev/null
+	cmake --build --preset asan
+	ctest --preset asan -j $(JOBS)
+
+test-tsan: deps
+	cmake --preset tsan >/dev/null
+	cmake --build --preset tsan --target engine_test
+	ctest --preset tsan
+
+install: build
+	cmake --install $(BUILD) --prefix $(PREFIX)
+
+# Builds examples/ against an installed package (find_package(mrhaptics)) and runs it.
+example:
+	cmake --install $(BUILD) --prefix $(CURDIR)/$(BUILD)/staging >/dev/null
+	cmake -S examples -B $(BUILD)/example -DCMAKE_PREFIX_PATH=$(CURDIR)/$(BUILD)/staging >/dev/null
+	cmake --build $(BUILD)/example -j $(JOBS)
+	$(BUILD)/example/servo_loop scenes/t4_1_impulse.json
+
+clean:
+	rm -rf $(BUILD) out

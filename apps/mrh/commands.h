@@ -1,0 +1,59 @@
+// SPDX-License-Identifier: Apache-2.0
+// The mrh subcommands: each adds its options to the CLI11 app and runs from the parsed options.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace mrh::cli {
+
+/// Exit codes, documented in `mrh --help`.
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitRuntime = 1;
+inline constexpr int kExitBadInput = 2;
+
+/// `mrh run`.
+struct RunOptions {
+  std::filesystem::path session;
+  std::filesystem::path out;       ///< empty: out/<session stem>-<method>
+  std::string mode;                ///< empty: the session's
+  std::string method;              ///< empty: the session's
+  std::optional<double> duration;  ///< s; empty: the session's
+  std::vector<std::string> sets;   ///< "dotted.key=value" session overrides
+  bool quiet = false;
+  bool progress = false;
+};
+
+/// `mrh validate`.
+struct ValidateOptions {
+  std::filesystem::path session;
+  std::vector<std::string> sets;
+};
+
+/// `mrh experiment`.
+struct ExperimentOptions {
+  std::string name;
+  std::filesystem::path out;  ///< empty: out/<name>
+  bool list = false;
+  bool quiet = false;
+};
+
+CLI::App* AddRunCommand(CLI::App& app, RunOptions* options);
+CLI::App* AddValidateCommand(CLI::App& app, ValidateOptions* options);
+CLI::App* AddMethodsCommand(CLI::App& app);
+CLI::App* AddExperimentCommand(CLI::App& app, ExperimentOptions* options);
+
+/// Each returns the process exit code. They throw mrh::Error subclasses on bad input or failure;
+/// main maps those to exit codes.
+int RunCommand(const RunOptions& options);
+int ValidateCommand(const ValidateOptions& options);
+int MethodsCommand();
+int ExperimentCommand(const ExperimentOptions& options);
+
+/// The `--set KEY=VALUE` option (repeatable, one value per flag), shared by run and validate.
+void AddSetOption(CLI::App& command, std::vector<std::string>* sets);
+
+}  // namespace mrh::cli

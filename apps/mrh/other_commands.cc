@@ -1,0 +1,124 @@
+// SPDX-License-Identifier: Apache-2.0
+// `mrh validate`, `mrh methods` and `mrh experiment`, plus the shared --set option.
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "commands.h"
+#include "mrh/core/error.h"
+#include "mrh/engine/engine.h"
+#include "mrh/engine/method.h"
+#include "mrh/experiments/experiments.h"
+#include "mrh/session/session.h"
+#include "mrh/world/world.h"
+
+namespace mrh::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kValidateFooter =
+    R"(Checks the session keys and values, loads the scene, builds the device and the
+engine (method, pointer body and radius), then prints one line; nothing is run or written.
+
+Examples:
+  mrh validate session.json
+  mrh validate session.json --set method=single-rate
+)";
+
+constexpr const char* kMethodsFooter = R"(Examples:
+  mrh methods
+  mrh run session.json --method single-rate
+)";
+
+constexpr const char* kExperimentFooter = R"(Examples:
+  mrh experiment --list
+  mrh experiment NAME --out out/NAME
+)";
+
+// A --set value must look like key=value with a non-empty key; the session module checks that the
+// key exists and the value fits.
+std::string CheckKeyValue(std::string& text) {
+  const std::size_t eq = text.find('=');
+  if (eq == std::string::npos || eq == 0) {
+    return fmt::format("expected KEY=VALUE (e.g. rendering.stiffness=2000), got '{}'", text);
+  }
+  return {};
+}
+
+void PrintTable(const std::vector<std::pair<std::string, std::string>>& rows) {
+  std::size_t width = 0;
+  for (const auto& row : rows) width = std::max(width, row.first.size());
+  for (const auto& [name, summary] : rows) fmt::print("  {:<{}}  {}\n", name, width, summary);
+}
+
+}  // namespace
+
+void AddSetOption(CLI::App& command, std::vector<std::string>* sets) {
+  command
+      .add_option("--set", *sets,
+                  "Override a session key (repeatable); VALUE is JSON, else a string")
+      ->type_name("KEY=VALUE")
+      ->allow_extra_args(false)
+      ->check(CLI::Validator(CheckKeyValue, ""));
+}
+
+CLI::App* AddValidateCommand(CLI::App& app, ValidateOptions* o) {
+  CLI::App* validate =
+      app.add_subcommand("validate", "Check a session file and its scene without running anything");
+  validate->add_option("SESSION", o->session, "Session file (JSON)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  AddSetOption(*validate, &o->sets);
+  validate->footer(kValidateFooter);
+  return validate;
+}
+
+CLI::App* AddMethodsCommand(CLI::App& app) {
+  CLI::App* methods = app.add_subcommand("methods", "List the haptic rendering methods");
+  methods->footer(kMethodsFooter);
+  return methods;
+}
+
+CLI::App* AddExperimentCommand(CLI::App& app, ExperimentOptions* o) {
+  CLI::App* experiment = app.add_subcommand(
+      "experiment", "Run a reproducible experiment by name (CSV, summary and plots in --out)");
+  experiment->add_option("NAME", o->name, "Experiment name (see --list)");
+  experiment->add_option("--out,-o", o->out, "Output folder (default: out/<name>)")
+      ->type_name("DIR");
+  experiment->add_flag("--list", o->list, "List the experiments and exit");
+  experiment->add_flag("--quiet,-q", o->quiet, "Suppress progress output");
+  experiment->footer(kExperimentFooter);
+  return experiment;
+}
+
+// Building the engine (not only the world and device) also checks the method name and the
+// pointer body and radius, which is what a user validating a session wants to know.
+int ValidateCommand(const ValidateOptions& o) {
+  const session::Session s = session::LoadSession(o.session, o.sets);
+  const std::unique_ptr<engine::Engine> engine = session::MakeEngine(s);
+  const int bodies = engine->world().num_bodies() - 1;  // without the world body
+  fmt::print("ok: {} (method {}, scene {}, {} bodies)\n", o.session.string(), s.engine.method,
+             s.scene.lexically_proximate(fs::current_path()).string(), bodies);
+  return kExitOk;
+}
+
+int MethodsCommand() {
+  PrintTable(engine::ListMethods());
+  return kExitOk;
+}
+
+int ExperimentCommand(const ExperimentOptions& o) {
+  if (o.list) {
+    PrintTable(experiments::List());
+    return kExitOk;
+  }
+  if (o.name.empty()) {
+    throw InvalidArgument(
+        "experiment: no NAME given; expected an experiment name (see `mrh experiment --list`)");
+  }
+  const fs::path out = o.out.empty() ? fs::path("out") / o.name : o.out;
+  return experiments::Run(o.name, fs::absolute(out).lexically_normal(), o.quiet);
+}
+
+}  // namespace mrh::cli

@@ -1,0 +1,136 @@
+// SPDX-License-Identifier: Apache-2.0
+// The hand device: a simulated user whose mass-spring-damper hand follows a scripted target and
+// is pushed by the displayed wrench (closed loop).
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "device/rotation_impl.h"
+#include "device/text_impl.h"
+#include "device/track_impl.h"
+#include "mrh/core/error.h"
+#include "mrh/device/simulated.h"
+
+namespace mrh::device {
+namespace {
+
+// Largest integration step (s). With the defaults the fastest mode is the rotation,
+// sqrt(rot_stiffness / inertia) = 63 rad/s; a 2 kN/m wall on the 0.5 kg hand is also 63 rad/s.
+// omega * h = 0.06 is far inside semi-implicit Euler's stability bound omega * h < 2.
+constexpr double kMaxStep = 1e-3;
+// Bounded catch-up: a longer gap between reads (a paused session) is integrated over its last
+// kMaxSteps * kMaxStep = 1 s only, as if the hand had waited.
+constexpr double kMaxSteps = 1000.0;
+// Absorbs rounding in span / kMaxStep so a 1 ms tick is one step, not two.
+constexpr double kStepCountSlack = 1e-9;
+
+void RequirePositive(double value, const char* key, const char* unit) {
+  if (!std::isfinite(value) || value <= 0.0) {
+    throw InvalidArgument(std::string(key) + " = " + internal::FormatNumber(value) + " " + unit +
+                          "; expected a finite value > 0");
+  }
+}
+
+class HandDevice final : public Device {
+ public:
+  HandDevice(std::vector<Keyframe> target, const HandSettings& hand, Specifications specs)
+      : target_(std::move(target)), hand_(hand), specs_(std::move(specs)) {
+    X_DT_ = target_.Sample(target_.keyframes().front().t).X_DT;
+  }
+
+  const Specifications& specifications() const override { return specs_; }
+
+  // Re-opening starts a new session: the next Read() places the hand on its target again.
+  void Open() override {
+    initialized_ = false;
+    display_ = Wrench{};
+  }
+
+  DeviceState Read(double t) noexcept override {
+    if (std::isfinite(t)) {
+      if (!initialized_) {
+        X_DT_ = target_.Sample(t).X_DT;
+        V_DT_ = Twist{};
+        last_t_ = t;
+        initialized_ = true;
+      } else {
+        Advance(t);
+      }
+    }
+    DeviceState state;
+    state.t = t;
+    state.X_DT = X_DT_;
+    state.V_DT = V_DT_;
+    return state;
+  }
+
+  // A non-finite command would poison the hand state; a real amplifier would output zero.
+  void SetWrench(const Wrench& w_D) noexcept override { display_ = IsFinite(w_D) ? w_D : Wrench{}; }
+
+ private:
+  void Advance(double t) noexcept;
+  void Step(double h, const internal::TrackSample& target) noexcept;
+
+  internal::PoseTrack target_;
+  HandSettings hand_;
+  Specifications specs_;
+  Pose X_DT_;
+  Twist V_DT_;
+  Wrench display_;  // the wrench the device pushes the hand with, held between commands
+  double last_t_ = 0.0;
+  bool initialized_ = false;
+};
+
+void HandDevice::Advance(double t) noexcept {
+  double span = t - last_t_;
+  if (!(span > 0.0)) return;  // time stood still or ran backwards: nothing to integrate
+  double steps = std::max(1.0, std::ceil(span / kMaxStep - kStepCountSlack));
+  if (steps > kMaxSteps) {
+    steps = kMaxSteps;
+    span = kMaxSteps * kMaxStep;
+  }
+  const double h = span / steps;
+  const double t0 = t - span;
+  const int n = static_cast<int>(steps);
+  for (int i = 0; i < n; ++i) Step(h, target_.Sample(t0 + static_cast<double>(i) * h));
+  last_t_ = t;
+}
+
+// Semi-implicit (symplectic) Euler: forces from the state at the start of the step update the
+// velocity, and the new velocity moves the pose. Unlike explicit Euler it does not pump energy
+// into an undamped spring, which matters for the wall-contact loop.
+void HandDevice::Step(double h, const internal::TrackSample& target) noexcept {
+  const Vec3 force = hand_.stiffness * (target.X_DT.p - X_DT_.p) +
+                     hand_.damping * (target.V_DT.v - V_DT_.v) + display_.f;
+  V_DT_.v += (h / hand_.mass) * force;
+  X_DT_.p += h * V_DT_.v;
+
+  // Orientation error as the rotation vector of q_target q^-1, expressed in D like w.
+  const Vec3 error = internal::RotationVector(target.X_DT.q * X_DT_.q.conjugate());
+  const Vec3 torque =
+      hand_.rot_stiffness * error + hand_.rot_damping * (target.V_DT.w - V_DT_.w) + display_.tau;
+  V_DT_.w += (h / hand_.inertia) * torque;
+  X_DT_.q = internal::QuatFromRotationVector(h * V_DT_.w) * X_DT_.q;
+  X_DT_.q.normalize();
+}
+
+}  // namespace
+
+void HandSettings::Validate() const {
+  RequirePositive(mass, "device.hand.mass", "kg");
+  RequirePositive(stiffness, "device.hand.stiffness", "N/m");
+  RequirePositive(damping, "device.hand.damping", "N*s/m");
+  RequirePositive(inertia, "device.hand.inertia", "kg*m^2");
+  RequirePositive(rot_stiffness, "device.hand.rot_stiffness", "N*m/rad");
+  RequirePositive(rot_damping, "device.hand.rot_damping", "N*m*s/rad");
+}
+
+std::unique_ptr<Device> MakeHandDevice(std::vector<Keyframe> target, const HandSettings& hand,
+                                       const Specifications& specs) {
+  hand.Validate();
+  internal::ValidateKeyframes(target, "hand device: target keyframe");
+  return std::make_unique<HandDevice>(std::move(target), hand, specs);
+}
+
+}  // namespace mrh::device

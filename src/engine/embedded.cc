@@ -1,0 +1,111 @@
+// SPDX-License-Identifier: Apache-2.0
+// Embedded runs: the caller's servo loop is the haptic thread (Engine::Start / Tick / Stop).
+#include <atomic>
+#include <chrono>
+#include <thread>
+
+#include "engine_impl.h"
+#include "mrh/core/assert.h"
+#include "mrh/core/error.h"
+#include "mrh/device/external.h"
+#include "rt_clock.h"
+
+namespace mrh::engine {
+namespace internal {
+namespace {
+
+constexpr std::int64_t kEmbeddedPollNs = 100000;
+
+}  // namespace
+
+struct EmbeddedRun {
+  EmbeddedRun(EngineState* state, Recorder* recorder) : physics(state, recorder) {}
+  PhysicsSide physics;
+  device::ExternalDevice* device = nullptr;
+  std::int64_t period = 0;
+  int ticks_in_period = 0;
+  double last_t = 0.0;
+  std::chrono::steady_clock::time_point wall0 = std::chrono::steady_clock::now();
+  std::atomic<bool> done{false};
+  std::thread physics_thread;
+};
+
+void DestroyEmbeddedRun(EmbeddedRun* run) { delete run; }
+
+}  // namespace internal
+
+void Engine::Start(Recorder* recorder) {
+  internal::EngineState& s = *impl_->state;
+  auto* external = dynamic_cast<device::ExternalDevice*>(s.device.get());
+  if (external == nullptr) {
+    throw InvalidArgument(
+        "Engine::Start needs an external device (device.type = \"external\"); use Run() for "
+        "simulated devices");
+  }
+  if (s.has_run) throw RuntimeError("engine already ran; build a new engine for another run");
+  s.has_run = true;
+  s.device->Open();
+  impl_->embedded.reset(new internal::EmbeddedRun(&s, recorder));
+  internal::EmbeddedRun& run = *impl_->embedded;
+  run.device = external;
+  run.physics.Start();
+  if (s.settings.mode == Mode::kRealtime) {
+    run.physics_thread = std::thread([&run] {
+      for (std::int64_t k = 0;; ++k) {
+        run.physics.Step(k);
+        while (run.physics.TakeReports() == 0) {
+          if (run.done.load(std::memory_order_acquire)) return;
+          internal::SleepUntilNs(internal::NowNs() + internal::kEmbeddedPollNs, 0);
+        }
+        run.physics.Publish();
+        run.physics.RecordStep();
+      }
+    });
+  }
+}
+
+Wrench Engine::Tick(double t, const device::DeviceState& reading) {
+  internal::EngineState& s = *impl_->state;
+  MRH_DEMAND(impl_->embedded != nullptr);
+  internal::EmbeddedRun& run = *impl_->embedded;
+  const bool lockstep = s.settings.mode == Mode::kLockstep;
+  // Lockstep: the same order as RunLockstep — step k, the n ticks of period k, then exchange.
+  if (lockstep && run.ticks_in_period == 0) run.physics.Step(run.period);
+  run.device->Feed(reading);
+  s.haptic->Tick(t);
+  run.last_t = t;
+  if (lockstep && ++run.ticks_in_period == s.ticks_per_step) {
+    run.physics.TakeReports();
+    run.physics.Publish();
+    run.physics.RecordStep();
+    run.ticks_in_period = 0;
+    ++run.period;
+  }
+  return run.device->commanded();
+}
+
+RunStats Engine::Stop() {
+  internal::EngineState& s = *impl_->state;
+  MRH_DEMAND(impl_->embedded != nullptr);
+  internal::EmbeddedRun& run = *impl_->embedded;
+  s.haptic->Stop();
+  run.done.store(true, std::memory_order_release);
+  if (run.physics_thread.joinable()) run.physics_thread.join();
+  s.device->Close();
+  RunStats stats;
+  run.physics.Finish(&stats);
+  internal::FillHapticStats(s.haptic->counters(), &stats);
+  stats.method = s.method->name();
+  stats.mode = s.settings.mode;
+  stats.physics_dt = s.settings.physics_dt;
+  stats.haptic_dt = s.settings.haptic_dt;
+  stats.sim_time = run.last_t + s.settings.haptic_dt;
+  stats.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - run.wall0).count();
+  if (stats.wall_time > 0) {
+    stats.haptic_rate_hz = static_cast<double>(stats.ticks) / stats.wall_time;
+    stats.physics_rate_hz = static_cast<double>(stats.steps) / stats.wall_time;
+  }
+  return stats;
+}
+
+}  // namespace mrh::engine

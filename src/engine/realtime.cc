@@ -1,0 +1,133 @@
+// SPDX-License-Identifier: Apache-2.0
+// Real-time scheduling: a haptic thread at haptic_dt against absolute deadlines and a physics
+// thread that synchronizes with it at every period end without ever making it wait.
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <string>
+#include <thread>
+
+#include "engine_impl.h"
+#include "rt_clock.h"
+
+namespace mrh::engine::internal {
+namespace {
+
+constexpr int kHapticFifoPriority = 80;
+// Sleep with the kernel to this much before a deadline, then spin (DEPENDENCIES.md: the kernel
+// wakes 50–110 µs late on this VM).
+constexpr std::int64_t kSpinNs = 150'000;
+// The physics thread polls for the end of a haptic period this often while it waits.
+constexpr std::int64_t kPhysicsPollNs = 100'000;
+constexpr std::int64_t kNsPerS = 1'000'000'000;
+// Room for jitter samples beyond the nominal tick count (start-up, rounding).
+constexpr std::size_t kJitterSlack = 1024;
+
+struct HapticTiming {
+  std::vector<double> jitter_us;   // preallocated; |measured period − dt|
+  std::size_t samples = 0;
+  std::int64_t overruns = 0;
+};
+
+// The haptic thread: never waits on the physics side, never allocates.
+void HapticLoop(EngineState& s, HapticTiming* timing, std::atomic<bool>* done,
+                std::atomic<bool>* fifo_ok) {
+  std::string why;
+  if (s.settings.realtime_priority) fifo_ok->store(RequestFifoPriority(kHapticFifoPriority, &why));
+  const auto dt_ns = static_cast<std::int64_t>(std::llround(s.settings.haptic_dt * kNsPerS));
+  const auto duration_ns = static_cast<std::int64_t>(std::llround(s.settings.duration * kNsPerS));
+  const std::int64_t start = NowNs();
+  std::int64_t deadline = start;
+  std::int64_t last_wake = start;
+  while (true) {
+    deadline += dt_ns;
+    SleepUntilNs(deadline, kSpinNs);
+    const std::int64_t now = NowNs();
+    if (now - deadline > dt_ns) {
+      // Overrun: skip the missed ticks instead of bursting to catch up (STYLE §6.5).
+      ++timing->overruns;
+      deadline = now;
+    }
+    if (timing->samples < timing->jitter_us.size()) {
+      timing->jitter_us[timing->samples++] =
+          std::abs(static_cast<double>(now - last_wake - dt_ns)) * 1e-3;
+    }
+    last_wake = now;
+    if (deadline - start > duration_ns) break;
+    s.haptic->Tick(static_cast<double>(deadline - start) / kNsPerS);
+  }
+  s.haptic->Stop();
+  done->store(true, std::memory_order_release);
+}
+
+// The physics thread: step k, wait for the end of haptic period k, exchange, record.
+void PhysicsLoop(PhysicsSide* physics, const std::atomic<bool>* done) {
+  for (std::int64_t k = 0;; ++k) {
+    physics->Step(k);
+    while (physics->TakeReports() == 0) {
+      if (done->load(std::memory_order_acquire)) return;
+      SleepUntilNs(NowNs() + kPhysicsPollNs, 0);
+    }
+    physics->Publish();
+    physics->RecordStep();
+  }
+}
+
+}  // namespace
+
+RunStats RunRealtime(EngineState& s, Recorder* recorder, const Engine::ProgressFn& progress) {
+  RunStats stats;
+  std::string why;
+  const bool locked = s.settings.realtime_priority && LockAllMemory(&why);
+  if (s.settings.realtime_priority && !locked) {
+    stats.warnings.push_back(why);
+  }
+  HapticTiming timing;
+  timing.jitter_us.resize(static_cast<std::size_t>(s.settings.duration / s.settings.haptic_dt) +
+                          kJitterSlack);
+  PhysicsSide physics(&s, recorder);
+  physics.Start();
+
+  std::atomic<bool> done{false};
+  std::atomic<bool> fifo_ok{false};
+  const std::int64_t wall0 = NowNs();
+  std::thread physics_thread([&] { PhysicsLoop(&physics, &done); });
+  std::thread haptic_thread([&] { HapticLoop(s, &timing, &done, &fifo_ok); });
+  while (!done.load(std::memory_order_acquire)) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    if (progress) {
+      progress(std::min(1.0, static_cast<double>(NowNs() - wall0) / kNsPerS / s.settings.duration));
+    }
+  }
+  haptic_thread.join();
+  physics_thread.join();
+  if (locked) UnlockAllMemory();
+
+  if (s.settings.realtime_priority && !fifo_ok.load()) {
+    stats.warnings.push_back("SCHED_FIFO refused for the haptic thread; running at normal priority");
+  }
+  for (const std::string& w : stats.warnings) spdlog::warn("{}", w);
+  physics.Finish(&stats);
+  FillHapticStats(s.haptic->counters(), &stats);
+  std::vector<double> jitter(timing.jitter_us.begin(),
+                             timing.jitter_us.begin() + static_cast<std::ptrdiff_t>(timing.samples));
+  stats.jitter_p50_us = Percentile(jitter, 50.0);
+  stats.jitter_p99_us = Percentile(jitter, 99.0);
+  stats.jitter_max_us = jitter.empty() ? 0.0 : *std::max_element(jitter.begin(), jitter.end());
+  stats.overruns = timing.overruns;
+  stats.realtime_priority = locked && fifo_ok.load();
+  stats.method = s.method->name();
+  stats.mode = Mode::kRealtime;
+  stats.physics_dt = s.settings.physics_dt;
+  stats.haptic_dt = s.settings.haptic_dt;
+  stats.wall_time = static_cast<double>(NowNs() - wall0) / kNsPerS;
+  stats.sim_time = static_cast<double>(stats.steps) * s.settings.physics_dt;
+  stats.haptic_rate_hz = static_cast<double>(stats.ticks) / stats.wall_time;
+  stats.physics_rate_hz = static_cast<double>(stats.steps) / stats.wall_time;
+  if (progress) progress(1.0);
+  return stats;
+}
+
+}  // namespace mrh::engine::internal

@@ -1,0 +1,58 @@
+// SPDX-License-Identifier: Apache-2.0
+// Helpers shared by the experiment drivers.
+#include "experiment_util.h"
+
+#include <fmt/format.h>
+#include <sys/utsname.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <thread>
+
+#include "mrh/core/error.h"
+
+#ifndef MRH_SOURCE_SCENES_DIR
+#define MRH_SOURCE_SCENES_DIR ""
+#endif
+#ifndef MRH_INSTALL_SCENES_DIR
+#define MRH_INSTALL_SCENES_DIR ""
+#endif
+
+namespace mrh::experiments::internal {
+
+std::filesystem::path ScenesDir() {
+  const char* const candidates[] = {std::getenv("MRH_SCENES_DIR"), MRH_SOURCE_SCENES_DIR,
+                                    MRH_INSTALL_SCENES_DIR};
+  for (const char* candidate : candidates) {
+    if (candidate != nullptr && *candidate != '\0' &&
+        std::filesystem::is_directory(candidate)) {
+      return candidate;
+    }
+  }
+  throw RuntimeError(
+      "cannot find the scenes folder; set MRH_SCENES_DIR to the mrhaptics scenes/ directory");
+}
+
+std::string MachineTag() {
+  std::string cpu = "unknown cpu";
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  for (std::string line; std::getline(cpuinfo, line);) {
+    if (line.rfind("model name", 0) == 0) {
+      const auto colon = line.find(':');
+      if (colon != std::string::npos) cpu = line.substr(colon + 2);
+      break;
+    }
+  }
+  utsname u{};
+  const std::string kernel = uname(&u) == 0 ? std::string(u.sysname) + " " + u.release : "";
+  return fmt::format("{}, {} cores, {}", cpu, std::thread::hardware_concurrency(), kernel);
+}
+
+void WriteText(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+  out.close();
+  if (!out) throw RuntimeError(fmt::format("cannot write {}", path.string()));
+}
+
+}  // namespace mrh::experiments::internal

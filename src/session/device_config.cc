@@ -1,0 +1,170 @@
+// SPDX-License-Identifier: Apache-2.0
+// The `device` block: type-specific keys, poses, keyframes, paths, limits and calibration.
+#include "session/device_config.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <string_view>
+#include <vector>
+
+namespace mrh::session::internal {
+namespace {
+
+// Hand-written quaternions have components of order 1; a norm this small is a typo (such as
+// all zeros), not a rotation, and normalizing it would pick an arbitrary axis.
+constexpr double kMinQuaternionNorm = 1e-6;
+
+constexpr std::string_view kPoseLayout = "[x, y, z, qw, qx, qy, qz] (m, quaternion)";
+constexpr std::string_view kKeyframeLayout = "[t, x, y, z, qw, qx, qy, qz] (s, m, quaternion)";
+
+std::vector<std::string_view> AllDeviceKeys() {
+  std::vector<std::string_view> keys(kDeviceCommonKeys.begin(), kDeviceCommonKeys.end());
+  for (const DeviceType& type : kDeviceTypes) {
+    for (const std::string_view key : type.keys) {
+      if (!key.empty() && std::find(keys.begin(), keys.end(), key) == keys.end()) {
+        keys.push_back(key);
+      }
+    }
+  }
+  return keys;
+}
+
+// "fixed", "scripted", ... for messages.
+std::string TypeNames() {
+  std::vector<std::string> names;
+  names.reserve(kDeviceTypes.size());
+  for (const DeviceType& type : kDeviceTypes) names.push_back(fmt::format("\"{}\"", type.name));
+  return fmt::format("{}", fmt::join(names, ", "));
+}
+
+const DeviceType& ParseType(const Node& node) {
+  const std::string name = node.String();
+  for (const DeviceType& type : kDeviceTypes) {
+    if (type.name == name) return type;
+  }
+  node.Fail(fmt::format("unknown device type \"{}\"", name), "one of " + TypeNames());
+}
+
+// Keys of other device types are errors, so a leftover `pose` on a scripted device is not
+// silently ignored.
+void RejectForeignKeys(const Node& device, const DeviceType& type) {
+  std::vector<std::string_view> own(kDeviceCommonKeys.begin(), kDeviceCommonKeys.end());
+  for (const std::string_view key : type.keys) {
+    if (!key.empty()) own.push_back(key);
+  }
+  for (const auto& [key, unused] : device.value().items()) {
+    if (std::find(own.begin(), own.end(), key) != own.end()) continue;
+    device.Find(key)->Fail(
+        fmt::format("not used by device type \"{}\"", type.name),
+        fmt::format("only the keys of a {} device: {}", type.name, fmt::join(own, ", ")));
+  }
+}
+
+Pose ParsePose(const Node& node) {
+  const std::vector<double> v = node.Numbers(7, kPoseLayout);
+  return Pose{Vec3(v[0], v[1], v[2]), ParseQuaternion(node, v[3], v[4], v[5], v[6])};
+}
+
+std::vector<device::Keyframe> ParseKeyframes(const Node& node) {
+  const std::vector<Node> elements =
+      node.Elements("an array of keyframes " + std::string(kKeyframeLayout));
+  if (elements.empty()) node.Fail("found an empty array", "at least one keyframe");
+  std::vector<device::Keyframe> keyframes;
+  for (const Node& element : elements) {
+    const std::vector<double> v = element.Numbers(8, kKeyframeLayout);
+    if (!keyframes.empty() && v[0] <= keyframes.back().t) {
+      element.Fail(fmt::format("t = {} s is not after the previous keyframe's t = {} s", v[0],
+                               keyframes.back().t),
+                   "strictly increasing times");
+    }
+    keyframes.push_back(device::Keyframe{
+        v[0], Pose{Vec3(v[1], v[2], v[3]), ParseQuaternion(element, v[4], v[5], v[6], v[7])}});
+  }
+  return keyframes;
+}
+
+// Scripted and hand devices follow keyframes given inline or in a CSV file, never both.
+void ParseTarget(const Node& device, std::string_view type, DeviceConfig* config) {
+  const std::optional<Node> keyframes = device.Find("keyframes");
+  const std::optional<Node> trajectory = device.Find("trajectory");
+  const std::string expected =
+      fmt::format(R"(exactly one of "keyframes" and "trajectory" for a {} device)", type);
+  if (keyframes && trajectory)
+    device.Fail(R"(both "keyframes" and "trajectory" are set)", expected);
+  if (!keyframes && !trajectory) {
+    device.Fail(R"(neither "keyframes" nor "trajectory" is set)", expected);
+  }
+  if (keyframes) config->keyframes = ParseKeyframes(*keyframes);
+  if (trajectory) config->trajectory = trajectory->ExistingFile("a keyframe CSV file");
+}
+
+void ParseLimits(const Node& device, device::Specifications* specs) {
+  ReadBlock(device, "limits", kLimitFields, specs);
+  const std::optional<Node> limits = device.Find("limits");
+  if (!limits) return;
+  for (const auto& field : kLimitFields) {
+    const std::optional<Node> node = limits->Find(field.key);
+    const double value = specs->*std::get<double device::Specifications::*>(field.member);
+    if (node && !(value > 0.0)) node->Fail(fmt::format("{} {}", value, field.unit), "a number > 0");
+  }
+}
+
+device::Calibration ParseCalibration(const Node& node) {
+  node.ExpectObject({kCalibrationKeys.begin(), kCalibrationKeys.end()}, "an object");
+  device::Calibration calibration;
+  if (const auto position = node.Find("position")) {
+    const std::vector<double> p = position->Numbers(3, "[x, y, z] (m)");
+    calibration.X_WD.p = Vec3(p[0], p[1], p[2]);
+  }
+  if (const auto orientation = node.Find("orientation")) {
+    const std::vector<double> q = orientation->Numbers(4, "[qw, qx, qy, qz]");
+    calibration.X_WD.q = ParseQuaternion(*orientation, q[0], q[1], q[2], q[3]);
+  }
+  if (const auto scale = node.Find("scale")) {
+    calibration.scale = scale->Number("");
+    if (calibration.scale <= 0.0) {
+      scale->Fail(fmt::format("{}", calibration.scale), "a number > 0 (world m per device m)");
+    }
+  }
+  return calibration;
+}
+
+}  // namespace
+
+Quat ParseQuaternion(const Node& node, double qw, double qx, double qy, double qz) {
+  Quat q(qw, qx, qy, qz);
+  const double norm = q.norm();
+  if (!(norm >= kMinQuaternionNorm)) {
+    node.Fail(
+        fmt::format("quaternion (qw, qx, qy, qz) = ({}, {}, {}, {}) has zero norm", qw, qx, qy, qz),
+        "a nonzero quaternion, e.g. 1, 0, 0, 0 for no rotation");
+  }
+  q.coeffs() /= norm;
+  return q;
+}
+
+DeviceConfig ParseDevice(const Node& device) {
+  device.ExpectObject(AllDeviceKeys(), "an object");
+  DeviceConfig config;
+  const DeviceType& type = ParseType(device.Require("type", "one of " + TypeNames()));
+  config.type = std::string(type.name);
+  RejectForeignKeys(device, type);
+  if (type.name == "fixed") {
+    config.pose =
+        ParsePose(device.Require("pose", std::string(kPoseLayout) + " for a fixed device"));
+  } else if (type.name == "scripted" || type.name == "hand") {
+    ParseTarget(device, type.name, &config);
+    ReadBlock(device, "hand", kHandFields, &config.hand);
+  } else if (type.name == "replay") {
+    config.replay = device.Require("replay", "the path of a recorded run's ticks.csv")
+                        .ExistingFile("a recorded run's ticks.csv");
+  }
+  ParseLimits(device, &config.specs);
+  if (const auto calibration = device.Find("calibration")) {
+    config.calibration = ParseCalibration(*calibration);
+  }
+  return config;
+}
+
+}  // namespace mrh::session::internal

@@ -1,0 +1,55 @@
+// SPDX-License-Identifier: Apache-2.0
+// Session → simulated device. Apart from build.cc so it links without the world and the engine.
+#include <fmt/format.h>
+
+#include "mrh/core/error.h"
+#include "mrh/device/external.h"
+#include "mrh/session/session.h"
+
+namespace mrh::session {
+namespace {
+
+// The scripted target: inline keyframes, or the CSV file the session names.
+std::vector<device::Keyframe> TargetKeyframes(const Session& session) {
+  const DeviceConfig& config = session.device;
+  if (config.trajectory.empty()) return config.keyframes;
+  try {
+    return device::LoadKeyframesCsv(config.trajectory);
+  } catch (const InvalidArgument& e) {
+    throw InvalidArgument(
+        fmt::format("{}: device.trajectory: {}", session.file.string(), e.what()));
+  }
+}
+
+std::unique_ptr<device::Device> MakeConfiguredDevice(const Session& session) {
+  const DeviceConfig& config = session.device;
+  if (config.type == "fixed") return device::MakeFixedDevice(config.pose, config.specs);
+  if (config.type == "scripted") {
+    return device::MakeScriptedDevice(TargetKeyframes(session), config.specs);
+  }
+  if (config.type == "hand") {
+    return device::MakeHandDevice(TargetKeyframes(session), config.hand, config.specs);
+  }
+  if (config.type == "replay") return device::MakeReplayDevice(config.replay, config.specs);
+  if (config.type == "external") return std::make_unique<device::ExternalDevice>(config.specs);
+  throw InvalidArgument(
+      fmt::format("{}: device.type: unknown device type \"{}\"; expected \"fixed\", "
+                  "\"scripted\", \"hand\", \"replay\" or \"external\"",
+                  session.file.string(), config.type));
+}
+
+}  // namespace
+
+std::unique_ptr<device::Device> MakeDevice(const Session& session) {
+  try {
+    return MakeConfiguredDevice(session);
+  } catch (const InvalidArgument& e) {
+    const std::string message = e.what();
+    // Errors already located in the session pass through; others get the session and device.
+    if (message.rfind(session.file.string() + ":", 0) == 0) throw;
+    throw InvalidArgument(
+        fmt::format("{}: device ({}): {}", session.file.string(), session.device.type, message));
+  }
+}
+
+}  // namespace mrh::session

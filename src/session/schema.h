@@ -1,0 +1,110 @@
+// SPDX-License-Identifier: Apache-2.0
+// The key tables of the session format: one row per settings field (key, member, unit, doc).
+#pragma once
+
+#include <array>
+#include <string>
+#include <string_view>
+#include <variant>
+
+#include "mrh/device/device.h"
+#include "mrh/device/safety.h"
+#include "mrh/device/simulated.h"
+#include "mrh/engine/settings.h"
+
+namespace mrh::session::internal {
+
+/// A session key that maps straight onto a member of the settings struct S. Adding a plain
+/// number or flag to a block is one row in its table below (and one row in
+/// docs/session-format.md, which a test checks).
+template <typename S>
+struct Field {
+  std::string_view key;
+  std::variant<double S::*, bool S::*, std::string S::*> member;
+  std::string_view unit;  ///< SI unit of a number, for messages ("" for flags and strings)
+  std::string_view doc;   ///< one line, for readers of this table
+};
+
+/// Top-level keys stored in engine::EngineSettings.
+inline constexpr std::array<Field<engine::EngineSettings>, 5> kEngineFields{{
+    {"method", &engine::EngineSettings::method, "", "rendering method name"},
+    {"physics_dt", &engine::EngineSettings::physics_dt, "s", "physics (global) step period"},
+    {"haptic_dt", &engine::EngineSettings::haptic_dt, "s", "haptic tick period"},
+    {"duration", &engine::EngineSettings::duration, "s", "length of the run"},
+    {"realtime_priority", &engine::EngineSettings::realtime_priority, "",
+     "ask for SCHED_FIFO + mlockall in real-time mode"},
+}};
+
+/// `pointer` block.
+inline constexpr std::array<Field<engine::PointerSettings>, 2> kPointerFields{{
+    {"body", &engine::PointerSettings::body, "", "mocap body of the scene that is the pointer"},
+    {"radius", &engine::PointerSettings::radius, "m", "sphere radius; 0: from the body's geom"},
+}};
+
+/// `rendering` block.
+inline constexpr std::array<Field<engine::RenderingSettings>, 4> kRenderingFields{{
+    {"stiffness", &engine::RenderingSettings::stiffness, "N/m", "penalty spring k (eq. 4.11)"},
+    {"damping", &engine::RenderingSettings::damping, "N*s/m", "penalty damper d (eq. 4.11)"},
+    {"neighbor_distance", &engine::RenderingSettings::neighbor_distance, "m",
+     "objects this close to the pointer become neighbors"},
+    {"neighbor_margin", &engine::RenderingSettings::neighbor_margin, "m",
+     "broad-phase inflation of the pointer's bounds"},
+}};
+
+/// `safety` block.
+inline constexpr std::array<Field<device::SafetySettings>, 4> kSafetyFields{{
+    {"ramp", &device::SafetySettings::ramp, "", "engage ramp on/off"},
+    {"ramp_time", &device::SafetySettings::ramp_time, "s", "engage ramp length"},
+    {"watchdog_timeout", &device::SafetySettings::watchdog_timeout, "s",
+     "physics silence before the output fades"},
+    {"watchdog_fade", &device::SafetySettings::watchdog_fade, "s", "fade-out length"},
+}};
+
+/// `device.hand` block.
+inline constexpr std::array<Field<device::HandSettings>, 6> kHandFields{{
+    {"mass", &device::HandSettings::mass, "kg", "effective mass of hand + grip"},
+    {"stiffness", &device::HandSettings::stiffness, "N/m", "pull toward the target"},
+    {"damping", &device::HandSettings::damping, "N*s/m", "linear damping"},
+    {"inertia", &device::HandSettings::inertia, "kg*m^2", "isotropic rotational inertia"},
+    {"rot_stiffness", &device::HandSettings::rot_stiffness, "N*m/rad", "rotational pull"},
+    {"rot_damping", &device::HandSettings::rot_damping, "N*m*s/rad", "rotational damping"},
+}};
+
+/// `device.limits` block (overrides of the device's specifications; each must be > 0).
+inline constexpr std::array<Field<device::Specifications>, 3> kLimitFields{{
+    {"max_force", &device::Specifications::max_force, "N", "force clamp"},
+    {"max_torque", &device::Specifications::max_torque, "N*m", "torque clamp"},
+    {"max_stiffness", &device::Specifications::max_stiffness, "N/m", "largest stable stiffness"},
+}};
+
+/// Keys the parser handles itself (not plain fields), top level.
+inline constexpr std::array<std::string_view, 5> kTopLevelSpecialKeys{
+    {"scene", "mode", "keyframe", "gravity", "device"}};
+
+/// Top-level blocks made only of fields (kPointerFields, kRenderingFields, kSafetyFields).
+inline constexpr std::array<std::string_view, 3> kTopLevelBlocks{
+    {"pointer", "rendering", "safety"}};
+
+/// `device` keys every device type accepts.
+inline constexpr std::array<std::string_view, 3> kDeviceCommonKeys{
+    {"type", "limits", "calibration"}};
+
+/// A device type and the keys only it accepts (empty slots unused).
+struct DeviceType {
+  std::string_view name;
+  std::array<std::string_view, 3> keys;
+};
+
+inline constexpr std::array<DeviceType, 5> kDeviceTypes{{
+    {"fixed", {"pose"}},
+    {"scripted", {"keyframes", "trajectory"}},
+    {"hand", {"keyframes", "trajectory", "hand"}},
+    {"replay", {"replay"}},
+    {"external", {}},  // fed by the caller's servo loop (Engine::Start/Tick/Stop)
+}};
+
+/// `device.calibration` keys.
+inline constexpr std::array<std::string_view, 3> kCalibrationKeys{
+    {"position", "orientation", "scale"}};
+
+}  // namespace mrh::session::internal

@@ -1,0 +1,115 @@
+// SPDX-License-Identifier: Apache-2.0
+// Session files: JSON text + `--set` overrides → a validated Session (no world or engine needed).
+#include "mrh/session/session.h"
+
+#include <fmt/format.h>
+
+#include <cerrno>
+#include <fstream>
+#include <sstream>
+#include <system_error>
+
+#include "mrh/core/error.h"
+#include "session/device_config.h"
+#include "session/json_node.h"
+#include "session/json_text.h"
+#include "session/overrides.h"
+#include "session/schema.h"
+
+namespace mrh::session {
+namespace {
+
+namespace fs = std::filesystem;
+using internal::Context;
+using internal::Node;
+
+std::vector<std::string_view> TopLevelKeys() {
+  std::vector<std::string_view> keys(internal::kTopLevelSpecialKeys.begin(),
+                                     internal::kTopLevelSpecialKeys.end());
+  for (const auto& field : internal::kEngineFields) keys.push_back(field.key);
+  keys.insert(keys.end(), internal::kTopLevelBlocks.begin(), internal::kTopLevelBlocks.end());
+  return keys;
+}
+
+engine::Mode ParseMode(const Node& node) {
+  const std::string mode = node.String();
+  if (mode == "lockstep") return engine::Mode::kLockstep;
+  if (mode == "realtime") return engine::Mode::kRealtime;
+  node.Fail(fmt::format("unknown mode \"{}\"", mode), R"("lockstep" or "realtime")");
+}
+
+// Keys that fill Session itself or the engine settings, then the blocks.
+Session ParseDocument(const nlohmann::json& document, const Context& context) {
+  const Node root(context, document, "");
+  root.ExpectObject(TopLevelKeys(), "a JSON object");
+  Session session;
+  session.file = context.origin();
+  session.scene =
+      root.Require("scene", "the MJCF scene's path (string)").ExistingFile("the MJCF scene file");
+  internal::ReadFields(root, internal::kEngineFields, &session.engine);
+  if (const auto mode = root.Find("mode")) session.engine.mode = ParseMode(*mode);
+  if (const auto keyframe = root.Find("keyframe")) session.keyframe = keyframe->String();
+  if (const auto gravity = root.Find("gravity")) {
+    const std::vector<double> g = gravity->Numbers(3, "[gx, gy, gz] (m/s^2)");
+    session.gravity = Vec3(g[0], g[1], g[2]);
+  }
+  internal::ReadBlock(root, "pointer", internal::kPointerFields, &session.engine.pointer);
+  internal::ReadBlock(root, "rendering", internal::kRenderingFields, &session.engine.rendering);
+  internal::ReadBlock(root, "safety", internal::kSafetyFields, &session.engine.safety);
+  session.device = internal::ParseDevice(
+      root.Require("device", "an object with at least \"type\" (see docs/session-format.md)"));
+  return session;
+}
+
+// Range checks live in the settings' own Validate(); the session adds where the value came from.
+void ValidateSettings(const Session& session, const Context& context) {
+  // Both name the key by its session path ("physics_dt", "device.hand.mass").
+  try {
+    session.engine.Validate();
+    if (session.device.type == "hand") session.device.hand.Validate();
+  } catch (const InvalidArgument& e) {
+    throw InvalidArgument(fmt::format("{}: {}", context.origin(), e.what()));
+  }
+}
+
+fs::path AbsoluteFolder(const fs::path& folder) {
+  return (folder.empty() ? fs::current_path() : fs::absolute(folder)).lexically_normal();
+}
+
+}  // namespace
+
+Session ParseSession(const std::string& json_text, const fs::path& base_dir,
+                     const std::vector<std::string>& overrides, const std::string& origin) {
+  Context context(origin, AbsoluteFolder(base_dir));
+  nlohmann::json document = internal::ParseJsonText(json_text, origin);
+  if (!document.is_object()) {
+    context.Fail("", "found " + internal::Describe(document),
+                 "a JSON object {...} of session keys");
+  }
+  internal::ApplyOverrides(overrides, &document, &context);
+  Session session = ParseDocument(document, context);
+  ValidateSettings(session, context);
+  return session;
+}
+
+Session LoadSession(const fs::path& file, const std::vector<std::string>& overrides) {
+  const std::string origin = file.string();
+  std::error_code error;
+  if (!fs::is_regular_file(file, error)) {
+    throw InvalidArgument(fmt::format(
+        "{}: session file does not exist or is not a regular file; expected the path of a "
+        "session JSON file",
+        origin));
+  }
+  std::ifstream in(file, std::ios::binary);
+  if (!in) {
+    throw InvalidArgument(
+        fmt::format("{}: cannot open the session file ({}); expected a readable file", origin,
+                    std::generic_category().message(errno)));
+  }
+  std::stringstream text;
+  text << in.rdbuf();
+  return ParseSession(text.str(), fs::absolute(file).parent_path(), overrides, origin);
+}
+
+}  // namespace mrh::session

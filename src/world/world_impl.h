@@ -1,0 +1,77 @@
+// SPDX-License-Identifier: Apache-2.0
+// Private state of World: the MuJoCo model and data, and the engine-neutral model description.
+#pragma once
+
+#include <mujoco/mujoco.h>
+
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mrh/world/world.h"
+
+namespace mrh::world {
+namespace internal {
+
+struct ModelDeleter {
+  void operator()(mjModel* m) const { mj_deleteModel(m); }
+};
+
+struct DataDeleter {
+  void operator()(mjData* d) const { mj_deleteData(d); }
+};
+
+using ModelPtr = std::unique_ptr<mjModel, ModelDeleter>;
+using DataPtr = std::unique_ptr<mjData, DataDeleter>;
+
+/// Bodies and geoms of `m` as engine-neutral descriptions. `origin` names the scene in errors.
+/// @throws mrh::SceneError for a geom type mrhaptics cannot represent (height field).
+void DescribeModel(const mjModel& m, const std::string& origin, std::vector<BodyInfo>* bodies,
+                   std::vector<GeomInfo>* geoms);
+
+/// Number of doubles in a snapshot of `m`'s simulation state.
+std::size_t SnapshotSize(const mjModel& m);
+
+/// Sets the joint coordinates of `body` to reproduce pose X_WB and COM twist V_WCm, if its
+/// joints can (see World::SetBodyState). Kinematics in `d` must be current. Leaves `d`
+/// untouched and returns false otherwise.
+bool SetJointsFromBodyState(const mjModel& m, mjData* d, int body, const Pose& X_WB,
+                            const Twist& V_WCm);
+
+/// Everything a World owns. (World::Impl derives from it so that free functions in the
+/// implementation can work on it.)
+struct WorldState {
+  internal::ModelPtr model;
+  internal::DataPtr data;
+  std::string origin;  // the scene's name in error messages
+  std::vector<BodyInfo> bodies;
+  std::vector<GeomInfo> geoms;
+  int pointer_body = -1;
+  std::size_t snapshot_size = 0;
+  // Set when qpos, qvel or mocap changed without MuJoCo recomputing positions (after mj_step the
+  // positions it holds are those at the start of the step). Getters refresh on demand.
+  bool kinematics_stale = false;
+
+  /// Recomputes body and geom poses and body velocities from qpos, qvel and mocap if stale.
+  /// Does not allocate.
+  void EnsureKinematics() {
+    if (!kinematics_stale) return;
+    mj_kinematics(model.get(), data.get());
+    mj_comPos(model.get(), data.get());
+    mj_comVel(model.get(), data.get());
+    kinematics_stale = false;
+  }
+};
+
+/// Loads `model` into `state`: describes bodies and geoms, sets up the pointer, makes the data
+/// and computes everything derived from the initial state.
+/// @throws mrh::SceneError naming `origin` for a scene mrhaptics cannot use.
+void InitializeState(ModelPtr model, const std::string& origin, const LoadOptions& options,
+                     WorldState* state);
+
+}  // namespace internal
+
+struct World::Impl : internal::WorldState {};
+
+}  // namespace mrh::world

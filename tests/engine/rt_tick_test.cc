@@ -1,0 +1,86 @@
+// SPDX-License-Identifier: Apache-2.0
+// RT contract of the haptic tick: no allocation, NaN device input → zero output + fault bit.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "engine/engine_impl.h"
+#include "engine_test_util.h"
+#include "support/alloc_guard.h"
+
+namespace mrh::engine::testing {
+namespace {
+
+using internal::EngineState;
+using internal::PhysicsSide;
+
+// Runs `periods` lockstep periods, counting heap allocations made inside haptic ticks only.
+std::int64_t HapticAllocations(EngineState& state, int periods) {
+  PhysicsSide physics(&state, nullptr);
+  physics.Start();
+  std::int64_t allocations = 0;
+  std::int64_t tick = 0;
+  for (int k = 0; k < periods; ++k) {
+    physics.Step(k);
+    {
+      mrh::testing::AllocGuard guard;
+      for (int j = 0; j < state.ticks_per_step; ++j, ++tick) {
+        state.haptic->Tick(static_cast<double>(tick) * state.settings.haptic_dt);
+      }
+      allocations += guard.count();
+    }
+    physics.TakeReports();
+    physics.Publish();
+    physics.DrainTickRecords();
+  }
+  return allocations;
+}
+
+EngineState MakeState(const EngineSettings& settings, std::unique_ptr<device::Device> device) {
+  world::World w = T41World();
+  w.ApplyKeyframe("approach");
+  return EngineState(std::move(w), std::move(device), device::Calibration{}, settings);
+}
+
+TEST(RtTickTest, HapticTicksNeverAllocateInContact) {
+  for (const char* method : {"impulse", "single-rate"}) {
+    EngineSettings settings = T41Settings(method);
+    EngineState state = MakeState(settings, device::MakeFixedDevice(Pose{}));
+    const int periods = static_cast<int>(1.5 / state.settings.physics_dt);
+    EXPECT_EQ(HapticAllocations(state, periods), 0) << method;
+    EXPECT_GT(state.haptic->counters().max_force, 1.0) << method << ": contact never happened";
+  }
+}
+
+// A device whose readings turn to NaN after `bad_after` seconds.
+class FaultyDevice final : public device::Device {
+ public:
+  explicit FaultyDevice(double bad_after) : bad_after_(bad_after) {}
+  const device::Specifications& specifications() const override { return specs_; }
+  device::DeviceState Read(double t) noexcept override {
+    device::DeviceState s;
+    s.t = t;
+    if (t >= bad_after_) s.X_DT.p.x() = std::numeric_limits<double>::quiet_NaN();
+    return s;
+  }
+  void SetWrench(const Wrench& w) noexcept override { last_ = w; }
+  Wrench last_;
+
+ private:
+  device::Specifications specs_;
+  double bad_after_;
+};
+
+TEST(RtTickTest, NonFiniteDeviceReadingGivesZeroOutputAndFaultCount) {
+  auto device = std::make_unique<FaultyDevice>(0.8);  // in contact by then
+  FaultyDevice* raw = device.get();
+  EngineState state = MakeState(T41Settings("impulse"), std::move(device));
+  (void)HapticAllocations(state, 20);  // 1 s
+  EXPECT_GT(state.haptic->counters().nonfinite_device, 0);
+  EXPECT_EQ(raw->last_.f, Vec3::Zero());
+  EXPECT_TRUE(IsFinite(raw->last_));
+}
+
+}  // namespace
+}  // namespace mrh::engine::testing

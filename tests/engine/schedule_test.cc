@@ -1,0 +1,67 @@
+// SPDX-License-Identifier: Apache-2.0
+// The lockstep scheduler reproduces the data-flow rule of SPEC §4.9 exactly.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "engine_test_util.h"
+#include "mrh/engine/method.h"
+
+namespace mrh::engine::testing {
+namespace {
+
+// A probe method: records which snapshot each tick renders and which period each step consumes.
+struct ProbeLog {
+  std::vector<std::int64_t> tick_snapshot;  // per tick: snapshot step adopted
+  std::vector<int> tick_j;
+  std::vector<std::int64_t> step_input_period;  // per step: newest period in its report
+};
+
+class ProbeMethod final : public Method {
+ public:
+  explicit ProbeMethod(ProbeLog* log) : log_(log) {}
+  const char* name() const noexcept override { return "probe"; }
+  void PhysicsStart(const ir::HapticReport&, ir::PhysicsSnapshot* out) override { out->step = -1; }
+  void PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot*) override {
+    log_->step_input_period.push_back(report.period);
+  }
+  void Adopt(const ir::PhysicsSnapshot& snapshot) noexcept override { step_ = snapshot.step; }
+  void HapticTick(const TickInput& in, TickOutput*) noexcept override {
+    log_->tick_snapshot.push_back(step_);
+    log_->tick_j.push_back(in.j);
+  }
+  void EndPeriod(ir::HapticReport*) noexcept override {}
+
+ private:
+  ProbeLog* log_;
+  std::int64_t step_ = -2;
+};
+
+ProbeLog* g_log = nullptr;
+
+TEST(ScheduleTest, PeriodKRendersStepKMinus1AndStepKConsumesPeriodKMinus1) {
+  ProbeLog log;
+  g_log = &log;
+  RegisterMethod("probe", "test probe",
+                 [](const MethodContext&) { return std::make_unique<ProbeMethod>(g_log); });
+  EngineSettings s = T41Settings("probe");
+  s.physics_dt = 0.005;
+  s.duration = 0.05;  // 10 periods of n = 5 ticks
+  auto engine = T41Engine(s);
+  const RunStats stats = engine->Run(nullptr);
+  const int n = 5;
+  ASSERT_EQ(stats.ticks, 50);
+  ASSERT_EQ(log.tick_snapshot.size(), 50u);
+  for (std::size_t tick = 0; tick < log.tick_snapshot.size(); ++tick) {
+    const auto k = static_cast<std::int64_t>(tick) / n;
+    EXPECT_EQ(log.tick_snapshot[tick], k - 1) << "tick " << tick;
+    EXPECT_EQ(log.tick_j[tick], static_cast<int>(tick) % n) << "tick " << tick;
+  }
+  ASSERT_EQ(log.step_input_period.size(), 10u);
+  for (std::size_t k = 0; k < log.step_input_period.size(); ++k) {
+    EXPECT_EQ(log.step_input_period[k], static_cast<std::int64_t>(k) - 1) << "step " << k;
+  }
+}
+
+}  // namespace
+}  // namespace mrh::engine::testing
