@@ -8,16 +8,9 @@
 #include "mrh/core/assert.h"
 #include "mrh/core/error.h"
 #include "mrh/device/external.h"
-#include "rt_clock.h"
 
 namespace mrh::engine {
 namespace internal {
-namespace {
-
-constexpr std::int64_t kEmbeddedPollNs = 100000;
-
-}  // namespace
-
 struct EmbeddedRun {
   EmbeddedRun(EngineState* state, Recorder* recorder) : physics(state, recorder) {}
   PhysicsSide physics;
@@ -50,17 +43,7 @@ void Engine::Start(Recorder* recorder) {
   run.device = external;
   run.physics.Start();
   if (s.settings.mode == Mode::kRealtime) {
-    run.physics_thread = std::thread([&run] {
-      for (std::int64_t k = 0;; ++k) {
-        run.physics.Step(k);
-        while (run.physics.TakeReports() == 0) {
-          if (run.done.load(std::memory_order_acquire)) return;
-          internal::SleepUntilNs(internal::NowNs() + internal::kEmbeddedPollNs, 0);
-        }
-        run.physics.Publish();
-        run.physics.RecordStep();
-      }
-    });
+    run.physics_thread = std::thread([&run] { run.physics.RunThread(run.done); });
   }
 }
 

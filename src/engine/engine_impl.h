@@ -2,6 +2,7 @@
 // Private state of the engine shared by the lockstep and real-time schedulers.
 #pragma once
 
+#include <atomic>
 #include <map>
 #include <memory>
 #include <optional>
@@ -56,6 +57,10 @@ class PhysicsSide {
   /// Writes the finished step and all pending tick records to the recorder.
   void RecordStep();
   void DrainTickRecords();
+  /// The real-time physics thread's loop: step k, wait (polling, never blocking the haptic
+  /// thread) for the end of haptic period k, exchange, record; returns once `done` is set and no
+  /// report is pending.
+  void RunThread(const std::atomic<bool>& done);
   /// Fills the statistics this side owns.
   void Finish(RunStats* stats);
 

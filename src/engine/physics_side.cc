@@ -4,6 +4,7 @@
 #include <chrono>
 
 #include "engine_impl.h"
+#include "rt_clock.h"
 
 namespace mrh::engine::internal {
 
@@ -45,6 +46,20 @@ void PhysicsSide::Step(std::int64_t k) {
   last_step_.solver_iterations = state_->world.solver_iterations();
   step_ms_.push_back(last_step_.compute_ms);
   ++steps_;
+}
+
+void PhysicsSide::RunThread(const std::atomic<bool>& done) {
+  // The physics thread polls for the end of a haptic period this often while it waits.
+  constexpr std::int64_t kPollNs = 100'000;
+  for (std::int64_t k = 0;; ++k) {
+    Step(k);
+    while (TakeReports() == 0) {
+      if (done.load(std::memory_order_acquire)) return;
+      SleepUntilNs(NowNs() + kPollNs, 0);
+    }
+    Publish();
+    RecordStep();
+  }
 }
 
 int PhysicsSide::TakeReports() {

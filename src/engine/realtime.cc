@@ -19,8 +19,6 @@ constexpr int kHapticFifoPriority = 80;
 // Sleep with the kernel to this much before a deadline, then spin (DEPENDENCIES.md: the kernel
 // wakes 50–110 µs late on this VM).
 constexpr std::int64_t kSpinNs = 150'000;
-// The physics thread polls for the end of a haptic period this often while it waits.
-constexpr std::int64_t kPhysicsPollNs = 100'000;
 constexpr std::int64_t kNsPerS = 1'000'000'000;
 // Room for jitter samples beyond the nominal tick count (start-up, rounding).
 constexpr std::size_t kJitterSlack = 1024;
@@ -62,19 +60,6 @@ void HapticLoop(EngineState& s, HapticTiming* timing, std::atomic<bool>* done,
   done->store(true, std::memory_order_release);
 }
 
-// The physics thread: step k, wait for the end of haptic period k, exchange, record.
-void PhysicsLoop(PhysicsSide* physics, const std::atomic<bool>* done) {
-  for (std::int64_t k = 0;; ++k) {
-    physics->Step(k);
-    while (physics->TakeReports() == 0) {
-      if (done->load(std::memory_order_acquire)) return;
-      SleepUntilNs(NowNs() + kPhysicsPollNs, 0);
-    }
-    physics->Publish();
-    physics->RecordStep();
-  }
-}
-
 }  // namespace
 
 RunStats RunRealtime(EngineState& s, Recorder* recorder, const Engine::ProgressFn& progress) {
@@ -93,7 +78,7 @@ RunStats RunRealtime(EngineState& s, Recorder* recorder, const Engine::ProgressF
   std::atomic<bool> done{false};
   std::atomic<bool> fifo_ok{false};
   const std::int64_t wall0 = NowNs();
-  std::thread physics_thread([&] { PhysicsLoop(&physics, &done); });
+  std::thread physics_thread([&] { physics.RunThread(done); });
   std::thread haptic_thread([&] { HapticLoop(s, &timing, &done, &fifo_ok); });
   while (!done.load(std::memory_order_acquire)) {
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
