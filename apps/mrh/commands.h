@@ -41,7 +41,25 @@ struct ExperimentOptions {
   bool quiet = false;
 };
 
+/// `mrh ir` (ir_command.cc).
+struct IrOptions {
+  std::filesystem::path session;
+  std::vector<double> pose;       ///< x y z qw qx qy qz (m, unit quaternion), world frame
+  std::vector<std::string> sets;
+};
+
+/// `mrh view` (view_command.cc).
+struct ViewOptions {
+  std::filesystem::path session;
+  std::vector<std::string> sets;
+  int frames = 0;                 ///< > 0: render this many frames headless, then exit
+  std::filesystem::path screenshot;  ///< with frames: write the last frame as PNG here
+  std::string method;             ///< empty: the session's
+};
+
 CLI::App* AddRunCommand(CLI::App& app, RunOptions* options);
+CLI::App* AddIrCommand(CLI::App& app, IrOptions* options);
+CLI::App* AddViewCommand(CLI::App& app, ViewOptions* options);
 CLI::App* AddValidateCommand(CLI::App& app, ValidateOptions* options);
 CLI::App* AddMethodsCommand(CLI::App& app);
 CLI::App* AddExperimentCommand(CLI::App& app, ExperimentOptions* options);
@@ -52,6 +70,8 @@ int RunCommand(const RunOptions& options);
 int ValidateCommand(const ValidateOptions& options);
 int MethodsCommand();
 int ExperimentCommand(const ExperimentOptions& options);
+int IrCommand(const IrOptions& options);
+int ViewCommand(const ViewOptions& options);
 
 /// The `--set KEY=VALUE` option (repeatable, one value per flag), shared by run and validate.
 void AddSetOption(CLI::App& command, std::vector<std::string>* sets);

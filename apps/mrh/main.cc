@@ -24,6 +24,8 @@ constexpr const char* kRootFooter = R"(Examples:
   mrh validate session.json                  check a session and its scene
   mrh methods                                list the rendering methods
   mrh experiment --list                      list the reproducible experiments
+  mrh ir session.json --pose 0 0 0.1 1 0 0 0 print the contact IR at a pointer pose (JSON)
+  mrh view session.json                      open the interactive viewer
 
 Run `mrh <command> --help` for the options of a command.
 
@@ -68,13 +70,24 @@ struct Options {
   RunOptions run;
   ValidateOptions validate;
   ExperimentOptions experiment;
+  IrOptions ir;
+  ViewOptions view;
 };
 
-int Dispatch(const CLI::App& app, const Options& o, const CLI::App* run, const CLI::App* validate,
-             const CLI::App* methods) {
-  if (app.got_subcommand(run)) return RunCommand(o.run);
-  if (app.got_subcommand(validate)) return ValidateCommand(o.validate);
-  if (app.got_subcommand(methods)) return MethodsCommand();
+struct Commands {
+  const CLI::App* run;
+  const CLI::App* validate;
+  const CLI::App* methods;
+  const CLI::App* ir;
+  const CLI::App* view;
+};
+
+int Dispatch(const CLI::App& app, const Options& o, const Commands& c) {
+  if (app.got_subcommand(c.run)) return RunCommand(o.run);
+  if (app.got_subcommand(c.validate)) return ValidateCommand(o.validate);
+  if (app.got_subcommand(c.methods)) return MethodsCommand();
+  if (app.got_subcommand(c.ir)) return IrCommand(o.ir);
+  if (app.got_subcommand(c.view)) return ViewCommand(o.view);
   return ExperimentCommand(o.experiment);
 }
 
@@ -88,15 +101,19 @@ int Main(int argc, char** argv) {
   app.require_subcommand(1);
   app.footer(kRootFooter);
   Options o;
-  const CLI::App* run = AddRunCommand(app, &o.run);
-  const CLI::App* validate = AddValidateCommand(app, &o.validate);
-  const CLI::App* methods = AddMethodsCommand(app);
+  Commands c{};
+  c.run = AddRunCommand(app, &o.run);
+  c.validate = AddValidateCommand(app, &o.validate);
+  c.methods = AddMethodsCommand(app);
   AddExperimentCommand(app, &o.experiment);
+  c.ir = AddIrCommand(app, &o.ir);
+  c.view = AddViewCommand(app, &o.view);
 
   if (const std::optional<std::string> word = UnknownCommand(app, argc, argv)) {
     return Fail(
         kExitBadInput,
-        fmt::format("unknown command '{}'; expected run, validate, methods or experiment", *word),
+        fmt::format("unknown command '{}'; expected run, validate, methods, experiment, ir or view",
+                    *word),
         true);
   }
   try {
@@ -106,7 +123,7 @@ int Main(int argc, char** argv) {
     if (e.get_exit_code() == 0) return app.exit(e);
     return Fail(kExitBadInput, e.what(), true);
   }
-  return Dispatch(app, o, run, validate, methods);
+  return Dispatch(app, o, c);
 }
 
 }  // namespace

@@ -29,6 +29,32 @@ void RequireNonNegative(double value, const char* key, const char* unit) {
   }
 }
 
+void RequireAtLeast(int value, int minimum, const char* key) {
+  if (value < minimum) {
+    throw InvalidArgument(
+        fmt::format("{} = {}; expected an integer >= {}", key, value, minimum));
+  }
+}
+
+void ValidateProxy(const RenderingSettings& r) {
+  RequireNonNegative(r.rot_stiffness, "rendering.rot_stiffness", "N*m/rad");
+  RequireNonNegative(r.rot_damping, "rendering.rot_damping", "N*m*s/rad");
+  RequirePositive(r.rotation_weight_scale, "rendering.rotation_weight_scale", "");
+  if (r.rotation_weight) {
+    for (int i = 0; i < 3; ++i) {
+      if (!std::isfinite((*r.rotation_weight)[i]) || (*r.rotation_weight)[i] <= 0.0) {
+        throw InvalidArgument(fmt::format(
+            "rendering.rotation_weight = [{}, {}, {}] m^2; expected three finite values > 0 "
+            "(the diagonal of R_w)",
+            r.rotation_weight->x(), r.rotation_weight->y(), r.rotation_weight->z()));
+      }
+    }
+  }
+  RequireNonNegative(r.friction, "rendering.friction", "");
+  RequireAtLeast(r.max_iterations, 1, "rendering.max_iterations");
+  RequirePositive(r.solver_tolerance, "rendering.solver_tolerance", "m");
+}
+
 }  // namespace
 
 const char* ModeName(Mode mode) noexcept {
@@ -63,6 +89,9 @@ void EngineSettings::Validate() const {
   RequireNonNegative(rendering.damping, "rendering.damping", "N*s/m");
   RequireNonNegative(rendering.neighbor_distance, "rendering.neighbor_distance", "m");
   RequireNonNegative(rendering.neighbor_margin, "rendering.neighbor_margin", "m");
+  RequireAtLeast(rendering.curved_segments, 6, "rendering.curved_segments");
+  ValidateProxy(rendering);
+  RequirePositive(rendering.perturbation_force, "rendering.perturbation_force", "N");
   safety.Validate();
 }
 

@@ -25,6 +25,16 @@ void HapticReport::MergeLater(const HapticReport& later) noexcept {
   for (const BodyImpulse& entry : later.impulses) {
     AddImpulse(entry.body, entry.linear, entry.angular, entry.last_force);
   }
+  for (const LocalBodyState& state : later.local_states) {
+    bool replaced = false;
+    for (LocalBodyState& entry : local_states) {
+      if (entry.body == state.body) {
+        entry = state;
+        replaced = true;
+      }
+    }
+    if (!replaced && !local_states.PushBack(state)) status |= kStatusBodiesFull;
+  }
   period = later.period;
   ticks += later.ticks;
   t = later.t;

@@ -140,6 +140,16 @@ double Node::Number(std::string_view unit) const {
   return number;
 }
 
+int Node::Integer() const {
+  constexpr const char* kExpected = "a whole number (e.g. 50)";
+  if (!value_->is_number()) Fail("found " + Describe(*value_), kExpected);
+  const double number = value_->get<double>();
+  if (!std::isfinite(number) || number != std::floor(number) || std::abs(number) > 1e9) {
+    Fail("found " + Describe(*value_), kExpected);
+  }
+  return static_cast<int>(number);
+}
+
 bool Node::Bool() const {
   if (!value_->is_boolean()) Fail("found " + Describe(*value_), "true or false");
   return value_->get<bool>();

@@ -66,6 +66,8 @@ class Node {
 
   /// A finite number; `unit` goes into the message ("" for dimensionless).
   double Number(std::string_view unit) const;
+  /// A whole number that fits an int (e.g. 50, not 50.5).
+  int Integer() const;
   bool Bool() const;
   std::string String() const;
   /// An array of exactly `count` finite numbers; `layout` names them, e.g. "[x, y, z] (m)".
@@ -105,6 +107,8 @@ void ReadFields(const Node& object, const Table& fields, S* out) {
           using T = std::remove_reference_t<decltype(target)>;
           if constexpr (std::is_same_v<T, double>) {
             target = node->Number(field.unit);
+          } else if constexpr (std::is_same_v<T, int>) {
+            target = node->Integer();
           } else if constexpr (std::is_same_v<T, bool>) {
             target = node->Bool();
           } else {

@@ -20,7 +20,7 @@ namespace mrh::session::internal {
 template <typename S>
 struct Field {
   std::string_view key;
-  std::variant<double S::*, bool S::*, std::string S::*> member;
+  std::variant<double S::*, int S::*, bool S::*, std::string S::*> member;
   std::string_view unit;  ///< SI unit of a number, for messages ("" for flags and strings)
   std::string_view doc;   ///< one line, for readers of this table
 };
@@ -42,14 +42,34 @@ inline constexpr std::array<Field<engine::PointerSettings>, 2> kPointerFields{{
 }};
 
 /// `rendering` block.
-inline constexpr std::array<Field<engine::RenderingSettings>, 4> kRenderingFields{{
+inline constexpr std::array<Field<engine::RenderingSettings>, 13> kRenderingFields{{
     {"stiffness", &engine::RenderingSettings::stiffness, "N/m", "penalty spring k (eq. 4.11)"},
     {"damping", &engine::RenderingSettings::damping, "N*s/m", "penalty damper d (eq. 4.11)"},
     {"neighbor_distance", &engine::RenderingSettings::neighbor_distance, "m",
      "objects this close to the pointer become neighbors"},
     {"neighbor_margin", &engine::RenderingSettings::neighbor_margin, "m",
      "broad-phase inflation of the pointer's bounds"},
+    {"curved_segments", &engine::RenderingSettings::curved_segments, "",
+     "segments per turn of polyhedral spheres, capsules, cylinders, ellipsoids"},
+    {"rot_stiffness", &engine::RenderingSettings::rot_stiffness, "N*m/rad",
+     "proxy rotational spring k_r (eq. 3.8)"},
+    {"rot_damping", &engine::RenderingSettings::rot_damping, "N*m*s/rad",
+     "proxy rotational damper d_r (eq. 3.8)"},
+    {"rotation_weight_scale", &engine::RenderingSettings::rotation_weight_scale, "",
+     "multiplier on the pointer's unit-mass inertia for R_w"},
+    {"friction", &engine::RenderingSettings::friction, "", "friction coefficient mu"},
+    {"max_iterations", &engine::RenderingSettings::max_iterations, "",
+     "projected Gauss-Seidel sweeps per tick at most"},
+    {"solver_tolerance", &engine::RenderingSettings::solver_tolerance, "m",
+     "PGS stops when no multiplier changes more than this"},
+    {"perturbation", &engine::RenderingSettings::perturbation, "",
+     "measure A and b by perturbation simulations (local-dynamics)"},
+    {"perturbation_force", &engine::RenderingSettings::perturbation_force, "N",
+     "test force when the user's last force is zero"},
 }};
+
+/// `rendering` keys the parser handles itself (not plain fields).
+inline constexpr std::array<std::string_view, 1> kRenderingSpecialKeys{{"rotation_weight"}};
 
 /// `safety` block.
 inline constexpr std::array<Field<device::SafetySettings>, 4> kSafetyFields{{

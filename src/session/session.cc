@@ -38,6 +38,21 @@ engine::Mode ParseMode(const Node& node) {
   node.Fail(fmt::format("unknown mode \"{}\"", mode), R"("lockstep" or "realtime")");
 }
 
+// The rendering block: its plain fields plus `rotation_weight` ([Rxx, Ryy, Rzz] in m^2).
+void ReadRendering(const Node& root, engine::RenderingSettings* out) {
+  const std::optional<Node> block = root.Find("rendering");
+  if (!block) return;
+  std::vector<std::string_view> keys = internal::KeysOf(internal::kRenderingFields);
+  keys.insert(keys.end(), internal::kRenderingSpecialKeys.begin(),
+              internal::kRenderingSpecialKeys.end());
+  block->ExpectObject(keys, "an object");
+  internal::ReadFields(*block, internal::kRenderingFields, out);
+  if (const auto weight = block->Find("rotation_weight")) {
+    const std::vector<double> w = weight->Numbers(3, "[Rxx, Ryy, Rzz] (m^2)");
+    out->rotation_weight = Vec3(w[0], w[1], w[2]);
+  }
+}
+
 // Keys that fill Session itself or the engine settings, then the blocks.
 Session ParseDocument(const nlohmann::json& document, const Context& context) {
   const Node root(context, document, "");
@@ -54,7 +69,7 @@ Session ParseDocument(const nlohmann::json& document, const Context& context) {
     session.gravity = Vec3(g[0], g[1], g[2]);
   }
   internal::ReadBlock(root, "pointer", internal::kPointerFields, &session.engine.pointer);
-  internal::ReadBlock(root, "rendering", internal::kRenderingFields, &session.engine.rendering);
+  ReadRendering(root, &session.engine.rendering);
   internal::ReadBlock(root, "safety", internal::kSafetyFields, &session.engine.safety);
   session.device = internal::ParseDevice(
       root.Require("device", "an object with at least \"type\" (see docs/session-format.md)"));

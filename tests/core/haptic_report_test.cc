@@ -45,5 +45,19 @@ TEST(HapticReportTest, OverflowSetsStatusBit) {
   EXPECT_NE(a.status & kStatusBodiesFull, 0u);
 }
 
+TEST(HapticReportTest, MergeKeepsTheNewestLocalStatePerBody) {
+  HapticReport earlier;
+  ASSERT_TRUE(earlier.local_states.PushBack({3, Pose{Vec3(1, 0, 0), Quat::Identity()}, {}}));
+  ASSERT_TRUE(earlier.local_states.PushBack({4, Pose{Vec3(2, 0, 0), Quat::Identity()}, {}}));
+  HapticReport later;
+  ASSERT_TRUE(later.local_states.PushBack({4, Pose{Vec3(5, 0, 0), Quat::Identity()}, {}}));
+  ASSERT_TRUE(later.local_states.PushBack({7, Pose{Vec3(6, 0, 0), Quat::Identity()}, {}}));
+  earlier.MergeLater(later);
+  ASSERT_EQ(earlier.local_states.size(), 3u);
+  EXPECT_EQ(earlier.local_states[0].X_WB.p.x(), 1.0);
+  EXPECT_EQ(earlier.local_states[1].X_WB.p.x(), 5.0);
+  EXPECT_EQ(earlier.local_states[2].body, 7);
+}
+
 }  // namespace
 }  // namespace mrh::ir

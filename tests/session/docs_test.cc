@@ -93,6 +93,9 @@ TEST(SessionDocsTest, EveryKeyOfTheCodeIsDocumented) {
   ExpectDocumented(docs, "safety.", internal::kSafetyFields);
   ExpectDocumented(docs, "device.hand.", internal::kHandFields);
   ExpectDocumented(docs, "device.limits.", internal::kLimitFields);
+  for (const std::string_view key : internal::kRenderingSpecialKeys) {
+    EXPECT_THAT(docs, ::testing::HasSubstr("`rendering." + std::string(key) + "`")) << key;
+  }
   for (const std::string_view key : internal::kTopLevelSpecialKeys) {
     EXPECT_THAT(docs, ::testing::HasSubstr("`" + std::string(key) + "`")) << key;
   }

@@ -127,7 +127,9 @@ TEST(OverridesTest, UnknownKeyFromAnOverrideSaysItCameFromSet) {
       ThrowsInvalidExactly(
           "session.json: rendering.stifness: unknown key (from --set "
           "rendering.stifness=5); expected one of: stiffness, damping, neighbor_distance, "
-          "neighbor_margin (did you mean \"stiffness\"?)"));
+          "neighbor_margin, curved_segments, rot_stiffness, rot_damping, rotation_weight_scale, "
+          "friction, max_iterations, solver_tolerance, perturbation, perturbation_force, "
+          "rotation_weight (did you mean \"stiffness\"?)"));
 }
 
 TEST(OverridesTest, UnknownBlockCreatedByAnOverrideSaysItCameFromSet) {
@@ -164,7 +166,9 @@ TEST(OverridesTest, ErrorInAnotherKeyDoesNotBlameTheOverride) {
       },
       ThrowsInvalidExactly(
           "session.json: rendering.stifness: unknown key; expected one of: stiffness, "
-          "damping, neighbor_distance, neighbor_margin (did you mean \"stiffness\"?)"));
+          "damping, neighbor_distance, neighbor_margin, curved_segments, rot_stiffness, rot_damping, rotation_weight_scale, "
+          "friction, max_iterations, solver_tolerance, perturbation, perturbation_force, "
+          "rotation_weight (did you mean \"stiffness\"?)"));
 }
 
 }  // namespace

@@ -260,5 +260,38 @@ TEST(SessionTest, EveryRepositorySessionFileLoads) {
   EXPECT_GT(loaded, 0);
 }
 
+TEST(SessionTest, ProxyAndLocalDynamicsKeysAreParsed) {
+  const Session s = Parse(Minimal(
+      R"("rendering": {"rot_stiffness": 9000, "rot_damping": 3, "rotation_weight": [1, 2, 3],
+                       "friction": 0.5, "max_iterations": 20, "curved_segments": 24,
+                       "perturbation": false, "perturbation_force": 0.25})"));
+  EXPECT_EQ(s.engine.rendering.rot_stiffness, 9000.0);
+  EXPECT_EQ(s.engine.rendering.rot_damping, 3.0);
+  ASSERT_TRUE(s.engine.rendering.rotation_weight.has_value());
+  EXPECT_EQ(*s.engine.rendering.rotation_weight, Vec3(1, 2, 3));
+  EXPECT_EQ(s.engine.rendering.friction, 0.5);
+  EXPECT_EQ(s.engine.rendering.max_iterations, 20);
+  EXPECT_EQ(s.engine.rendering.curved_segments, 24);
+  EXPECT_FALSE(s.engine.rendering.perturbation);
+  EXPECT_EQ(s.engine.rendering.perturbation_force, 0.25);
+}
+
+TEST(SessionTest, FractionalIterationCountIsAnErrorNamingTheKey) {
+  EXPECT_THAT([] { Parse(Minimal(R"("rendering": {"max_iterations": 20.5})")); },
+              ThrowsInvalid("rendering.max_iterations: found"));
+}
+
+TEST(SessionTest, RotationWeightNeedsThreePositiveNumbers) {
+  EXPECT_THAT([] { Parse(Minimal(R"("rendering": {"rotation_weight": [1, 2]})")); },
+              ThrowsInvalid("rendering.rotation_weight"));
+  EXPECT_THAT([] { Parse(Minimal(R"("rendering": {"rotation_weight": [1, 0, 2]})")); },
+              ThrowsInvalid("rendering.rotation_weight = [1, 0, 2] m^2; expected three finite"));
+}
+
+TEST(SessionTest, TooFewCurvedSegmentsIsAnError) {
+  EXPECT_THAT([] { Parse(Minimal(R"("rendering": {"curved_segments": 4})")); },
+              ThrowsInvalid("rendering.curved_segments = 4; expected an integer >= 6"));
+}
+
 }  // namespace
 }  // namespace mrh::session

@@ -35,6 +35,34 @@ struct RenderingSettings {
   /// Broad-phase inflation of the pointer's bounds (m); at least the distance the hand can move
   /// in one physics step.
   double neighbor_margin = 0.05;
+  /// Segments per full turn when a sphere, capsule, cylinder or ellipsoid is approximated by a
+  /// polyhedron for 6-DOF contact (>= 6). The approximation lies inside the true surface; its
+  /// largest gap is r·(1 − cos(π/segments)) (docs/architecture.md).
+  int curved_segments = 16;
+
+  // 6-DOF proxy rendering (method proxy-6dof, SPEC §3.4–3.10).
+  /// Rotational spring k_r of eq. 3.8 (N·m/rad).
+  double rot_stiffness = 10.0;
+  /// Rotational damper d_r of eq. 3.8 (N·m·s/rad).
+  double rot_damping = 0.0;
+  /// Diagonal of the rotation weight R_w (m²). Empty: the pointer's unit-mass inertia times
+  /// rotation_weight_scale (SPEC §3.10).
+  std::optional<Vec3> rotation_weight;
+  /// Multiplier on the unit-mass inertia when rotation_weight is empty (dimensionless, > 0).
+  double rotation_weight_scale = 1.0;
+  /// Coulomb friction coefficient μ of the friction cones (eq. 3.9–3.10), static = kinetic.
+  double friction = 0.0;
+  /// Projected Gauss–Seidel sweeps per tick at most (>= 1).
+  int max_iterations = 50;
+  /// PGS stops when no multiplier changed by more than this in a sweep (m).
+  double solver_tolerance = 1e-10;
+
+  // Local simulation (method local-dynamics, SPEC §4.5–4.8).
+  /// Run the perturbation simulations that measure A and b. false: A from the object's own
+  /// mass and inertia and b = 0 (the t4.3 "without perturbations" variant).
+  bool perturbation = true;
+  /// Test force along −n when the user's last force is zero (N, > 0; Springhead uses 0.5 N).
+  double perturbation_force = 0.5;
 };
 
 /// Everything the engine needs besides the world and the device.

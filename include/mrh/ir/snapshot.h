@@ -4,6 +4,8 @@
 
 #include <cstdint>
 
+#include <Eigen/Core>
+
 #include "mrh/core/fixed_vector.h"
 #include "mrh/core/spatial.h"
 
@@ -12,6 +14,12 @@ namespace mrh::ir {
 /// Capacities of the exchanged structures. Overflow drops items and sets a Status bit.
 inline constexpr std::size_t kMaxNeighborBodies = 64;
 inline constexpr std::size_t kMaxPointContacts = 128;
+/// Pointer-geom/object-geom pairs of the geometric IR (6-DOF, SPEC §3.3.3).
+inline constexpr std::size_t kMaxGeometricPairs = 64;
+/// Contact points over all geometric pairs (an N-gon prism face gives N; T3.4 goes to 1000).
+inline constexpr std::size_t kMaxPairPoints = 2048;
+
+using Mat63 = Eigen::Matrix<double, 6, 3>;
 
 /// Status bits carried by snapshots and reports.
 enum StatusBits : std::uint32_t {
@@ -19,6 +27,9 @@ enum StatusBits : std::uint32_t {
   kStatusBodiesFull = 1u << 0,    ///< more neighbor bodies than kMaxNeighborBodies
   kStatusContactsFull = 1u << 1,  ///< more contacts than kMaxPointContacts
   kStatusReportDropped = 1u << 2, ///< the haptic→physics ring was full
+  kStatusPairsFull = 1u << 3,     ///< more geometric pairs than kMaxGeometricPairs
+  kStatusPointsFull = 1u << 4,    ///< more contact points than kMaxPairPoints
+  kStatusRegionFallback = 1u << 5,  ///< a penetration region failed; closest point sent instead
 };
 
 /// A neighbor body as the haptic thread sees it over one period: its pose before and after the
@@ -30,6 +41,19 @@ struct BodyMotion {
   Vec3 p_BCm = Vec3::Zero();    ///< centre of mass in the body frame (m)
   Twist V_WCm;                  ///< COM velocity at the end of the step (world frame)
   bool is_static = false;       ///< a static body takes no reaction
+
+  // Dynamic IR (method local-dynamics, SPEC §4.5, §4.8.2); unused by the other methods.
+  bool has_dynamics = false;    ///< A, b and dV_n below are valid
+  /// Accelerance A (eq. 4.10): COM acceleration (linear rows 0–2, m/s² per N; angular rows 3–5,
+  /// rad/s² per N) per unit force applied at the contact point p_BA, world frame.
+  Mat63 A = Mat63::Zero();
+  Vec6 b = Vec6::Zero();        ///< bias acceleration (linear; angular), world frame
+  Vec3 p_BA = Vec3::Zero();     ///< point where the test forces acted, body frame (m)
+  /// Velocity correction of eq. 4.18 (third term, already × Δt^G), added once at tick j = 0.
+  Twist dV_n;
+  /// True when the body was a neighbor in the previous step too (its local state continues);
+  /// false: the local simulation starts from X_WB / V_WCm.
+  bool continues = false;
 };
 
 /// Adachi's plane + point IR for a 3-DOF pointer (SPEC §4.4): a plane fixed on the object through
@@ -42,6 +66,35 @@ struct PointContact {
   double distance = 0.0;        ///< signed pointer–object distance when built (m)
 };
 
+/// One pointer-geom/object-geom pair of the geometric IR (SPEC §3.3.3): a plane fixed on the
+/// object and the pointer's contact points below it.
+struct GeometricPair {
+  int motion = -1;              ///< index into PhysicsSnapshot::bodies (the object's body)
+  int object_geom = -1;         ///< world geom id of the object side
+  int pointer_geom = -1;        ///< world geom id of the pointer side
+  Vec3 n_W = Vec3::UnitZ();     ///< unit plane normal at the end of the step, object → pointer
+  Vec3 p_BC = Vec3::Zero();     ///< plane point c (object witness), object body frame (m)
+  int first_point = 0;          ///< first index into PhysicsSnapshot::points
+  int num_points = 0;           ///< number of contact points of this pair
+  double distance = 0.0;        ///< signed pointer–object distance when built (m)
+  /// true: points are penetration-region vertices below the plane; false: the fallback (not
+  /// penetrating, touching, or region failed): the pointer-side closest point only.
+  bool penetrating = false;
+};
+
+/// A contact point of a geometric pair, fixed on the pointer.
+struct PairPoint {
+  Vec3 p_PV = Vec3::Zero();     ///< position in the pointer body frame (m)
+  double depth = 0.0;           ///< depth below the pair's plane when built (m, >= 0 if below)
+};
+
+/// The local-simulation state of a neighbor at the end of a haptic period (eq. 4.16–4.17).
+struct LocalBodyState {
+  int body = -1;                ///< world body id
+  Pose X_WB;                    ///< body pose
+  Twist V_WCm;                  ///< COM velocity, world frame
+};
+
 /// Everything physics step k hands to haptic period k+1 (SPEC §4.9). Immutable once published.
 struct PhysicsSnapshot {
   std::int64_t step = -1;       ///< physics step index k; -1 before the first step
@@ -49,6 +102,8 @@ struct PhysicsSnapshot {
   double physics_dt = 0.0;      ///< s
   FixedVector<BodyMotion, kMaxNeighborBodies> bodies;
   FixedVector<PointContact, kMaxPointContacts> contacts;
+  FixedVector<GeometricPair, kMaxGeometricPairs> pairs;
+  FixedVector<PairPoint, kMaxPairPoints> points;
   std::uint32_t status = kStatusOk;
 };
 
@@ -68,10 +123,13 @@ struct HapticReport {
   Pose X_WP;                    ///< pointer pose at the last tick (world)
   Twist V_WP;                   ///< pointer velocity at the last tick (world)
   FixedVector<BodyImpulse, kMaxNeighborBodies> impulses;
+  /// Local-simulation states at the period's last tick (local-dynamics only).
+  FixedVector<LocalBodyState, kMaxNeighborBodies> local_states;
   std::uint32_t status = kStatusOk;
 
-  /// Adds a later report into this one: impulses summed per body, pointer and last forces
-  /// taken from the later report. RT-safe.
+  /// Adds a later report into this one: impulses summed per body, pointer, last forces and
+  /// local states taken from the later report (a body's newer state replaces its older one).
+  /// RT-safe.
   void MergeLater(const HapticReport& later) noexcept;
   /// Adds an impulse for `body` (creating its entry if needed). RT-safe.
   void AddImpulse(int body, const Vec3& linear, const Vec3& angular,

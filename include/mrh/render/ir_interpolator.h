@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: Apache-2.0
+// Haptic-side interpolation of the geometric IR between physics steps (SPEC §3.9).
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "mrh/ir/snapshot.h"
+#include "mrh/render/tick_ir.h"
+
+namespace mrh::render {
+
+/// Keeps the current and previous geometric IR and, every tick, produces the TickIr for the
+/// current pointer pose: normal blended from the pair's previous normal to the new one
+/// (normalized lerp), object pose blended from X_WB_prev to X_WB (lerp + slerp), contact points
+/// re-posed with the current pointer pose. A pair new in this snapshot uses its new values for
+/// "previous". Haptic thread only; RT-safe (no allocation after construction).
+class IrInterpolator {
+ public:
+  /// A new snapshot becomes current; the normals rendered at the last tick become the
+  /// "previous" normals of the pairs that persist (matched by geom ids). RT-safe.
+  void Adopt(const ir::PhysicsSnapshot& snapshot) noexcept;
+
+  /// Fills `out` for interpolation parameter alpha in [0, 1] and pointer pose X_WP. RT-safe.
+  void Evaluate(double alpha, const Pose& X_WP, TickIr* out) noexcept;
+
+  /// The adopted snapshot.
+  const ir::PhysicsSnapshot& snapshot() const noexcept { return snapshot_; }
+
+ private:
+  ir::PhysicsSnapshot snapshot_;
+  std::array<Vec3, ir::kMaxGeometricPairs> previous_n_{};
+  std::array<Vec3, ir::kMaxGeometricPairs> rendered_n_{};
+  std::array<std::uint64_t, ir::kMaxGeometricPairs> rendered_key_{};
+  std::size_t rendered_count_ = 0;
+};
+
+/// Key of a pair: (pointer geom, object geom). RT-safe.
+inline std::uint64_t PairKey(int pointer_geom, int object_geom) noexcept {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(pointer_geom)) << 32) |
+         static_cast<std::uint32_t>(object_geom);
+}
+
+}  // namespace mrh::render
