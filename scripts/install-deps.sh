@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: Apache-2.0
 # Installs the Debian packages mrhaptics needs, only those missing. Idempotent, non-interactive.
-# Usage: scripts/install-deps.sh [--viewer]   (run as root, or with sudo available)
+# Usage: scripts/install-deps.sh [--no-viewer]   (run as root, or with sudo available)
+# The viewer's packages (GLFW, Dear ImGui, Xvfb for its headless tests and screenshots) are
+# installed by default; --no-viewer leaves them out (the build then has no `mrh view`).
+# --viewer is accepted for compatibility (it is the default).
 set -euo pipefail
 
 packages=(
@@ -11,7 +14,15 @@ packages=(
   libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev
   gnuplot-nox
 )
-if [[ "${1:-}" == "--viewer" ]]; then
+viewer=1
+for arg in "$@"; do
+  case "$arg" in
+    --viewer) viewer=1 ;;
+    --no-viewer) viewer=0 ;;
+    *) echo "install-deps: unknown option '$arg'; expected --no-viewer" >&2; exit 2 ;;
+  esac
+done
+if [[ $viewer -eq 1 ]]; then
   packages+=(libglfw3-dev libimgui-dev xvfb xauth libosmesa6-dev libegl-dev)
 fi
 

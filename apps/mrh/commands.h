@@ -52,9 +52,10 @@ struct IrOptions {
 struct ViewOptions {
   std::filesystem::path session;
   std::vector<std::string> sets;
-  int frames = 0;                 ///< > 0: render this many frames headless, then exit
+  int frames = 0;                    ///< > 0: render this many frames headless, then exit
   std::filesystem::path screenshot;  ///< with frames: write the last frame as PNG here
-  std::string method;             ///< empty: the session's
+  std::string method;                ///< empty: the session's
+  bool hide_panel = false;           ///< do not draw the ImGui panel
 };
 
 CLI::App* AddRunCommand(CLI::App& app, RunOptions* options);

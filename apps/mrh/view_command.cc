@@ -1,18 +1,81 @@
 // SPDX-License-Identifier: Apache-2.0
-// `mrh view` (placeholder until its issue lands: the command exists but reports it is missing).
+// `mrh view`: the interactive viewer, or N headless frames and a screenshot.
+#include <fmt/format.h>
+
 #include "commands.h"
 #include "mrh/core/error.h"
+#include "mrh/session/session.h"
+#ifdef MRH_HAVE_VIEWER
+#include "mrh/viewer/viewer.h"
+#endif
 
 namespace mrh::cli {
+namespace {
 
-CLI::App* AddViewCommand(CLI::App& app, ViewOptions* options) {
-  CLI::App* command = app.add_subcommand("view", "(not built yet)");
-  command->add_option("session", options->session, "session JSON file")->required();
-  return command;
+constexpr const char* kViewFooter = R"(Mouse and keys (also under Help in the panel):
+  left drag            move the pointer in the view plane
+  Shift+left / wheel   move it in depth
+  right drag           turn it
+  arrows, PgUp/PgDn    nudge it (Shift: finer)
+  Ctrl+left/right/wheel  orbit / pan / zoom the camera (C swaps plain and Ctrl drags)
+  Space  pause   S  step   Backspace  reset   H  panel   Home  camera
+
+Examples:
+  mrh view scenes/demo.json
+  mrh view scenes/demo.json --method single-rate --set rendering.stiffness=2000
+  xvfb-run -a mrh view scenes/demo.json --frames 120 --screenshot view.png
+)";
+
+std::vector<std::string> Overrides(const ViewOptions& o) {
+  std::vector<std::string> overrides = o.sets;
+  if (!o.method.empty()) overrides.push_back("method=" + o.method);
+  return overrides;
 }
 
-int ViewCommand(const ViewOptions&) {
-  throw mrh::Error("'mrh view' is not available in this build yet");
+}  // namespace
+
+CLI::App* AddViewCommand(CLI::App& app, ViewOptions* o) {
+  CLI::App* view = app.add_subcommand(
+      "view",
+      "Open the interactive viewer: the session in real time, the pointer on the mouse, forces "
+      "drawn as arrows, gains and plots in a panel");
+  view->add_option("SESSION", o->session, "Session file (JSON)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  view->add_option("--method", o->method, "Override the rendering method (see `mrh methods`)")
+      ->type_name("NAME");
+  AddSetOption(*view, &o->sets);
+  CLI::Option* frames =
+      view->add_option("--frames", o->frames,
+                       "Headless: render N frames (at 60 fps) with the session's own device, "
+                       "then exit")
+          ->type_name("N")
+          ->check(CLI::PositiveNumber);
+  view->add_option("--screenshot", o->screenshot, "With --frames: write the last frame as PNG")
+      ->type_name("PNG")
+      ->needs(frames);
+  view->add_flag("--hide-panel", o->hide_panel, "Draw the scene only, without the panel");
+  view->footer(kViewFooter);
+  return view;
+}
+
+int ViewCommand(const ViewOptions& o) {
+  const session::Session session = session::LoadSession(o.session, Overrides(o));
+#ifdef MRH_HAVE_VIEWER
+  viewer::RunViewer(session, viewer::ViewerSettings{
+                                 .frames = o.frames,
+                                 .screenshot = o.screenshot,
+                                 .panel = !o.hide_panel,
+                             });
+  if (!o.screenshot.empty()) fmt::print("screenshot: {}\n", o.screenshot.string());
+  return kExitOk;
+#else
+  (void)session;
+  throw RuntimeError(
+      "this mrh was built without the viewer (MRH_BUILD_VIEWER=OFF: libglfw3-dev and "
+      "libimgui-dev were not found); install them with scripts/install-deps.sh, reconfigure "
+      "with -DMRH_BUILD_VIEWER=ON, or use 'mrh run' for a headless session");
+#endif
 }
 
 }  // namespace mrh::cli

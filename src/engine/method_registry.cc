@@ -8,7 +8,9 @@
 
 #include "mrh/core/error.h"
 #include "mrh/engine/method.h"
+#include "local_dynamics_method.h"
 #include "point_penalty_method.h"
+#include "proxy_method.h"
 
 namespace mrh::engine {
 namespace {
@@ -43,6 +45,12 @@ void RegisterBuiltins() {
     RegisterMethod("impulse",
                    "B4: conventional multi-rate, reaction impulse sent to the next physics step",
                    internal::MakeImpulseMethod);
+    RegisterMethod("proxy-6dof",
+                   "Ch. 3: geometric IR + 6-DOF proxy with friction cones, reaction one step late",
+                   internal::MakeProxyMethod);
+    RegisterMethod("local-dynamics",
+                   "Ch. 4: neighbors simulated at the haptic rate from accelerance + bias",
+                   internal::MakeLocalDynamicsMethod);
   });
 }
 

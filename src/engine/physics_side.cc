@@ -18,6 +18,7 @@ void PhysicsSide::Start() {
   state_->method->PhysicsStart(input_, &out);
   out.step = -1;
   ir_status_ |= out.status;
+  if (recorder_ != nullptr) recorder_->OnSnapshot(out);
   state_->snapshots.Publish();
 }
 
@@ -36,6 +37,7 @@ void PhysicsSide::Step(std::int64_t k) {
   const auto t1 = std::chrono::steady_clock::now();
   out.step = k;
   ir_status_ |= out.status;
+  if (recorder_ != nullptr) recorder_->OnSnapshot(out);
 
   last_step_.step = k;
   last_step_.t = state_->world.time();

@@ -17,8 +17,26 @@ struct Entry {
 };
 
 constexpr Entry kExperiments[] = {
-    {"t4.1", "impulse delivered to a moving 60 kg cube: single-rate vs impulse (fig. 4.13)",
+    {"t3.1", "6-DOF proxy: cube edge -> roll -> face on a floor, thesis gains (figs. 3.10-3.11)",
+     internal::RunT31},
+    {"t3.2", "6-DOF proxy friction: strokes and twist with mu = 0.5 (figs. 3.13-3.14)",
+     internal::RunT32},
+    {"t3.4", "6-DOF proxy tick time vs contact points, N-gon prism, with/without friction "
+             "(fig. 3.17)",
+     internal::RunT34},
+    {"t3.5", "6-DOF proxy rotation-weight sweep: free-vertex penetration and torque (fig. 3.18)",
+     internal::RunT35},
+    {"t4.1",
+     "impulse delivered to a moving 60 kg cube per method, mass/speed sweep (fig. 4.13, tab. 4.3)",
      internal::RunT41},
+    {"t4.3", "computation occupancy per physics step with 1-1000 cubes (figs. 4.17-4.20)",
+     internal::RunT43},
+    {"t4.4", "felt mass steps up as cubes join a pushed line; an edge push turns the cube",
+     internal::RunT44},
+    {"t4.5", "haptic tick cost and physics occupancy vs 1-64 neighbors simulated locally",
+     internal::RunT45},
+    {"t4.latency", "haptic ticks from the user's force onset to the touched object's response",
+     internal::RunLatency},
 };
 
 }  // namespace

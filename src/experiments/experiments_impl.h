@@ -2,12 +2,166 @@
 // The experiment drivers behind mrh::experiments::Run.
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
+#include <functional>
+#include <memory>
 #include <string>
+#include <vector>
+
+#include "mrh/core/spatial.h"
+#include "mrh/engine/engine.h"
+#include "mrh/render/proxy_renderer.h"
+
+namespace mrh::session {
+struct Session;
+}
+
+namespace mrh::ir {
+struct PhysicsSnapshot;
+}
 
 namespace mrh::experiments::internal {
 
-/// T4.1: single-rate vs impulse method on the moving 60 kg cube. Returns 0 if its checks pass.
+/// T4.1: single-rate, impulse and local-dynamics on the moving 60 kg cube, plus a mass × speed
+/// sweep of the impulse error. Returns 0 if its checks pass.
 int RunT41(const std::filesystem::path& out, bool quiet);
+
+/// What RunT41 runs (tests run subsets).
+struct T41Options {
+  std::vector<std::string> methods = {"single-rate", "impulse", "local-dynamics"};
+  bool sweep = true;  ///< also sweep mass (15–240 kg) × speed (0.005–0.1 m/s)
+};
+int RunT41(const std::filesystem::path& out, bool quiet, const T41Options& options);
+
+/// Per-call timings of a method wrapped by RegisterTimedMethod (filled on the calling threads).
+struct MethodTimings {
+  /// Called on the physics side with each snapshot PhysicsStep produced (optional).
+  std::function<void(const ir::PhysicsSnapshot&)> on_snapshot;
+  std::vector<double> step_wall_ms;  ///< PhysicsStep wall time (ms)
+  std::vector<double> step_cpu_ms;   ///< PhysicsStep thread CPU time (ms): immune to preemption
+  std::vector<double> tick_wall_us;  ///< HapticTick wall time (µs)
+  std::vector<int> tick_j;           ///< TickInput::j of each tick
+  std::vector<int> tick_contacts;    ///< TickOutput::contacts of each tick
+  std::vector<double> adopt_wall_us;       ///< Adopt wall time (µs)
+  std::vector<double> end_period_wall_us;  ///< EndPeriod wall time (µs)
+};
+
+/// Registers method "timed:<inner>", which forwards every call to a new `inner` method and
+/// appends the timings to `*sink`, and returns that name. Vectors are reserved for `max_ticks`
+/// ticks and `max_steps` steps (the haptic half never allocates until they are full; beyond
+/// that, timings are dropped). The engine measures only the wall time of whole physics steps;
+/// this adds CPU time and per-tick cost without changing the engine. Not RT-safe to register.
+std::string RegisterTimedMethod(const std::string& inner, std::shared_ptr<MethodTimings> sink,
+                                std::size_t max_ticks, std::size_t max_steps);
+
+/// T4.3: computation occupancy (physics step compute time / physics_dt) per method and cube
+/// count. Returns 0 if every run produced finite occupancies for every step.
+int RunT43(const std::filesystem::path& out, bool quiet);
+
+/// What RunT43 runs. A variant is a method name, or "local-dynamics/no-perturbation"
+/// (rendering.perturbation = false).
+struct T43Options {
+  std::vector<std::string> variants = {"single-rate", "impulse", "local-dynamics",
+                                       "local-dynamics/no-perturbation"};
+  std::vector<int> cubes = {1, 10, 100, 1000};
+  double physics_dt = 0.02;  ///< s, multi-rate methods (single-rate steps at haptic_dt)
+  int steps = 50;               ///< physics steps per multi-rate run
+  int single_rate_steps = 1000;  ///< physics steps (1 ms each) per single-rate run
+};
+int RunT43(const std::filesystem::path& out, bool quiet, const T43Options& options);
+
+/// T4.4: a cube pushed into a line of cubes (felt mass steps up as each joins) and a cube pushed
+/// near an edge (it turns). Returns 0 if the checks pass for local-dynamics.
+int RunT44(const std::filesystem::path& out, bool quiet);
+
+/// What RunT44 runs.
+struct T44Options {
+  std::vector<std::string> variants = {"local-dynamics", "single-rate", "impulse",
+                                       "local-dynamics/no-perturbation"};
+};
+int RunT44(const std::filesystem::path& out, bool quiet, const T44Options& options);
+
+/// T4.5: neighbors simulated locally vs haptic tick cost and physics occupancy. Returns 0 if
+/// local-dynamics simulated and rendered every neighbor with finite timings.
+int RunT45(const std::filesystem::path& out, bool quiet);
+
+/// What RunT45 runs.
+struct T45Options {
+  /// The impulse method is unstable on this scene (k = 1000 N/m on 0.1 kg balls at 50 ms):
+  /// add it to see its cost with the balls flung off.
+  std::vector<std::string> methods = {"local-dynamics"};
+  std::vector<int> neighbors = {1, 2, 4, 8, 16, 32, 64};
+  double duration = 1.0;  ///< s simulated per run
+};
+int RunT45(const std::filesystem::path& out, bool quiet, const T45Options& options);
+
+/// Latency from the user's force onset to the touched object's response, in haptic ticks, per
+/// method and onset phase within the physics period. Returns 0 if the checks pass.
+int RunLatency(const std::filesystem::path& out, bool quiet);
+
+/// What RunLatency runs.
+struct LatencyOptions {
+  std::vector<std::string> methods = {"local-dynamics", "impulse", "single-rate"};
+  /// Tick of the physics period at which contact starts (0 .. n−1).
+  std::vector<int> onset_phases = {0, 25, 49};
+};
+int RunLatency(const std::filesystem::path& out, bool quiet, const LatencyOptions& options);
+
+// Chapter 3 (method proxy-6dof).
+
+/// One haptic tick of a proxy-6dof run as the chapter-3 drivers see it (world frame).
+struct ProxyTick {
+  double t = 0.0;                         ///< s
+  Pose X_WP;                              ///< pointer
+  Wrench w_W;                             ///< rendered wrench (before the safety layer)
+  Pose X_WQ;                              ///< proxy
+  Vec3 dr = Vec3::Zero();                 ///< Δr, proxy − pointer translation (m)
+  Vec3 dtheta = Vec3::Zero();             ///< Δθ, proxy rotation vector from the pointer (rad)
+  render::ProxyDiagnostics diagnostics;   ///< rows, friction states, PGS sweeps
+  std::vector<Vec3> constrained_p_PV;     ///< pointer-frame points with a normal row this tick
+};
+
+/// A proxy-6dof session run: the engine's statistics and one ProxyTick per haptic tick.
+struct ProxyRun {
+  engine::RunStats stats;
+  std::vector<ProxyTick> ticks;
+};
+
+/// Runs `session` (method proxy-6dof) in lockstep with the engine's own scheduler, sampling the
+/// method after every tick. When `dir` is not empty, writes ticks.csv, bodies.csv, steps.csv,
+/// summary.json and report.png there (a gnuplot failure is a warning unless `quiet`).
+/// @throws mrh::InvalidArgument if the session's method is not proxy-6dof. Defined in t3_1.cc.
+ProxyRun RunProxySession(const session::Session& session, const std::filesystem::path& dir,
+                         const std::string& title, bool quiet);
+
+/// T3.1: edge contact → roll → face contact of a 0.2 m cube at the thesis gains (figs.
+/// 3.10–3.11). Returns 0 if the analytic checks pass.
+int RunT31(const std::filesystem::path& out, bool quiet);
+
+/// T3.2: friction strokes and twist with μ = 0.5 (figs. 3.13–3.14). Returns 0 if the checks
+/// pass (kinetic |f_t| = μ|f_n|, static below, friction against the motion).
+int RunT32(const std::filesystem::path& out, bool quiet);
+
+/// T3.4: haptic tick time vs contact points (N-gon prism sliding on a floor), with and without
+/// friction (fig. 3.17). Returns 0 if every run had N contacts and finite timings.
+int RunT34(const std::filesystem::path& out, bool quiet);
+
+/// What RunT34 runs.
+struct T34Options {
+  std::vector<int> sides = {5, 10, 20, 50, 100, 200, 500, 1000};
+  double duration = 2.0;    ///< s simulated per run (ticks = duration / 1 ms)
+};
+int RunT34(const std::filesystem::path& out, bool quiet, const T34Options& options);
+
+/// T3.5: rotation-weight sweep on the T3.1 motion: penetration of unconstrained vertices and
+/// torque vs the multiplier on the unit-mass inertia (fig. 3.18). Returns 0 if the trends hold.
+int RunT35(const std::filesystem::path& out, bool quiet);
+
+/// What RunT35 runs.
+struct T35Options {
+  std::vector<double> multipliers = {1, 3, 10, 30, 100, 300, 500, 1000, 3000, 10000};
+};
+int RunT35(const std::filesystem::path& out, bool quiet, const T35Options& options);
 
 }  // namespace mrh::experiments::internal

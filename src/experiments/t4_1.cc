@@ -3,13 +3,20 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
+#include <tuple>
 #include <vector>
 
 #include "experiment_util.h"
 #include "experiments_impl.h"
+#include "mrh/core/error.h"
 #include "mrh/engine/engine.h"
+#include "mrh/engine/method.h"
+#include "mrh/ir/snapshot.h"
 #include "mrh/report/report.h"
 #include "mrh/session/session.h"
 #include "mrh/world/world.h"
@@ -20,30 +27,53 @@ namespace {
 // The T4.1 parameters (SPEC §5): 60 kg at 0.017 m/s; an elastic bounce returns 2mv.
 constexpr double kMass = 60.0;
 constexpr double kSpeed = 0.017;
-constexpr double kElasticImpulse = 2.0 * kMass * kSpeed;
-// Acceptance (SPEC T4.1): single-rate within a few percent of the elastic bounce; the impulse
-// method clearly larger (the thesis measured +60 %; "clearly" taken as more than +20 %).
+// Gap between the cube's face and the sphere at t = 0 in scenes/t4_1.xml (m).
+constexpr double kGap = 0.005;
+// Acceptance (SPEC T4.1): single-rate within 2 % of the elastic bounce; local-dynamics within
+// 2 % of single-rate (the thesis' table 4.3 shows them equal to its 2 significant digits); the
+// impulse method clearly larger: the thesis measured +60 %, we require at least a third of that
+// excess (+20 %), since the overshoot grows with the step's share of the contact time, which the
+// thesis' unreported sizes fix differently.
 constexpr double kSingleRateTolerance = 0.02;
+constexpr double kLocalDynamicsTolerance = 0.02;
 constexpr double kImpulseMethodMinRatio = 1.2;
+// The free cube's measured accelerance must be 1/m to rounding (MuJoCo integrates a free
+// slide-jointed body exactly: Δv = F·Δt/m).
+constexpr double kAccelTolerance = 1e-9;
 
 struct Published {
   const char* method;
   double impulse;  // N·s, thesis table 4.3
 };
-constexpr Published kThesis[] = {{"single-rate", 2.0}, {"impulse", 3.2}};
 
-// Forwards everything to the CSV recorder and keeps the force on the cube (−f_d, eq. 4.12).
+constexpr Published kThesis[] = {{"single-rate", 2.0}, {"impulse", 3.2}, {"local-dynamics", 2.0}};
+
+// Sweep of SPEC T4.1's two parameters around the thesis' point (issue 5).
+constexpr double kSweepMasses[] = {15.0, 30.0, 60.0, 120.0, 240.0};
+constexpr double kSweepSpeeds[] = {0.005, 0.01, 0.017, 0.05, 0.1};
+
+struct Case {
+  double mass = kMass;    // kg
+  double speed = kSpeed;  // m/s
+
+  double elastic() const { return 2.0 * mass * speed; }
+};
+
+// Keeps the force on the cube (−f_d, eq. 4.12) and optionally forwards to a CSV recorder.
 class ForceTap final : public engine::Recorder {
  public:
   explicit ForceTap(report::CsvRecorder* csv) : csv_(csv) {}
+
   void OnTick(const engine::TickRecord& tick) override {
-    csv_->OnTick(tick);
+    if (csv_ != nullptr) csv_->OnTick(tick);
     t.push_back(tick.t);
     f_cube.push_back(-tick.rendered_W.f.x());
   }
+
   void OnStep(const engine::StepRecord& step, const world::World& world) override {
-    csv_->OnStep(step, world);
+    if (csv_ != nullptr) csv_->OnStep(step, world);
   }
+
   std::vector<double> t;
   std::vector<double> f_cube;
 
@@ -53,44 +83,105 @@ class ForceTap final : public engine::Recorder {
 
 struct MethodResult {
   std::string method;
+  Case c;
   std::vector<double> t, f_cube;
   double impulse = 0.0;       // N·s on the cube, from the engine's bookkeeping
+  double momentum = 0.0;      // N·s, m·Δv of the cube in the global world at the end
   double contact_time = 0.0;  // s with a non-zero force
   double peak_force = 0.0;    // N
+  bool ended = false;         // contact over before the run ended
   double thesis = 0.0;
 };
 
-MethodResult RunMethod(const std::string& method, const std::filesystem::path& out, bool quiet) {
-  const std::filesystem::path session_file =
-      ScenesDir() / fmt::format("t4_1_{}.json", method == "single-rate" ? "single_rate" : method);
-  const session::Session session = session::LoadSession(session_file);
+std::string Replace(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  if (at == std::string::npos) {
+    throw RuntimeError(
+        fmt::format("scenes/t4_1.xml: '{}' not found; the T4.1 driver edits it to "
+                    "sweep mass and speed, keep it in the scene",
+                    from));
+  }
+  return text.replace(at, from.size(), to);
+}
+
+// The T4.1 session for one method and case. Off-centre cases get a generated copy of the scene
+// (mass and keyframe speed replaced) and a duration covering approach, contact and margin.
+session::Session CaseSession(const std::string& method, const Case& c,
+                             const std::filesystem::path& dir) {
+  session::Session s = session::LoadSession(ScenesDir() / "t4_1_impulse.json");
+  s.engine.method = method;
+  if (c.mass == kMass && c.speed == kSpeed) return s;
+  std::ifstream in(ScenesDir() / "t4_1.xml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string xml = Replace(text.str(), "mass=\"60\"", fmt::format("mass=\"{}\"", c.mass));
+  xml = Replace(xml, "qvel=\"0.017 0 0\"", fmt::format("qvel=\"{} 0 0\"", c.speed));
+  std::filesystem::create_directories(dir);
+  s.scene = dir / fmt::format("t4_1_m{}_v{}.xml", c.mass, c.speed);
+  WriteText(s.scene, xml);
+  // Contact lasts π·sqrt(m/k) for an ideal spring; allow 2.5 times that for the slower methods.
+  const double contact = M_PI * std::sqrt(c.mass / s.engine.rendering.stiffness);
+  s.engine.duration = std::ceil((kGap / c.speed + 2.5 * contact + 0.1) * 10.0) / 10.0;
+  return s;
+}
+
+MethodResult RunCase(const session::Session& session, const Case& c,
+                     const std::filesystem::path& dir, bool quiet) {
   auto engine = session::MakeEngine(session);
-  const std::filesystem::path dir = out / method;
-  report::CsvRecorder csv(dir);
-  ForceTap tap(&csv);
+  std::optional<report::CsvRecorder> csv;
+  if (!dir.empty()) csv.emplace(dir);
+  ForceTap tap(csv ? &*csv : nullptr);
   const engine::RunStats stats = engine->Run(&tap);
-  csv.Close();
-  report::WriteSummary(dir, stats, session_file.string(), session.scene.string());
   std::string why;
-  if (!report::PlotReport(dir, "T4.1 " + method, &why) && !quiet) {
-    std::cerr << "mrh: warning: no plot for " << method << ": " << why << "\n";
+  if (csv) {
+    csv->Close();
+    report::WriteSummary(dir, stats, session.file.string(), session.scene.string());
+    if (!report::PlotReport(dir, "T4.1 " + session.engine.method, &why) && !quiet) {
+      std::cerr << "mrh: warning: no plot for " << session.engine.method << ": " << why << "\n";
+    }
   }
   MethodResult r;
-  r.method = method;
+  r.method = session.engine.method;
+  r.c = c;
   const int cube = engine->world().FindBody("cube");
   for (const engine::BodyImpulseTotal& total : stats.impulses) {
     if (total.body == cube) r.impulse = -total.linear.x();
   }
+  r.momentum = c.mass * (c.speed - engine->world().body_state(cube).V_WCm.v.x());
   for (std::size_t i = 0; i < tap.f_cube.size(); ++i) {
     r.peak_force = std::max(r.peak_force, std::abs(tap.f_cube[i]));
     if (tap.f_cube[i] != 0.0) r.contact_time += stats.haptic_dt;
   }
+  r.ended = r.contact_time > 0.0 && !tap.f_cube.empty() && tap.f_cube.back() == 0.0;
   for (const Published& p : kThesis) {
-    if (method == p.method) r.thesis = p.impulse;
+    if (r.method == p.method) r.thesis = p.impulse;
   }
   r.t = std::move(tap.t);
   r.f_cube = std::move(tap.f_cube);
   return r;
+}
+
+// The accelerance local-dynamics measures for the free cube at t = 0, through the public Method
+// interface: one physics step from the initial state, read the snapshot's A.
+ir::Mat63 MeasureAccelerance() {
+  const session::Session s = CaseSession("local-dynamics", Case{}, {});
+  world::World world = session::LoadWorld(s);
+  world.set_timestep(s.engine.physics_dt);
+  engine::MethodContext context{.world = &world,
+                                .settings = &s.engine,
+                                .pointer_body = world.pointer_body(),
+                                .pointer_radius = s.engine.pointer.radius};
+  auto method = engine::MakeMethod("local-dynamics", context);
+  ir::HapticReport report;
+  report.X_WP = s.device.calibration.ToWorld(s.device.pose);
+  auto snapshot = std::make_unique<ir::PhysicsSnapshot>();
+  method->PhysicsStart(report, snapshot.get());
+  method->PhysicsStep(report, snapshot.get());
+  const int cube = world.FindBody("cube");
+  for (const ir::BodyMotion& body : snapshot->bodies) {
+    if (body.body == cube && body.has_dynamics) return body.A;
+  }
+  throw RuntimeError("t4.1: local-dynamics sent no accelerance for the cube in its first step");
 }
 
 void WriteForceTime(const std::filesystem::path& out, const std::vector<MethodResult>& results) {
@@ -120,56 +211,179 @@ void WriteForceTime(const std::filesystem::path& out, const std::vector<MethodRe
   WriteText(out / "force_time.gp", plot + "\n");
 }
 
+// Writes one sweep panel's data: x, then the error of each method (columns in `methods` order).
+void WritePanel(const std::filesystem::path& file, const std::vector<std::string>& methods,
+                const std::vector<std::vector<double>>& errors, const double* xs, std::size_t n) {
+  std::string csv = "x";
+  for (const std::string& m : methods) csv += "," + m;
+  csv += "\n";
+  for (std::size_t i = 0; i < n; ++i) {
+    csv += fmt::format("{}", xs[i]);
+    for (const std::vector<double>& e : errors) csv += fmt::format(",{:.6f}", e[i]);
+    csv += "\n";
+  }
+  WriteText(file, csv);
+}
+
+void PlotSweep(const std::filesystem::path& out, const std::vector<std::string>& methods,
+               bool quiet) {
+  std::string plot =
+      "# Impulse error (J - 2mv)/2mv per method. Re-run with: gnuplot sweep.gp\n"
+      "set terminal pngcairo size 1200,500 enhanced font ',11'\nset output 'sweep.png'\n"
+      "set datafile separator ','\nset grid\nset multiplot layout 1,2\nset logscale x\n"
+      "set ylabel 'impulse error (J - 2mv)/2mv'\nset key top right\n";
+  for (const auto& [file, xlabel, title] :
+       {std::tuple{"sweep_vs_mass.csv", "cube mass (kg)", "initial speed 0.017 m/s"},
+        std::tuple{"sweep_vs_speed.csv", "initial speed (m/s)", "cube mass 60 kg"}}) {
+    plot += fmt::format("set xlabel '{}'\nset title '{}'\nplot ", xlabel, title);
+    for (std::size_t i = 0; i < methods.size(); ++i) {
+      plot += fmt::format("{}'{}' using 1:{} with linespoints lw 2 title '{}'", i == 0 ? "" : ", ",
+                          file, i + 2, methods[i]);
+    }
+    plot += "\n";
+  }
+  WriteText(out / "sweep.gp", plot + "unset multiplot\n");
+  std::string why;
+  if (!report::RunGnuplotScript(out, "sweep.gp", "sweep.png", &why) && !quiet) {
+    std::cerr << "mrh: warning: sweep.png not drawn: " << why << "\n";
+  }
+}
+
+// The impulse error (J − 2mv)/2mv of every method over the mass × speed grid (sweep.csv), and
+// its plot: error vs mass at the thesis' speed and error vs speed at the thesis' mass.
+nlohmann::json RunSweep(const std::filesystem::path& out, const std::vector<std::string>& methods,
+                        bool quiet) {
+  constexpr std::size_t kNm = std::size(kSweepMasses), kNv = std::size(kSweepSpeeds);
+  std::string csv = "method,mass_kg,speed_mps,elastic_2mv_Ns,impulse_Ns,error,momentum_Ns,ended\n";
+  std::vector<std::vector<double>> vs_mass, vs_speed;
+  nlohmann::json worst;
+  for (const std::string& method : methods) {
+    if (!quiet) std::cout << "t4.1: sweeping " << method << "...\n";
+    vs_mass.emplace_back(kNm, 0.0);
+    vs_speed.emplace_back(kNv, 0.0);
+    double max_error = 0.0;
+    for (std::size_t i = 0; i < kNm; ++i) {
+      for (std::size_t j = 0; j < kNv; ++j) {
+        const Case c{kSweepMasses[i], kSweepSpeeds[j]};
+        const MethodResult r = RunCase(CaseSession(method, c, out / "sweep"), c, {}, quiet);
+        const double error = (r.impulse - c.elastic()) / c.elastic();
+        max_error = std::max(max_error, std::abs(error));
+        if (c.speed == kSpeed) vs_mass.back()[i] = error;
+        if (c.mass == kMass) vs_speed.back()[j] = error;
+        csv += fmt::format("{},{},{},{:.6f},{:.6f},{:.6f},{:.6f},{}\n", method, c.mass, c.speed,
+                           c.elastic(), r.impulse, error, r.momentum, r.ended ? 1 : 0);
+      }
+    }
+    worst[method] = max_error;
+  }
+  WriteText(out / "sweep.csv", csv);
+  WritePanel(out / "sweep_vs_mass.csv", methods, vs_mass, kSweepMasses, kNm);
+  WritePanel(out / "sweep_vs_speed.csv", methods, vs_speed, kSweepSpeeds, kNv);
+  PlotSweep(out, methods, quiet);
+  return worst;
+}
+
+const MethodResult* Find(const std::vector<MethodResult>& results, const char* method) {
+  for (const MethodResult& r : results) {
+    if (r.method == method) return &r;
+  }
+  return nullptr;
+}
+
+// Table 4.3: impulse per method, ratio to single-rate (or to 2mv without single-rate).
+void WriteT41Table(const std::filesystem::path& out, const std::vector<MethodResult>& results,
+                   nlohmann::json* summary) {
+  const MethodResult* single = Find(results, "single-rate");
+  const double reference = single != nullptr ? single->impulse : Case{}.elastic();
+  std::string table =
+      "method,impulse_Ns,momentum_Ns,elastic_2mv_Ns,ratio_to_single_rate,"
+      "thesis_Ns,contact_s,peak_force_N\n";
+  std::string md =
+      "| method | impulse (N·s) | ratio to single-rate | thesis (N·s) | contact (s) | "
+      "peak force (N) |\n|---|---|---|---|---|---|\n";
+  for (const MethodResult& r : results) {
+    table += fmt::format("{},{:.6f},{:.6f},{:.6f},{:.4f},{},{:.3f},{:.4f}\n", r.method, r.impulse,
+                         r.momentum, Case{}.elastic(), r.impulse / reference, r.thesis,
+                         r.contact_time, r.peak_force);
+    md += fmt::format("| {} | {:.4f} | {:.3f} | {:.1f} | {:.3f} | {:.3f} |\n", r.method, r.impulse,
+                      r.impulse / reference, r.thesis, r.contact_time, r.peak_force);
+    (*summary)["methods"][r.method] = {{"impulse_Ns", r.impulse},
+                                       {"momentum_Ns", r.momentum},
+                                       {"contact_s", r.contact_time},
+                                       {"peak_force_N", r.peak_force},
+                                       {"thesis_Ns", r.thesis}};
+  }
+  WriteText(out / "impulse_table.csv", table);
+  WriteText(out / "impulse_table.md", md);
+  (*summary)["impulse_table_md"] = md;
+}
+
+// The checks of SPEC T4.1 on whichever methods ran; writes summary.json, returns the exit code.
+int FinishT41(const std::filesystem::path& out, const std::vector<MethodResult>& results,
+              bool quiet, nlohmann::json* summary) {
+  nlohmann::json& checks = (*summary)["checks"];
+  const MethodResult* single = Find(results, "single-rate");
+  const MethodResult* impulse = Find(results, "impulse");
+  const MethodResult* local = Find(results, "local-dynamics");
+  if (single != nullptr) {
+    checks["single_rate_within_2_percent_of_2mv"] =
+        std::abs(single->impulse - Case{}.elastic()) <= kSingleRateTolerance * Case{}.elastic();
+  }
+  if (single != nullptr && impulse != nullptr) {
+    checks["impulse_method_above_1.2x_single_rate"] =
+        impulse->impulse > kImpulseMethodMinRatio * single->impulse;
+  }
+  if (single != nullptr && local != nullptr) {
+    checks["local_dynamics_within_2_percent_of_single_rate"] =
+        std::abs(local->impulse - single->impulse) <= kLocalDynamicsTolerance * single->impulse;
+  }
+  if (local != nullptr) {
+    const ir::Mat63 A = MeasureAccelerance();
+    const Mat3 expected = Mat3::Identity() / kMass;
+    const double error = (A.topRows<3>() - expected).cwiseAbs().maxCoeff() * kMass;
+    (*summary)["accelerance_linear_diag_per_kg"] = {A(0, 0), A(1, 1), A(2, 2)};
+    (*summary)["accelerance_angular_max"] = A.bottomRows<3>().cwiseAbs().maxCoeff();
+    checks["free_cube_accelerance_is_identity_over_60kg"] = error <= kAccelTolerance;
+  }
+  bool ok = true;
+  for (const auto& [name, pass] : checks.items()) ok = ok && pass.get<bool>();
+  WriteText(out / "summary.json", summary->dump(2) + "\n");
+  if (!quiet) {
+    std::cout << (*summary)["impulse_table_md"].get<std::string>()
+              << fmt::format("elastic bounce 2mv = {:.3f} N·s\n", Case{}.elastic());
+    for (const auto& [name, pass] : checks.items()) {
+      std::cout << "check " << name << ": " << (pass.get<bool>() ? "pass" : "FAIL") << "\n";
+    }
+    std::cout << "results: " << std::filesystem::absolute(out).string() << "\n";
+  }
+  return ok ? 0 : 1;
+}
+
 }  // namespace
 
 int RunT41(const std::filesystem::path& out, bool quiet) {
+  return RunT41(out, quiet, T41Options{});
+}
+
+int RunT41(const std::filesystem::path& out, bool quiet, const T41Options& options) {
   std::filesystem::create_directories(out);
   std::vector<MethodResult> results;
-  for (const char* method : {"single-rate", "impulse"}) {
+  for (const std::string& method : options.methods) {
     if (!quiet) std::cout << "t4.1: running " << method << "...\n";
-    results.push_back(RunMethod(method, out, quiet));
+    results.push_back(RunCase(CaseSession(method, Case{}, {}), Case{}, out / method, quiet));
   }
   WriteForceTime(out, results);
   std::string why;
   if (!report::RunGnuplotScript(out, "force_time.gp", "force_time.png", &why) && !quiet) {
     std::cerr << "mrh: warning: force_time.png not drawn: " << why << "\n";
   }
-
-  const double single = results[0].impulse;
-  const bool single_ok = std::abs(single - kElasticImpulse) <= kSingleRateTolerance * kElasticImpulse;
-  const bool impulse_ok = results[1].impulse > kImpulseMethodMinRatio * single;
-
-  std::string table =
-      "method,impulse_Ns,elastic_2mv_Ns,ratio_to_single_rate,thesis_Ns,contact_s,peak_force_N\n";
-  std::string md = "| method | impulse (N·s) | ratio to single-rate | thesis (N·s) | contact (s) | "
-                   "peak force (N) |\n|---|---|---|---|---|---|\n";
   nlohmann::json summary;
-  for (const MethodResult& r : results) {
-    table += fmt::format("{},{:.6f},{:.6f},{:.4f},{},{:.3f},{:.4f}\n", r.method, r.impulse,
-                         kElasticImpulse, r.impulse / single, r.thesis, r.contact_time,
-                         r.peak_force);
-    md += fmt::format("| {} | {:.4f} | {:.3f} | {:.1f} | {:.3f} | {:.3f} |\n", r.method, r.impulse,
-                      r.impulse / single, r.thesis, r.contact_time, r.peak_force);
-    summary["methods"][r.method] = {{"impulse_Ns", r.impulse}, {"contact_s", r.contact_time},
-                                    {"peak_force_N", r.peak_force}, {"thesis_Ns", r.thesis}};
-  }
-  WriteText(out / "impulse_table.csv", table);
-  WriteText(out / "impulse_table.md", md);
   summary["experiment"] = "t4.1";
   summary["machine"] = MachineTag();
-  summary["elastic_2mv_Ns"] = kElasticImpulse;
-  summary["checks"] = {
-      {"single_rate_within_2_percent_of_2mv", single_ok},
-      {"impulse_method_above_1.2x_single_rate", impulse_ok}};
-  WriteText(out / "summary.json", summary.dump(2) + "\n");
-  if (!quiet) {
-    std::cout << md << fmt::format("elastic bounce 2mv = {:.3f} N·s\n", kElasticImpulse)
-              << fmt::format("check single-rate within 2 % of 2mv: {}\n", single_ok ? "pass" : "FAIL")
-              << fmt::format("check impulse method > 1.2 x single-rate: {}\n",
-                             impulse_ok ? "pass" : "FAIL")
-              << "results: " << std::filesystem::absolute(out).string() << "\n";
-  }
-  return single_ok && impulse_ok ? 0 : 1;
+  summary["elastic_2mv_Ns"] = Case{}.elastic();
+  WriteT41Table(out, results, &summary);
+  if (options.sweep) summary["sweep_max_abs_error"] = RunSweep(out, options.methods, quiet);
+  return FinishT41(out, results, quiet, &summary);
 }
 
 }  // namespace mrh::experiments::internal

@@ -17,6 +17,10 @@ namespace mrh::world {
 class World;
 }
 
+namespace mrh::ir {
+struct PhysicsSnapshot;
+}
+
 namespace mrh::engine {
 
 /// One haptic tick as recorded (world frame).
@@ -48,6 +52,10 @@ class Recorder {
   virtual void OnTick(const TickRecord& tick) = 0;
   /// Called after each physics step with the world in its post-step state.
   virtual void OnStep(const StepRecord& step, const world::World& world) = 0;
+  /// Called with each snapshot the physics side produces for the haptic thread (the initial one,
+  /// then one per physics step, before it is published): the IR the method renders against.
+  /// Default: ignored.
+  virtual void OnSnapshot(const ir::PhysicsSnapshot& snapshot) { (void)snapshot; }
 };
 
 /// Total reaction impulse the pointer delivered to one body over the run (world frame).

@@ -51,7 +51,9 @@ std::optional<std::vector<Vec3>> IntersectHalfspaces(std::span<const Halfspace> 
 /// Plane and contact points of `pointer` at X_WP against `object` at X_WO, from their signed
 /// distance `d` (A = pointer, B = object, as returned by SignedDistance). The normal is the
 /// witness direction (object → pointer); for penetration the region is intersected with
-/// qhull_r around the witness midpoint. Not RT-safe.
+/// qhull_r around the witness midpoint, or around the centre of the region's largest inscribed
+/// ball when the midpoint is not well inside it (EPA witnesses of an edge–edge contact, or
+/// the inscribed polyhedra of curved shapes). Not RT-safe.
 ContactRegion ComputeContactRegion(const ConvexPolyhedron& pointer, const Pose& X_WP,
                                    const ConvexPolyhedron& object, const Pose& X_WO,
                                    const DistanceResult& d, const RegionOptions& options = {});

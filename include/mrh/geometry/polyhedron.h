@@ -22,7 +22,10 @@ struct Halfspace {
 class ConvexPolyhedron {
  public:
   /// Box and convex mesh exactly; plane as its halfspace; sphere, capsule, cylinder and
-  /// ellipsoid as inscribed polyhedra with `curved_segments` segments per full turn (>= 6).
+  /// ellipsoid as inscribed polyhedra (vertices on the surface) at a resolution of
+  /// `curved_segments` segments per full turn (>= 6): a cylinder is a `curved_segments`-gon
+  /// prism; a sphere, capsule or ellipsoid is the coarsest latitude–longitude grid whose error
+  /// is no larger than that polygon's (it needs more meridians, see ApproximationError).
   /// @throws mrh::InvalidArgument for a degenerate shape or curved_segments < 6.
   static ConvexPolyhedron FromShape(const Shape& shape, int curved_segments);
   /// Convex hull of points (qhull_r). @throws mrh::InvalidArgument if they span no volume.
@@ -34,7 +37,9 @@ class ConvexPolyhedron {
   bool unbounded() const { return vertices_.empty(); }
 
   /// Largest distance between the true surface of `shape` and FromShape(shape, segments) (m);
-  /// 0 for box, mesh and plane.
+  /// 0 for box, mesh and plane. At most r(1 − cos(π/segments)) (r: radius; the largest radius
+  /// of an ellipsoid): equal to it for a cylinder, exact and slightly below it for a sphere or
+  /// capsule, an upper bound for an ellipsoid. @throws like FromShape. Not RT-safe.
   static double ApproximationError(const Shape& shape, int curved_segments);
 
  private:

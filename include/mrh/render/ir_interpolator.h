@@ -21,7 +21,8 @@ class IrInterpolator {
   /// "previous" normals of the pairs that persist (matched by geom ids). RT-safe.
   void Adopt(const ir::PhysicsSnapshot& snapshot) noexcept;
 
-  /// Fills `out` for interpolation parameter alpha in [0, 1] and pointer pose X_WP. RT-safe.
+  /// Fills `out` for interpolation parameter alpha in [0, 1] (clamped; NaN counts as 1) and
+  /// pointer pose X_WP (world). A non-finite X_WP gives an empty `out`. RT-safe.
   void Evaluate(double alpha, const Pose& X_WP, TickIr* out) noexcept;
 
   /// The adopted snapshot.
@@ -32,6 +33,7 @@ class IrInterpolator {
   std::array<Vec3, ir::kMaxGeometricPairs> previous_n_{};
   std::array<Vec3, ir::kMaxGeometricPairs> rendered_n_{};
   std::array<std::uint64_t, ir::kMaxGeometricPairs> rendered_key_{};
+  std::array<bool, ir::kMaxGeometricPairs> new_pair_{};
   std::size_t rendered_count_ = 0;
 };
 

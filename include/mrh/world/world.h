@@ -133,6 +133,7 @@ class World {
   std::span<const double> qvel() const;
 
  private:
+  friend class Perturber;  // perturbation runs work on the MuJoCo data directly (perturbation.h)
   struct Impl;
   explicit World(std::unique_ptr<Impl> impl);
   std::unique_ptr<Impl> impl_;

@@ -1,0 +1,117 @@
+// SPDX-License-Identifier: Apache-2.0
+// The chapter-3 method: geometric IR built per physics step, 6-DOF proxy rendered per tick.
+#include "proxy_method.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "mrh/core/error.h"
+#include "mrh/world/world.h"
+
+namespace mrh::engine::internal {
+
+Mat3 PointerRotationWeight(const world::World& world, int pointer_body,
+                           const RenderingSettings& rendering) {
+  if (rendering.rotation_weight) return rendering.rotation_weight->asDiagonal();
+  const world::BodyInfo& pointer = world.body(pointer_body);
+  if (!(pointer.mass > 0.0)) {
+    throw SceneError(fmt::format(
+        "pointer body '{}' has mass {} kg, so its unit-mass inertia (the default rotation "
+        "weight, SPEC §3.10) is undefined; expected a body with mass > 0: give its geoms a "
+        "mass or density, or set rendering.rotation_weight",
+        pointer.name, pointer.mass));
+  }
+  // Parallel-axis shift from the COM to the body origin, where the lever arms start.
+  const Vec3& c = pointer.p_BCm;
+  const Mat3 unit_inertia_origin =
+      pointer.inertia_B / pointer.mass + c.squaredNorm() * Mat3::Identity() - c * c.transpose();
+  // The body-axes tensor R diag Rᵀ is symmetric only up to rounding.
+  return render::RotationWeightFromInertia(
+      0.5 * (unit_inertia_origin + unit_inertia_origin.transpose()),
+      rendering.rotation_weight_scale);
+}
+
+render::ProxyRendererSettings ProxySettingsFor(const world::World& world, int pointer_body,
+                                               const RenderingSettings& rendering) {
+  if (rendering.max_iterations > render::kMaxProxyIterations) {
+    throw InvalidArgument(
+        fmt::format("rendering.max_iterations = {}; expected 1..{} for proxy-6dof (the solver's "
+                    "compile-time ceiling); set a sweep budget such as 20-50",
+                    rendering.max_iterations, render::kMaxProxyIterations));
+  }
+  render::ProxyRendererSettings s;
+  s.k_t = rendering.stiffness;
+  s.d_t = rendering.damping;
+  s.k_r = rendering.rot_stiffness;
+  s.d_r = rendering.rot_damping;
+  s.rotation_weight = PointerRotationWeight(world, pointer_body, rendering);
+  s.mu = rendering.friction;
+  s.max_iterations = rendering.max_iterations;
+  s.tolerance = rendering.solver_tolerance;
+  return s;
+}
+
+ProxyMethod::ProxyMethod(const MethodContext& context)
+    : world_(context.world),
+      pointer_body_(context.pointer_body),
+      physics_dt_(context.settings->physics_dt),
+      renderer_(
+          ProxySettingsFor(*context.world, context.pointer_body, context.settings->rendering)) {
+  builder_.emplace(*world_, pointer_body_, context.settings->rendering);
+}
+
+void ProxyMethod::Build(const Pose& X_WP, ir::PhysicsSnapshot* out) {
+  builder_->Build(*world_, X_WP, out);
+  out->contacts.Clear();  // the 3-DOF plane IR is not used by this method
+  out->t = world_->time();
+  out->physics_dt = physics_dt_;
+}
+
+void ProxyMethod::PhysicsStart(const ir::HapticReport& initial, ir::PhysicsSnapshot* out) {
+  world_->SetMocapPose(pointer_body_, initial.X_WP);
+  builder_->CapturePreviousPoses(*world_);
+  Build(initial.X_WP, out);
+  out->step = -1;
+}
+
+void ProxyMethod::PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot* out) {
+  // SPEC §3.6 / I5: what the user pushed during the last period acts as a constant wrench over
+  // this whole step, so the objects answer one physics step late (the chapter-3 design).
+  for (const ir::BodyImpulse& impulse : report.impulses) {
+    world_->AddWrenchAtCom(impulse.body,
+                           Wrench{impulse.linear / physics_dt_, impulse.angular / physics_dt_});
+  }
+  world_->SetMocapPose(pointer_body_, report.X_WP);
+  builder_->CapturePreviousPoses(*world_);
+  world_->Step();
+  Build(report.X_WP, out);
+}
+
+void ProxyMethod::Adopt(const ir::PhysicsSnapshot& snapshot) noexcept {
+  interpolator_.Adopt(snapshot);
+}
+
+void ProxyMethod::HapticTick(const TickInput& in, TickOutput* out) noexcept {
+  const double alpha =
+      std::min(1.0, static_cast<double>(in.j + 1) / static_cast<double>(std::max(in.n, 1)));
+  interpolator_.Evaluate(alpha, in.X_WP, &tick_ir_);
+  renderer_.Tick(tick_ir_, in.X_WP, in.dt, &output_);
+  out->w_W = output_.w_W;
+  out->contacts = output_.diagnostics.contacts;
+  out->status = output_.diagnostics.status;
+  render::AddReactionImpulses(output_, in.dt, &period_);
+}
+
+void ProxyMethod::EndPeriod(ir::HapticReport* report) noexcept {
+  report->impulses = period_.impulses;
+  report->status |= period_.status;
+  period_.impulses.Clear();
+  period_.status = ir::kStatusOk;
+}
+
+std::unique_ptr<Method> MakeProxyMethod(const MethodContext& context) {
+  return std::make_unique<ProxyMethod>(context);
+}
+
+}  // namespace mrh::engine::internal

@@ -1,0 +1,266 @@
+// SPDX-License-Identifier: Apache-2.0
+// Experiment T3.4 (thesis §3.3.5, fig. 3.17): haptic tick time vs number of contact points.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "engine/proxy_method.h"
+#include "experiment_util.h"
+#include "experiments_impl.h"
+#include "mrh/report/report.h"
+#include "mrh/world/world.h"
+
+namespace mrh::experiments::internal {
+namespace {
+
+// The prism (SPEC T3.4, I16): an N-gon of circumradius 0.1 m, 0.1 m tall, standing on its base
+// 1 mm deep in a floor and sliding along x at 0.1 m/s, so its base gives N contact points.
+constexpr double kRadius = 0.1;
+constexpr double kHalfHeight = 0.05;
+constexpr double kDepth = 1e-3;
+constexpr double kSpeed = 0.1;
+constexpr double kFriction = 0.5;
+constexpr double kPhysicsDt = 0.02;
+constexpr double kHapticDt = 0.001;
+// The goal of issue 4 and the thesis' budget (s).
+constexpr double kGoalP99 = 100e-6;
+constexpr double kBudget = 1e-3;
+
+std::string PrismScene(int sides) {
+  std::string vertices;
+  for (int i = 0; i < sides; ++i) {
+    const double a = 2.0 * M_PI * static_cast<double>(i) / static_cast<double>(sides);
+    for (const double z : {-kHalfHeight, kHalfHeight}) {
+      vertices +=
+          fmt::format("{:.12f} {:.12f} {} ", kRadius * std::cos(a), kRadius * std::sin(a), z);
+    }
+  }
+  return fmt::format(
+      R"(<mujoco model="t3_4_prism_{0}"><option timestep="{1}"/>
+<asset><mesh name="prism" vertex="{2}"/></asset>
+<worldbody><geom name="floor" type="plane" size="5 5 0.1"/>
+<body name="pointer" mocap="true" pos="0 0 0.2"><geom name="pointer" type="mesh" mesh="prism"
+ contype="0" conaffinity="0"/></body></worldbody></mujoco>)",
+      sides, kPhysicsDt, vertices);
+}
+
+// The T3.1 gains, R_w from the prism's unit-mass inertia × 500 (the T3.1 multiplier), the
+// default PGS budget (50 sweeps, 1e-10 m), as a session would run them.
+engine::EngineSettings PrismSettings(bool friction) {
+  engine::EngineSettings s;
+  s.method = "proxy-6dof";
+  s.physics_dt = kPhysicsDt;
+  s.haptic_dt = kHapticDt;
+  s.rendering.stiffness = 9000.0;
+  s.rendering.rot_stiffness = 9000.0;
+  s.rendering.rotation_weight_scale = 500.0;
+  s.rendering.friction = friction ? kFriction : 0.0;
+  return s;
+}
+
+Pose PrismPose(double t) {
+  return Pose{Vec3(kSpeed * t, 0.0, kHalfHeight - kDepth), Quat::Identity()};
+}
+
+struct Result {
+  int sides = 0;
+  bool friction = false;
+  int contacts_min = 0, contacts_max = 0, rows_max = 0, ticks = 0, unconverged = 0;
+  double p50 = 0.0, p99 = 0.0, max = 0.0, mean_sweeps = 0.0;  // s, sweeps
+  bool finite = true;
+};
+
+double Percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0.0;
+  const auto k = static_cast<std::size_t>(std::ceil(p / 100.0 * static_cast<double>(v.size())));
+  const std::size_t i = std::min(v.size() - 1, k == 0 ? 0 : k - 1);
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(i), v.end());
+  return v[i];
+}
+
+// The engine's lockstep schedule on the method alone: period k renders step k−1's snapshot, and
+// only HapticTick is timed. The first period (contact onset, cold start) is not counted.
+Result RunPrism(int sides, bool friction, double duration) {
+  world::World world = world::World::LoadString(PrismScene(sides), {}, "t3.4 prism");
+  world.set_timestep(kPhysicsDt);
+  const engine::EngineSettings settings = PrismSettings(friction);
+  const engine::MethodContext context{&world, &settings, world.pointer_body(), kRadius};
+  engine::internal::ProxyMethod method(context);
+  const int n = settings.ticks_per_step();
+  auto current = std::make_unique<ir::PhysicsSnapshot>();
+  auto next = std::make_unique<ir::PhysicsSnapshot>();
+  ir::HapticReport report;
+  report.X_WP = PrismPose(0.0);
+  method.PhysicsStart(report, current.get());
+  method.Adopt(*current);
+  Result r;
+  r.sides = sides;
+  r.friction = friction;
+  r.contacts_min = 1 << 30;
+  std::vector<double> times;
+  double sweeps = 0.0;
+  const auto periods = static_cast<int>(std::lround(duration / kPhysicsDt));
+  std::int64_t tick = 0;
+  for (int k = 0; k < periods; ++k) {
+    method.PhysicsStep(report, next.get());
+    for (int j = 0; j < n; ++j, ++tick) {
+      engine::TickInput in;
+      in.tick = tick;
+      in.t = static_cast<double>(tick) * kHapticDt;
+      in.j = j;
+      in.n = n;
+      in.dt = kHapticDt;
+      in.X_WP = PrismPose(in.t);
+      in.V_WP.v = Vec3(kSpeed, 0.0, 0.0);
+      engine::TickOutput out;
+      const auto t0 = std::chrono::steady_clock::now();
+      method.HapticTick(in, &out);
+      const auto t1 = std::chrono::steady_clock::now();
+      r.finite = r.finite && IsFinite(out.w_W);
+      if (k == 0) continue;
+      const render::ProxyDiagnostics& d = method.last_output().diagnostics;
+      times.push_back(std::chrono::duration<double>(t1 - t0).count());
+      r.contacts_min = std::min(r.contacts_min, out.contacts);
+      r.contacts_max = std::max(r.contacts_max, out.contacts);
+      r.rows_max = std::max(r.rows_max, d.rows);
+      sweeps += d.iterations;
+      if (!d.converged) ++r.unconverged;
+    }
+    method.EndPeriod(&report);
+    report.X_WP = PrismPose(static_cast<double>(tick - 1) * kHapticDt);
+    method.Adopt(*next);
+    std::swap(current, next);
+  }
+  r.ticks = static_cast<int>(times.size());
+  r.p50 = Percentile(times, 50.0);
+  r.p99 = Percentile(times, 99.0);
+  r.max = times.empty() ? 0.0 : *std::max_element(times.begin(), times.end());
+  r.mean_sweeps = times.empty() ? 0.0 : sweeps / static_cast<double>(times.size());
+  return r;
+}
+
+// Least-squares slope of log(p50) vs log(N) over N >= 50 (the asymptotic exponent), and of p50
+// vs N over all N (µs per contact).
+std::pair<double, double> Slopes(const std::vector<Result>& results, bool friction) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0, n = 0, lx = 0, ly = 0, lxx = 0, lxy = 0, ln = 0;
+  for (const Result& r : results) {
+    if (r.friction != friction) continue;
+    const double x = r.sides, y = r.p50 * 1e6;
+    lx += x, ly += y, lxx += x * x, lxy += x * y, ln += 1;
+    if (r.sides < 50 || y <= 0.0) continue;
+    sx += std::log(x), sy += std::log(y), sxx += std::log(x) * std::log(x);
+    sxy += std::log(x) * std::log(y), n += 1;
+  }
+  const double exponent = n > 1 ? (n * sxy - sx * sy) / (n * sxx - sx * sx) : 0.0;
+  const double per_contact = ln > 1 ? (ln * lxy - lx * ly) / (ln * lxx - lx * lx) : 0.0;
+  return {exponent, per_contact};
+}
+
+void WriteT34Files(const std::filesystem::path& out, const std::vector<Result>& results,
+                   bool quiet) {
+  std::string csv =
+      "sides,friction,contacts_min,contacts_max,rows_max,ticks,p50_us,p99_us,"
+      "max_us,mean_pgs_sweeps,unconverged_ticks\n";
+  for (const Result& r : results) {
+    csv += fmt::format("{},{},{},{},{},{},{:.3f},{:.3f},{:.3f},{:.2f},{}\n", r.sides,
+                       r.friction ? 1 : 0, r.contacts_min, r.contacts_max, r.rows_max, r.ticks,
+                       r.p50 * 1e6, r.p99 * 1e6, r.max * 1e6, r.mean_sweeps, r.unconverged);
+  }
+  WriteText(out / "t3_4.csv", csv);
+  WriteText(
+      out / "t3_4.gp",
+      fmt::format(
+          "# Thesis fig. 3.17: haptic tick time vs contact points. gnuplot t3_4.gp\n"
+          "set terminal pngcairo size 1000,650 enhanced font ',11'\nset output 't3_4.png'\n"
+          "set datafile separator ','\nset grid\nset logscale xy\nset key top left\n"
+          "set title 'T3.4: N-gon prism sliding on a floor (proxy-6dof haptic tick)'\n"
+          "set xlabel 'contact points N'\nset ylabel 'time per haptic tick ({{/Symbol m}}s)'\n"
+          "plot 't3_4.csv' using ($2==0?$1:1/0):7 with linespoints lw 2 title 'p50, no friction', "
+          "'' using ($2==0?$1:1/0):8 with linespoints dt 2 title 'p99, no friction', "
+          "'' using ($2==1?$1:1/0):7 with linespoints lw 2 title 'p50, friction (2N rows)', "
+          "'' using ($2==1?$1:1/0):8 with linespoints dt 2 title 'p99, friction', "
+          "{} with lines lc rgb 'red' title 'goal p99 at N = 1000', "
+          "{} with lines lc rgb 'black' title '1 ms budget'\n",
+          kGoalP99 * 1e6, kBudget * 1e6));
+  std::string why;
+  if (!report::RunGnuplotScript(out, "t3_4.gp", "t3_4.png", &why) && !quiet) {
+    std::cerr << "mrh: warning: t3_4.png not drawn: " << why << "\n";
+  }
+}
+
+}  // namespace
+
+int RunT34(const std::filesystem::path& out, bool quiet) {
+  return RunT34(out, quiet, T34Options{});
+}
+
+int RunT34(const std::filesystem::path& out, bool quiet, const T34Options& options) {
+  std::filesystem::create_directories(out);
+  std::vector<Result> results;
+  bool ok = true;
+  for (const bool friction : {false, true}) {
+    for (const int sides : options.sides) {
+      const Result r = RunPrism(sides, friction, options.duration);
+      if (!quiet) {
+        std::cout << fmt::format(
+            "t3.4: N = {:4}, {}: p50 {:8.1f} us, p99 {:8.1f} us, "
+            "{} contacts, {} rows, {:.1f} sweeps\n",
+            sides, friction ? "friction   " : "no friction", r.p50 * 1e6, r.p99 * 1e6,
+            r.contacts_max, r.rows_max, r.mean_sweeps);
+      }
+      // Every tick sees all N base vertices; with friction every point also gets its row.
+      ok = ok && r.ticks > 0 && r.finite && r.contacts_min == sides && r.contacts_max == sides &&
+           r.rows_max == (friction ? 2 * sides : sides);
+      results.push_back(r);
+    }
+  }
+  WriteT34Files(out, results, quiet);
+  nlohmann::json summary;
+  summary["experiment"] = "t3.4";
+  summary["machine"] = MachineTag();
+#ifdef NDEBUG
+  summary["build"] = "optimized (NDEBUG)";
+#else
+  summary["build"] = "debug: timings are not representative; use a Release build";
+#endif
+  for (const bool friction : {false, true}) {
+    const auto [exponent, per_contact] = Slopes(results, friction);
+    const char* key = friction ? "friction" : "no_friction";
+    summary["slope"][key] = {{"log_log_exponent_N_ge_50", exponent},
+                             {"us_per_contact_linear_fit", per_contact}};
+  }
+  for (const Result& r : results) {
+    summary["runs"].push_back({{"sides", r.sides},
+                               {"friction", r.friction},
+                               {"p50_us", r.p50 * 1e6},
+                               {"p99_us", r.p99 * 1e6},
+                               {"max_us", r.max * 1e6},
+                               {"contacts", r.contacts_max},
+                               {"rows", r.rows_max},
+                               {"mean_pgs_sweeps", r.mean_sweeps},
+                               {"unconverged_ticks", r.unconverged}});
+    if (r.friction && r.sides == 1000)
+      summary["goal_p99_100us_at_1000_friction"] = r.p99 <= kGoalP99;
+  }
+  summary["checks"] = {{"every_tick_has_N_contacts_and_rows", ok}};
+  WriteText(out / "summary.json", summary.dump(2) + "\n");
+  if (!quiet) {
+    for (const bool friction : {false, true}) {
+      const nlohmann::json& s = summary["slope"][friction ? "friction" : "no_friction"];
+      std::cout << fmt::format("slope ({}): p50 ~ N^{:.2f}, {:.3f} us per contact\n",
+                               friction ? "friction" : "no friction",
+                               s["log_log_exponent_N_ge_50"].get<double>(),
+                               s["us_per_contact_linear_fit"].get<double>());
+    }
+    std::cout << "check every_tick_has_N_contacts_and_rows: " << (ok ? "pass" : "FAIL") << "\n"
+              << "results: " << std::filesystem::absolute(out).string() << "\n";
+  }
+  return ok ? 0 : 1;
+}
+
+}  // namespace mrh::experiments::internal

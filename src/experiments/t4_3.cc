@@ -1,0 +1,414 @@
+// SPDX-License-Identifier: Apache-2.0
+// Experiment T4.3 (thesis §4.5.5, figs. 4.16–4.20): computation occupancy per physics step.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "experiment_util.h"
+#include "experiments_impl.h"
+#include "mrh/engine/engine.h"
+#include "mrh/engine/method.h"
+#include "mrh/report/report.h"
+#include "mrh/session/session.h"
+
+namespace mrh::experiments::internal {
+namespace {
+
+// Scene (thesis sizes n/g, SPEC App. B): 0.1 m cubes of 0.2 kg on a floor, in rows of up to 10
+// along x with 2 cm gaps, rows 0.25 m apart; the pointer (2 cm sphere) pushes row 0 along +x at
+// 0.1 m/s, so row 0's cubes come into contact one after another as in the thesis' 10-cube run.
+constexpr double kHalf = 0.05;     // m, cube half size
+constexpr double kCubeMass = 0.2;  // kg
+constexpr double kPitchX = 0.12;   // m, 2 cm gaps within a row
+constexpr double kPitchY = 0.25;   // m, between rows
+constexpr int kPerRow = 10;
+constexpr double kRadius = 0.02;       // m, pointer sphere
+constexpr double kPushSpeed = 0.1;     // m/s
+constexpr double kStartGap = 0.002;    // m, pointer surface to cube 0 at t = 0
+constexpr double kStiffness = 2000.0;  // N/m
+// Contacts are frictionless (condim 1) and the solver is CG: with MuJoCo 2.2.2's static
+// allocation, 1000 cubes with friction need 12–16 constraint rows per cube (> 10 500 rows, whose
+// njmax² arrays fail to allocate), and Newton's dense Hessian (nv = 6000) overflows any sane
+// nstack. The same settings hold for every cube count so the counts compare.
+constexpr int kRowsPerCube = 4;  // 4 box-plane contacts, 1 row each (condim 1)
+constexpr int kSpareRows = 400;  // cube-cube contacts of the pushed row
+constexpr const char* kNoPerturbation = "local-dynamics/no-perturbation";
+
+double StartX() {
+  return -kHalf - kRadius - kStartGap;
+}
+
+// Forwards to an inner method and records how long each call took (see RegisterTimedMethod).
+class TimedMethod final : public engine::Method {
+ public:
+  TimedMethod(std::unique_ptr<engine::Method> inner, std::shared_ptr<MethodTimings> sink,
+              std::size_t max_ticks, std::size_t max_steps)
+      : inner_(std::move(inner)),
+        sink_(std::move(sink)),
+        max_ticks_(max_ticks),
+        max_steps_(max_steps) {
+    sink_->tick_wall_us.reserve(sink_->tick_wall_us.size() + max_ticks);
+    sink_->tick_j.reserve(sink_->tick_j.size() + max_ticks);
+    sink_->tick_contacts.reserve(sink_->tick_contacts.size() + max_ticks);
+    sink_->adopt_wall_us.reserve(sink_->adopt_wall_us.size() + max_steps + 1);
+    sink_->end_period_wall_us.reserve(sink_->end_period_wall_us.size() + max_steps + 1);
+  }
+
+  const char* name() const noexcept override { return inner_->name(); }
+
+  bool single_rate() const noexcept override { return inner_->single_rate(); }
+
+  void PhysicsStart(const ir::HapticReport& initial, ir::PhysicsSnapshot* out) override {
+    inner_->PhysicsStart(initial, out);
+  }
+
+  void PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot* out) override {
+    const double cpu0 = ThreadCpuMs();
+    const auto t0 = Clock::now();
+    inner_->PhysicsStep(report, out);
+    const auto t1 = Clock::now();
+    sink_->step_cpu_ms.push_back(ThreadCpuMs() - cpu0);
+    sink_->step_wall_ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+    if (sink_->on_snapshot) sink_->on_snapshot(*out);
+  }
+
+  void Adopt(const ir::PhysicsSnapshot& snapshot) noexcept override {
+    const auto t0 = Clock::now();
+    inner_->Adopt(snapshot);
+    Keep(&sink_->adopt_wall_us, Us(t0), max_steps_ + 1);
+  }
+
+  void HapticTick(const engine::TickInput& in, engine::TickOutput* out) noexcept override {
+    const auto t0 = Clock::now();
+    inner_->HapticTick(in, out);
+    const double us = Us(t0);
+    if (ticks_++ >= max_ticks_) return;
+    sink_->tick_wall_us.push_back(us);
+    sink_->tick_j.push_back(in.j);
+    sink_->tick_contacts.push_back(out->contacts);
+  }
+
+  void EndPeriod(ir::HapticReport* report) noexcept override {
+    const auto t0 = Clock::now();
+    inner_->EndPeriod(report);
+    Keep(&sink_->end_period_wall_us, Us(t0), max_steps_ + 1);
+  }
+
+ private:
+  using Clock = std::chrono::steady_clock;
+
+  static double Us(Clock::time_point t0) noexcept {
+    return std::chrono::duration<double, std::micro>(Clock::now() - t0).count();
+  }
+
+  static double ThreadCpuMs() {
+    timespec ts{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return static_cast<double>(ts.tv_sec) * 1e3 + static_cast<double>(ts.tv_nsec) * 1e-6;
+  }
+
+  // Appends within the reserved capacity only, so the haptic half never allocates.
+  static void Keep(std::vector<double>* v, double value, std::size_t cap) noexcept {
+    if (v->size() < v->capacity() && v->size() < cap) v->push_back(value);
+  }
+
+  std::unique_ptr<engine::Method> inner_;
+  std::shared_ptr<MethodTimings> sink_;
+  std::size_t max_ticks_, max_steps_;
+  std::size_t ticks_ = 0;
+};
+
+std::string SceneXml(int cubes) {
+  const int rows = kRowsPerCube * cubes + kSpareRows;
+  std::string bodies;
+  for (int i = 0; i < cubes; ++i) {
+    bodies += fmt::format(
+        "    <body name=\"cube{}\" pos=\"{:.3f} {:.3f} {}\"><freejoint/>"
+        "<geom type=\"box\" size=\"{} {} {}\" mass=\"{}\"/></body>\n",
+        i, (i % kPerRow) * kPitchX, (i / kPerRow) * kPitchY, kHalf, kHalf, kHalf, kHalf, kCubeMass);
+  }
+  return fmt::format(
+      "<!-- SPDX-License-Identifier: Apache-2.0 -->\n"
+      "<!-- T4.3 scene generated by `mrh experiment t4.3`: {} cubes on a frictionless floor. -->\n"
+      "<mujoco model=\"t4_3_{}\">\n"
+      "  <option timestep=\"0.02\" gravity=\"0 0 -9.81\" solver=\"CG\"/>\n"
+      "  <size njmax=\"{}\" nconmax=\"{}\" nstack=\"{}\"/>\n"
+      "  <default><geom condim=\"1\" rgba=\"0.8 0.35 0.2 1\"/></default>\n"
+      "  <worldbody>\n"
+      "    <light pos=\"0 -1 3\" dir=\"0 0.3 -1\"/>\n"
+      "    <geom name=\"floor\" type=\"plane\" size=\"20 20 0.1\" rgba=\"0.85 0.85 0.85 1\"/>\n"
+      "{}"
+      "    <body name=\"pointer\" mocap=\"true\" pos=\"{} 0 {}\">\n"
+      "      <geom type=\"sphere\" size=\"{}\" contype=\"0\" conaffinity=\"0\" "
+      "rgba=\"0.2 0.6 0.9 0.8\"/>\n"
+      "    </body>\n"
+      "  </worldbody>\n"
+      "</mujoco>\n",
+      cubes, cubes, rows, rows, std::max(1'000'000, 3000 * cubes), bodies, StartX(), kHalf,
+      kRadius);
+}
+
+// The session of one run: a scripted pointer pushing along +x for `duration` s.
+session::Session RunSession(const std::filesystem::path& scene, const std::string& variant,
+                            const std::string& method, double physics_dt, double duration) {
+  const bool no_perturbation = variant == kNoPerturbation;
+  const double x1 = StartX() + kPushSpeed * duration;
+  const nlohmann::json json = {
+      {"scene", scene.filename().string()},
+      {"method", method},
+      {"physics_dt", physics_dt},
+      {"haptic_dt", 0.001},
+      {"duration", duration},
+      {"pointer", {{"body", "pointer"}, {"radius", kRadius}}},
+      {"rendering", {{"stiffness", kStiffness}, {"perturbation", !no_perturbation}}},
+      {"safety", {{"ramp", false}}},
+      {"device",
+       {{"type", "scripted"},
+        {"keyframes",
+         {{0.0, StartX(), 0.0, kHalf, 1, 0, 0, 0}, {duration, x1, 0.0, kHalf, 1, 0, 0, 0}}},
+        {"limits", {{"max_force", 100.0}}}}}};
+  return session::ParseSession(json.dump(2), scene.parent_path(), {}, "t4.3 " + variant);
+}
+
+struct StepSample {
+  double t = 0.0, compute_ms = 0.0, cpu_ms = 0.0;
+  int sim_contacts = 0, neighbors = 0;
+};
+
+class StepTap final : public engine::Recorder {
+ public:
+  void OnTick(const engine::TickRecord&) override {}
+
+  void OnStep(const engine::StepRecord& step, const world::World&) override {
+    samples.push_back({step.t, step.compute_ms, 0.0, step.sim_contacts, step.neighbors});
+  }
+
+  std::vector<StepSample> samples;
+};
+
+struct RunResult {
+  std::string variant;
+  int cubes = 0;
+  double physics_dt = 0.0;
+  std::vector<StepSample> samples;
+  double p50 = 0.0, p99 = 0.0, max = 0.0;  // occupancy from wall time, steps ≥ 1
+  double cpu_p50 = 0.0, cpu_max = 0.0;     // occupancy from thread CPU time, steps ≥ 1
+  bool finite = true;
+};
+
+double Percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const double rank = p / 100.0 * static_cast<double>(v.size() - 1);
+  return v[static_cast<std::size_t>(std::llround(rank))];
+}
+
+RunResult RunOne(const std::filesystem::path& scene, const std::string& variant, int cubes,
+                 const T43Options& options) {
+  const bool single = variant == "single-rate";
+  const double dt = single ? 0.001 : options.physics_dt;
+  const int steps = single ? options.single_rate_steps : options.steps;
+  const auto timings = std::make_shared<MethodTimings>();
+  const std::string method = RegisterTimedMethod(
+      variant == kNoPerturbation ? "local-dynamics" : variant, timings,
+      static_cast<std::size_t>(steps) * static_cast<std::size_t>(std::llround(dt / 0.001)),
+      static_cast<std::size_t>(steps));
+  const session::Session session =
+      RunSession(scene, variant, method, dt, dt * static_cast<double>(steps));
+  auto engine = session::MakeEngine(session);
+  StepTap tap;
+  engine->Run(&tap);
+  RunResult r{variant, cubes, dt, std::move(tap.samples)};
+  r.finite = static_cast<int>(r.samples.size()) == steps &&
+             timings->step_cpu_ms.size() == r.samples.size();
+  // Step 0 carries one-off setup (first perturbation buffers, cold caches): left out of the
+  // statistics, kept in the time series.
+  std::vector<double> wall, cpu;
+  for (std::size_t i = 0; r.finite && i < r.samples.size(); ++i) {
+    r.samples[i].cpu_ms = timings->step_cpu_ms[i];
+    const double o = r.samples[i].compute_ms / (dt * 1e3);
+    const double c = r.samples[i].cpu_ms / (dt * 1e3);
+    r.finite = std::isfinite(o) && o >= 0.0 && std::isfinite(c) && c >= 0.0;
+    if (i >= 1) wall.push_back(o);
+    if (i >= 1) cpu.push_back(c);
+  }
+  r.p50 = Percentile(wall, 50.0);
+  r.p99 = Percentile(wall, 99.0);
+  r.max = wall.empty() ? 0.0 : *std::max_element(wall.begin(), wall.end());
+  r.cpu_p50 = Percentile(cpu, 50.0);
+  r.cpu_max = cpu.empty() ? 0.0 : *std::max_element(cpu.begin(), cpu.end());
+  return r;
+}
+
+// "local-dynamics/no-perturbation" → "local-dynamics-no-perturbation" (file names).
+std::string Slug(const std::string& variant) {
+  std::string s = variant;
+  std::replace(s.begin(), s.end(), '/', '-');
+  return s;
+}
+
+// Figs. 4.17–4.20: occupancy vs time, one panel per cube count, one line per variant.
+void PlotTimeSeries(const std::filesystem::path& out, const std::vector<RunResult>& runs,
+                    const T43Options& options, bool quiet) {
+  std::filesystem::create_directories(out / "runs");
+  for (const RunResult& r : runs) {
+    std::string csv = "t,compute_ms,occupancy,cpu_ms,occupancy_cpu,sim_contacts,neighbors\n";
+    for (const StepSample& s : r.samples) {
+      csv += fmt::format("{:.4f},{:.6f},{:.6f},{:.6f},{:.6f},{},{}\n", s.t, s.compute_ms,
+                         s.compute_ms / (r.physics_dt * 1e3), s.cpu_ms,
+                         s.cpu_ms / (r.physics_dt * 1e3), s.sim_contacts, s.neighbors);
+    }
+    WriteText(out / "runs" / fmt::format("{}_{}.csv", Slug(r.variant), r.cubes), csv);
+  }
+  const std::size_t panels = options.cubes.size();
+  std::string plot = fmt::format(
+      "# Thesis figs. 4.17-4.20: occupancy = step compute time / step. gnuplot occupancy_time.gp\n"
+      "set terminal pngcairo size 1200,{} enhanced font ',10'\nset output 'occupancy_time.png'\n"
+      "set datafile separator ','\nset grid\nset logscale y\nset yrange [1e-4:30]\n"
+      "set key outside right\nset xlabel 't (s)'\nset ylabel 'occupancy'\n"
+      "set multiplot layout {},1\n",
+      300 * panels, panels);
+  for (const int cubes : options.cubes) {
+    plot += fmt::format("set title '{} cube{}'\nplot 1 with lines dt 2 lc 'black' title 'budget'",
+                        cubes, cubes == 1 ? "" : "s");
+    for (const std::string& v : options.variants) {
+      plot +=
+          fmt::format(", 'runs/{}_{}.csv' using 1:3 with lines lw 2 title '{}'", Slug(v), cubes, v);
+    }
+    plot += "\n";
+  }
+  WriteText(out / "occupancy_time.gp", plot + "unset multiplot\n");
+  std::string why;
+  if (!report::RunGnuplotScript(out, "occupancy_time.gp", "occupancy_time.png", &why) && !quiet) {
+    std::cerr << "mrh: warning: occupancy_time.png not drawn: " << why << "\n";
+  }
+}
+
+// Median occupancy vs cube count, one line per variant (the thesis' comparison across counts).
+void PlotScaling(const std::filesystem::path& out, const T43Options& options, bool quiet) {
+  std::string plot =
+      "# Median occupancy vs cube count (from occupancy_summary.csv). gnuplot "
+      "occupancy_scaling.gp\n"
+      "set terminal pngcairo size 900,600 enhanced font ',11'\n"
+      "set output 'occupancy_scaling.png'\nset datafile separator ','\nset grid\n"
+      "set logscale xy\nset xlabel 'cubes'\n"
+      "set ylabel 'occupancy: CPU-time median (bar up to wall-time p99)'\n"
+      "set key top left\nset title 'T4.3: computation occupancy per physics step'\n"
+      "plot 1 with lines dt 2 lc 'black' title 'budget'";
+  for (const std::string& v : options.variants) {
+    plot += fmt::format(
+        ", 'occupancy_summary.csv' using (strcol(1) eq '{}' ? $2 : 1/0):8:8:6 "
+        "with yerrorlines lw 2 title '{}'",
+        v, v);
+  }
+  WriteText(out / "occupancy_scaling.gp", plot + "\n");
+  std::string why;
+  if (!report::RunGnuplotScript(out, "occupancy_scaling.gp", "occupancy_scaling.png", &why) &&
+      !quiet) {
+    std::cerr << "mrh: warning: occupancy_scaling.png not drawn: " << why << "\n";
+  }
+}
+
+const RunResult* FindRun(const std::vector<RunResult>& runs, const std::string& v, int cubes) {
+  for (const RunResult& r : runs) {
+    if (r.variant == v && r.cubes == cubes) return &r;
+  }
+  return nullptr;
+}
+
+// occupancy_summary.csv/.md and summary.json; returns whether every run is complete and finite.
+bool WriteSummaries(const std::filesystem::path& out, const std::vector<RunResult>& runs,
+                    const T43Options& options, bool quiet) {
+  std::string csv =
+      "variant,cubes,physics_dt_s,steps,p50,p99,max,cpu_p50,cpu_max,ratio_cpu_p50_to_impulse\n";
+  std::string md =
+      "| variant | cubes | step (ms) | occupancy p50 | p99 | max | CPU p50 | CPU max | "
+      "CPU p50 / impulse |\n|---|---|---|---|---|---|---|---|---|\n";
+  nlohmann::json summary;
+  bool ok = true;
+  for (const RunResult& r : runs) {
+    const RunResult* impulse = FindRun(runs, "impulse", r.cubes);
+    const double ratio =
+        impulse != nullptr && impulse->cpu_p50 > 0.0 ? r.cpu_p50 / impulse->cpu_p50 : 0.0;
+    csv += fmt::format("{},{},{},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.3f}\n", r.variant,
+                       r.cubes, r.physics_dt, r.samples.size(), r.p50, r.p99, r.max, r.cpu_p50,
+                       r.cpu_max, ratio);
+    md += fmt::format("| {} | {} | {:g} | {:.4f} | {:.4f} | {:.4f} | {:.4f} | {:.4f} | {:.2f} |\n",
+                      r.variant, r.cubes, r.physics_dt * 1e3, r.p50, r.p99, r.max, r.cpu_p50,
+                      r.cpu_max, ratio);
+    summary["runs"][r.variant][std::to_string(r.cubes)] = {{"p50", r.p50},
+                                                           {"p99", r.p99},
+                                                           {"max", r.max},
+                                                           {"cpu_p50", r.cpu_p50},
+                                                           {"cpu_max", r.cpu_max},
+                                                           {"ratio_cpu_p50_to_impulse", ratio},
+                                                           {"steps", r.samples.size()},
+                                                           {"finite", r.finite}};
+    ok = ok && r.finite;
+  }
+  WriteText(out / "occupancy_summary.csv", csv);
+  WriteText(out / "occupancy_summary.md", md);
+  // Wall-clock goals are reported, never checked: this VM stalls for milliseconds at random.
+  const int largest = *std::max_element(options.cubes.begin(), options.cubes.end());
+  if (const RunResult* ld = FindRun(runs, "local-dynamics", largest)) {
+    summary["goals"]["local_dynamics_p50_below_1_at_largest"] = ld->p50 < 1.0;
+    summary["goals"]["local_dynamics_cpu_p50_below_1_at_largest"] = ld->cpu_p50 < 1.0;
+  }
+  summary["experiment"] = "t4.3";
+  summary["machine"] = MachineTag();
+  summary["physics_dt_s"] = options.physics_dt;
+  summary["checks"]["all_runs_complete_and_finite"] = ok;
+  WriteText(out / "summary.json", summary.dump(2) + "\n");
+  if (!quiet) std::cout << md << "results: " << std::filesystem::absolute(out).string() << "\n";
+  return ok;
+}
+
+}  // namespace
+
+std::string RegisterTimedMethod(const std::string& inner, std::shared_ptr<MethodTimings> sink,
+                                std::size_t max_ticks, std::size_t max_steps) {
+  const std::string name = "timed:" + inner;
+  engine::RegisterMethod(name, "experiments: " + inner + " with per-call timing",
+                         [inner, sink, max_ticks, max_steps](const engine::MethodContext& context) {
+                           return std::make_unique<TimedMethod>(engine::MakeMethod(inner, context),
+                                                                sink, max_ticks, max_steps);
+                         });
+  return name;
+}
+
+int RunT43(const std::filesystem::path& out, bool quiet) {
+  return RunT43(out, quiet, T43Options{});
+}
+
+int RunT43(const std::filesystem::path& out, bool quiet, const T43Options& options) {
+  std::filesystem::create_directories(out / "scenes");
+  std::vector<RunResult> runs;
+  for (const int cubes : options.cubes) {
+    const std::filesystem::path scene = out / "scenes" / fmt::format("t4_3_{}.xml", cubes);
+    WriteText(scene, SceneXml(cubes));
+    for (const std::string& variant : options.variants) {
+      if (!quiet) std::cout << fmt::format("t4.3: {} with {} cubes...\n", variant, cubes);
+      runs.push_back(RunOne(scene, variant, cubes, options));
+    }
+  }
+  PlotTimeSeries(out, runs, options, quiet);
+  // Grouped by variant, so that each variant's rows are consecutive for the scaling plot.
+  std::stable_sort(runs.begin(), runs.end(), [&](const RunResult& a, const RunResult& b) {
+    const auto rank = [&](const std::string& v) {
+      return std::find(options.variants.begin(), options.variants.end(), v) -
+             options.variants.begin();
+    };
+    return rank(a.variant) < rank(b.variant);
+  });
+  const bool ok = WriteSummaries(out, runs, options, quiet);
+  PlotScaling(out, options, quiet);
+  return ok ? 0 : 1;
+}
+
+}  // namespace mrh::experiments::internal

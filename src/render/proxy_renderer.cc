@@ -1,0 +1,379 @@
+// SPDX-License-Identifier: Apache-2.0
+// 6-DOF proxy rendering: rows from the tick IR, friction cones, PGS, wrench and reactions.
+#include "mrh/render/proxy_renderer.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <sstream>
+#include <string>
+#include <utility>
+
+#include "mrh/core/error.h"
+
+namespace mrh::render {
+namespace {
+
+// A tangential offset |s| below this is rounding of metre-scale poses (~1e-16 m), not motion:
+// no friction row (SPEC §3.7, "|s| about 0").
+constexpr double kMinSlip = 1e-12;
+// Below this rotation angle exp(Δθ) uses (1, Δθ/2) normalized, exact to O(angle³) (rad).
+constexpr double kSmallAngle = 1e-8;
+// R_w counts as symmetric when |R − Rᵀ| is within this fraction of its largest entry.
+constexpr double kSymmetryTolerance = 1e-12;
+
+std::string Text(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+void RequireNonNegative(double value, const char* field, const char* unit) {
+  if (std::isfinite(value) && value >= 0.0) return;
+  throw InvalidArgument(std::string("ProxyRendererSettings.") + field + " = " + Text(value) + " " +
+                        unit + "; expected finite and >= 0; set a non-negative value");
+}
+
+bool IsSymmetricPositiveDefinite(const Mat3& m) {
+  if (!m.allFinite()) return false;
+  const double scale = m.cwiseAbs().maxCoeff();
+  if ((m - m.transpose()).cwiseAbs().maxCoeff() > kSymmetryTolerance * scale) return false;
+  const Eigen::SelfAdjointEigenSolver<Mat3> eigen(m, Eigen::EigenvaluesOnly);
+  return eigen.eigenvalues().minCoeff() > 0.0;
+}
+
+std::string Text(const Mat3& m) {
+  std::ostringstream out;
+  out << "[" << m(0, 0) << " " << m(0, 1) << " " << m(0, 2) << "; " << m(1, 0) << " " << m(1, 1)
+      << " " << m(1, 2) << "; " << m(2, 0) << " " << m(2, 1) << " " << m(2, 2) << "]";
+  return out.str();
+}
+
+const ProxyRendererSettings& Validated(const ProxyRendererSettings& settings) {
+  settings.Validate();
+  return settings;
+}
+
+// splitmix64 finalizer: spreads every input bit over the whole word.
+std::uint64_t Mix(std::uint64_t x) noexcept {
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+
+// Warm-start identity of a row: pair, body-fixed point (bit pattern) and row kind.
+std::uint64_t RowIdOf(std::uint64_t key, const Vec3& p_PV, bool friction) noexcept {
+  std::uint64_t h = Mix(key + (friction ? 0x9e3779b97f4a7c15ULL : 0));
+  for (int i = 0; i < 3; ++i) h = Mix(h ^ std::bit_cast<std::uint64_t>(p_PV[i]));
+  return h;
+}
+
+// World rotation vector → unit quaternion (SPEC §3.5, exp of Δθ).
+Quat ExpRotation(const Vec3& theta) noexcept {
+  const double angle = theta.norm();
+  if (angle < kSmallAngle) {
+    return Quat(1.0, 0.5 * theta.x(), 0.5 * theta.y(), 0.5 * theta.z()).normalized();
+  }
+  return Quat(Eigen::AngleAxisd(angle, theta / angle));
+}
+
+}  // namespace
+
+void ProxyRendererSettings::Validate() const {
+  RequireNonNegative(k_t, "k_t", "N/m");
+  RequireNonNegative(d_t, "d_t", "N·s/m");
+  RequireNonNegative(k_r, "k_r", "N·m/rad");
+  RequireNonNegative(d_r, "d_r", "N·m·s/rad");
+  RequireNonNegative(mu, "mu", "(friction coefficient)");
+  RequireNonNegative(tolerance, "tolerance", "m");
+  if (!IsSymmetricPositiveDefinite(rotation_weight)) {
+    throw InvalidArgument("ProxyRendererSettings.rotation_weight = " + Text(rotation_weight) +
+                          " m²; expected a finite symmetric positive definite matrix; use "
+                          "RotationWeightFromInertia or a positive diagonal");
+  }
+  if (max_iterations < 1 || max_iterations > kMaxProxyIterations) {
+    throw InvalidArgument(
+        "ProxyRendererSettings.max_iterations = " + std::to_string(max_iterations) +
+        "; expected 1.." + std::to_string(kMaxProxyIterations) + "; set a sweep budget (20–50)");
+  }
+  if (max_rows < 1 || max_rows > kMaxProxyRows) {
+    throw InvalidArgument("ProxyRendererSettings.max_rows = " + std::to_string(max_rows) +
+                          "; expected 1.." + std::to_string(kMaxProxyRows) +
+                          "; set it to 2 × the contact points you expect (or leave the default)");
+  }
+}
+
+Mat3 RotationWeightFromInertia(const Mat3& unit_mass_inertia, double scale) {
+  if (!(std::isfinite(scale) && scale > 0.0)) {
+    throw InvalidArgument("RotationWeightFromInertia: scale = " + Text(scale) +
+                          "; expected finite and > 0; set rotation_weight_scale > 0");
+  }
+  if (!IsSymmetricPositiveDefinite(unit_mass_inertia)) {
+    throw InvalidArgument(
+        "RotationWeightFromInertia: unit_mass_inertia = " + Text(unit_mass_inertia) +
+        " m²; expected a finite symmetric positive definite tensor; give the "
+        "pointer's inertia for mass 1 kg");
+  }
+  return scale * unit_mass_inertia;
+}
+
+ProxyRenderer::ProxyRenderer(const ProxyRendererSettings& settings)
+    : settings_(Validated(settings)), solver_(settings.max_rows) {
+  // Symmetrize both ways so the row weights g_k see an exactly symmetric R_w⁻¹.
+  const Mat3 weight = 0.5 * (settings_.rotation_weight + settings_.rotation_weight.transpose());
+  const Mat3 inverse = weight.inverse();
+  rotation_weight_inverse_ = 0.5 * (inverse + inverse.transpose());
+  rows_.resize(settings_.max_rows);
+  info_.resize(settings_.max_rows);
+  ids_.resize(settings_.max_rows);
+  previous_ids_.resize(settings_.max_rows);
+  f_.resize(settings_.max_rows);
+  previous_f_.resize(settings_.max_rows);
+}
+
+void ProxyRenderer::Reset() noexcept {
+  row_count_ = 0;
+  previous_row_count_ = 0;
+  memory_count_ = 0;
+  has_previous_ = false;
+  previous_X_WQ_ = Pose{};
+  previous_dr_.setZero();
+  previous_dtheta_.setZero();
+}
+
+void ProxyRenderer::Tick(const TickIr& ir, const Pose& X_WP, double dt, ProxyOutput* out) noexcept {
+  out->reactions.Clear();
+  out->diagnostics = ProxyDiagnostics{};
+  if (!InputIsFinite(ir, X_WP, dt)) return Fault(X_WP, out);
+  ProxyDiagnostics& diag = out->diagnostics;
+
+  // The last tick's ids and f become "previous" for the warm start.
+  std::swap(ids_, previous_ids_);
+  std::swap(f_, previous_f_);
+  previous_row_count_ = row_count_;
+  row_count_ = 0;
+
+  CarryPreviousProxy(ir, X_WP);
+  BuildRows(ir, X_WP, &diag);
+  WarmStart(&diag);
+  const ProxySolveResult solved =
+      solver_.Solve(std::span<const ProxyRow>(rows_.data(), row_count_), rotation_weight_inverse_,
+                    ProxySolverSettings{SweepBudget(), settings_.tolerance},
+                    std::span<double>(f_.data(), row_count_), &out->dr, &out->dtheta);
+  diag.rows = static_cast<int>(row_count_);
+  diag.iterations = solved.iterations;
+  diag.converged = solved.converged;
+  diag.max_change = solved.max_change;
+  if (!solved.converged) diag.status |= kProxyStatusNotConverged;
+
+  // eq. 3.7–3.8: springs on the proxy offset, dampers on its finite difference.
+  out->w_W.f = settings_.k_t * out->dr + settings_.d_t * (out->dr - previous_dr_) / dt;
+  out->w_W.tau =
+      settings_.k_r * out->dtheta + settings_.d_r * (out->dtheta - previous_dtheta_) / dt;
+  const Quat q_WP = X_WP.q.normalized();
+  out->X_WQ = Pose{X_WP.p + out->dr, (ExpRotation(out->dtheta) * q_WP).normalized()};
+  if (!IsFinite(out->w_W) || !IsFinite(out->X_WQ)) return Fault(X_WP, out);
+
+  out->rows = std::span<const ProxyRow>(rows_.data(), row_count_);
+  out->row_info = std::span<const ProxyRowInfo>(info_.data(), row_count_);
+  out->f = std::span<const double>(f_.data(), row_count_);
+  ComputeReactions(ir, dt, out);
+  Remember(ir, *out);
+}
+
+int ProxyRenderer::SweepBudget() const noexcept {
+  if (settings_.max_row_updates == 0 || row_count_ == 0) return settings_.max_iterations;
+  const std::size_t sweeps = std::max<std::size_t>(1, settings_.max_row_updates / row_count_);
+  return static_cast<int>(std::min(sweeps, static_cast<std::size_t>(settings_.max_iterations)));
+}
+
+bool ProxyRenderer::InputIsFinite(const TickIr& ir, const Pose& X_WP, double dt) const noexcept {
+  if (!IsFinite(X_WP) || !(X_WP.q.norm() > 0.0) || !std::isfinite(dt) || !(dt > 0.0)) {
+    return false;
+  }
+  for (const TickPair& pair : ir.pairs) {
+    if (!IsFinite(pair.X_WB) || !IsFinite(pair.p_WCm) || !IsFinite(pair.n_W) ||
+        !IsFinite(pair.c_W)) {
+      return false;
+    }
+  }
+  for (const TickPoint& point : ir.points) {
+    if (!IsFinite(point.p_PV) || !IsFinite(point.v_W) || !std::isfinite(point.depth)) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// SPEC §3.7 with I6: each pair's "previous proxy" is last tick's proxy carried along by its
+// object's motion since then, or the current pointer on the contact's first tick (sticking).
+void ProxyRenderer::CarryPreviousProxy(const TickIr& ir, const Pose& X_WP) noexcept {
+  for (std::size_t i = 0; i < ir.pairs.size(); ++i) {
+    const TickPair& pair = ir.pairs[i];
+    const PairMemory* memory = nullptr;
+    // Pairs usually keep their order between ticks: try the same slot first.
+    if (i < memory_count_ && memory_[i].key == pair.key) memory = &memory_[i];
+    for (std::size_t o = 0; memory == nullptr && o < memory_count_; ++o) {
+      if (memory_[o].key == pair.key) memory = &memory_[o];
+    }
+    previous_dr_pair_[i] = memory != nullptr ? memory->dr_pair : Vec3::Zero();
+    first_tick_[i] = !(has_previous_ && memory != nullptr && memory->in_contact);
+    const Pose carried =
+        first_tick_[i] ? X_WP : pair.X_WB * (memory->X_WB.Inverse() * previous_X_WQ_);
+    // As a matrix: every friction row of the pair poses a point with it.
+    carried_R_WQ_[i] = carried.q.normalized().toRotationMatrix();
+    carried_p_WQ_[i] = carried.p;
+  }
+}
+
+// SPEC §3.8 steps 2–4: a normal row (eq. 3.1) per penetrating point, then its friction row.
+void ProxyRenderer::BuildRows(const TickIr& ir, const Pose& X_WP, ProxyDiagnostics* diag) noexcept {
+  for (std::size_t i = 0; i < ir.pairs.size(); ++i) pair_rows_[i] = 0;
+  for (std::size_t p = 0; p < ir.points.size(); ++p) {
+    const TickPoint& point = ir.points[p];
+    if (!(point.depth > 0.0)) continue;
+    if (point.pair < 0 || static_cast<std::size_t>(point.pair) >= ir.pairs.size()) continue;
+    const auto i = static_cast<std::size_t>(point.pair);
+    const TickPair& pair = ir.pairs[i];
+    const ProxyRow normal{pair.n_W, point.v_W - X_WP.p, point.depth};
+    const int point_index = static_cast<int>(p);
+    if (!PushRow(normal, ProxyRowInfo{ProxyRowKind::kNormal, point_index, point.pair},
+                 RowIdOf(pair.key, point.p_PV, false))) {
+      diag->status |= kProxyStatusRowsFull;
+      continue;
+    }
+    ++diag->contacts;
+    ++pair_rows_[i];
+    if (settings_.mu > 0.0 && !first_tick_[i]) {
+      AddFrictionRow(pair, point.pair, point, point_index, normal, diag);
+    }
+  }
+}
+
+// Friction cone of eq. 3.9 and the tangential row of corrected eq. 3.10.
+void ProxyRenderer::AddFrictionRow(const TickPair& pair, int pair_index, const TickPoint& point,
+                                   int point_index, const ProxyRow& normal,
+                                   ProxyDiagnostics* diag) noexcept {
+  const Vec3& n = pair.n_W;
+  const auto i = static_cast<std::size_t>(pair_index);
+  const Vec3 v_q = carried_R_WQ_[i] * point.p_PV + carried_p_WQ_[i];
+  const Vec3 v_qs = v_q - (v_q - pair.c_W).dot(n) * n;
+  const Vec3 v_ps = point.v_W + point.depth * n;
+  const Vec3 s = v_qs - v_ps;
+  const double slip = s.norm();
+  if (!(slip > kMinSlip)) return;
+  const double radius = settings_.mu * point.depth;  // ρ_i = μ δ_i
+  const bool sliding = slip > radius;
+  const ProxyRow row{s * (1.0 / slip), normal.r, sliding ? radius : slip};
+  const ProxyRowKind kind = sliding ? ProxyRowKind::kSliding : ProxyRowKind::kSticking;
+  if (!PushRow(row, ProxyRowInfo{kind, point_index, pair_index},
+               RowIdOf(pair.key, point.p_PV, true))) {
+    diag->status |= kProxyStatusRowsFull;
+    return;
+  }
+  ++(sliding ? diag->sliding_rows : diag->sticking_rows);
+}
+
+bool ProxyRenderer::PushRow(const ProxyRow& row, const ProxyRowInfo& info, RowId id) noexcept {
+  if (row_count_ == rows_.size()) return false;
+  rows_[row_count_] = row;
+  info_[row_count_] = info;
+  ids_[row_count_] = id;
+  ++row_count_;
+  return true;
+}
+
+// SPEC §3.5 / I7: a row that persists (same pair, point and kind in the same slot) starts from
+// last tick's f; any other starts from 0.
+void ProxyRenderer::WarmStart(ProxyDiagnostics* diag) noexcept {
+  for (std::size_t k = 0; k < row_count_; ++k) {
+    f_[k] = 0.0;
+    if (k >= previous_row_count_) continue;
+    if (ids_[k] == previous_ids_[k]) {
+      f_[k] = previous_f_[k];
+      ++diag->warm_rows;
+    }
+  }
+}
+
+// SPEC §3.6 / I5: row k pushes the pointer with k_t f_k a_k at its contact point projected on
+// the plane; each pair adds its share of the damper. The object receives the opposite.
+void ProxyRenderer::ComputeReactions(const TickIr& ir, double dt, ProxyOutput* out) noexcept {
+  std::array<Wrench, ir::kMaxGeometricPairs> push{};
+  std::array<Vec3, ir::kMaxGeometricPairs> weighted_point{};
+  std::array<double, ir::kMaxGeometricPairs> weight{};
+  for (std::size_t i = 0; i < ir.pairs.size(); ++i) dr_pair_[i].setZero();
+  for (std::size_t k = 0; k < row_count_; ++k) {
+    const auto i = static_cast<std::size_t>(info_[k].pair);
+    const TickPair& pair = ir.pairs[i];
+    if (pair.is_static) continue;  // takes no reaction (and static floors carry most rows)
+    const TickPoint& point = ir.points[static_cast<std::size_t>(info_[k].point)];
+    const Vec3 p_W = point.v_W + point.depth * pair.n_W;
+    const Vec3 force = settings_.k_t * f_[k] * rows_[k].a;
+    push[i].f += force;
+    push[i].tau += (p_W - pair.p_WCm).cross(force);
+    dr_pair_[i] += f_[k] * rows_[k].a;
+    weighted_point[i] += f_[k] * p_W;
+    weight[i] += f_[k];
+  }
+  for (std::size_t i = 0; i < ir.pairs.size(); ++i) {
+    const TickPair& pair = ir.pairs[i];
+    Wrench w = push[i];
+    if (weight[i] > 0.0) {
+      const Vec3 damping = settings_.d_t * (dr_pair_[i] - previous_dr_pair_[i]) / dt;
+      w.f += damping;
+      w.tau += (weighted_point[i] / weight[i] - pair.p_WCm).cross(damping);
+    }
+    (void)out->reactions.PushBack(
+        ProxyPairReaction{pair.key, pair.body, pair.is_static, Wrench{-w.f, -w.tau}});
+  }
+}
+
+void ProxyRenderer::Remember(const TickIr& ir, const ProxyOutput& out) noexcept {
+  memory_count_ = ir.pairs.size();
+  for (std::size_t i = 0; i < memory_count_; ++i) {
+    const TickPair& pair = ir.pairs[i];
+    memory_[i] = PairMemory{pair.key, pair.X_WB, pair_rows_[i] > 0, dr_pair_[i]};
+  }
+  has_previous_ = true;
+  previous_X_WQ_ = out.X_WQ;
+  previous_dr_ = out.dr;
+  previous_dtheta_ = out.dtheta;
+}
+
+void ProxyRenderer::Fault(const Pose& X_WP, ProxyOutput* out) noexcept {
+  Reset();
+  out->w_W = Wrench{};
+  out->X_WQ = IsFinite(X_WP) ? X_WP : Pose{};
+  out->dr.setZero();
+  out->dtheta.setZero();
+  out->rows = {};
+  out->row_info = {};
+  out->f = {};
+  out->reactions.Clear();
+  out->diagnostics = ProxyDiagnostics{};
+  out->diagnostics.status = kProxyStatusBadInput;
+}
+
+void AddReactionImpulses(const ProxyOutput& out, double dt, ir::HapticReport* report) noexcept {
+  // Sum this tick's reactions per body first, so last_force is the body's whole force.
+  std::array<int, ir::kMaxGeometricPairs> bodies{};
+  std::array<Wrench, ir::kMaxGeometricPairs> sums{};
+  std::size_t count = 0;
+  for (const ProxyPairReaction& r : out.reactions) {
+    if (r.is_static || r.body < 0) continue;
+    std::size_t b = 0;
+    while (b < count && bodies[b] != r.body) ++b;
+    if (b == count) bodies[count++] = r.body;
+    sums[b].f += r.w_W.f;
+    sums[b].tau += r.w_W.tau;
+  }
+  for (ir::BodyImpulse& entry : report->impulses) entry.last_force = Vec3::Zero();
+  for (std::size_t b = 0; b < count; ++b) {
+    if (sums[b].f.isZero(0.0) && sums[b].tau.isZero(0.0)) continue;
+    report->AddImpulse(bodies[b], sums[b].f * dt, sums[b].tau * dt, sums[b].f);
+  }
+}
+
+}  // namespace mrh::render

@@ -1,0 +1,84 @@
+// SPDX-License-Identifier: Apache-2.0
+// The session the viewer runs: an embedded real-time engine that restarts on reset or new gains.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+
+#include "mrh/device/mouse.h"
+#include "mrh/engine/engine.h"
+#include "mrh/session/session.h"
+#include "mrh/world/world.h"
+#include "viewer/haptic_loop.h"
+#include "viewer/live_feed.h"
+
+namespace mrh::viewer::internal {
+
+/// What drives the pointer.
+enum class InputSource {
+  kMouse,    ///< the viewer's MouseDevice
+  kSession,  ///< the session's own device (fixed, scripted, hand, ...)
+  kReplay,   ///< a recorded tick file through the replay device
+};
+
+/// "mouse", "session device", "replay".
+const char* InputSourceName(InputSource source) noexcept;
+
+/// Owns the running engine (real-time mode, embedding API), the input device and the haptic
+/// loop. Live changes of gains, method or input restart the engine from the current world state,
+/// so the scene carries on; Reset restarts it from the scene's initial state. UI thread only.
+class LiveSession {
+ public:
+  /// `mouse` and `feed` must outlive this object.
+  LiveSession(session::Session session, device::MouseDevice* mouse, LiveFeed* feed);
+  ~LiveSession();
+  LiveSession(const LiveSession&) = delete;
+  LiveSession& operator=(const LiveSession&) = delete;
+
+  /// Starts the first engine from the scene's initial state.
+  /// @throws mrh::InvalidArgument / mrh::SceneError as session::MakeEngine does.
+  void Start(InputSource source);
+
+  /// Restarts with `settings` and `source`, from the current world state (keep_world) or the
+  /// scene's initial one. If that fails (bad settings, unreadable replay file), restarts with the
+  /// previous configuration and rethrows the error.
+  void Restart(const engine::EngineSettings& settings, InputSource source, bool keep_world);
+
+  /// The tick file kReplay plays (a ticks.csv: t, px, py, pz, qw, qx, qy, qz, world frame).
+  void set_replay_file(const std::filesystem::path& file) { replay_file_ = file; }
+
+  const session::Session& session() const { return session_; }
+
+  const engine::EngineSettings& settings() const { return settings_; }
+
+  InputSource source() const { return source_; }
+
+  HapticLoop& loop() { return loop_; }
+
+  /// Times the engine was (re)started.
+  int starts() const { return starts_; }
+
+  /// The viewer clock (s) at the running engine's t = 0: its ticks have t >= this.
+  double time_offset() const { return time_offset_; }
+
+ private:
+  void Launch(const engine::EngineSettings& settings, InputSource source,
+              const world::Snapshot* state);
+  void StopEngine();
+  std::unique_ptr<device::Device> MakeSource(InputSource source) const;
+
+  session::Session session_;
+  device::MouseDevice* mouse_;
+  LiveFeed* feed_;
+  std::filesystem::path replay_file_;
+
+  engine::EngineSettings settings_;
+  InputSource source_ = InputSource::kMouse;
+  std::unique_ptr<device::Device> owned_source_;  ///< null when the source is the mouse
+  std::unique_ptr<engine::Engine> engine_;
+  HapticLoop loop_;
+  double time_offset_ = 0.0;  ///< viewer clock at the running engine's t = 0 (s)
+  int starts_ = 0;
+};
+
+}  // namespace mrh::viewer::internal

@@ -1,0 +1,156 @@
+// SPDX-License-Identifier: Apache-2.0
+// DrawPanel: one ImGui window; edits go to PanelState, requests come back as PanelActions.
+#include "viewer/panel.h"
+
+#include <fmt/format.h>
+#include <imgui.h>
+
+#include "mrh/engine/method.h"
+
+namespace mrh::viewer::internal {
+namespace {
+
+constexpr float kPanelWidth = 360.0f;  // at scale 1 (pixels)
+constexpr float kPlotHeight = 90.0f;
+const ImVec4 kErrorColor(1.0f, 0.45f, 0.4f, 1.0f);
+
+// ImGui::Text with fmt formatting (ImGui's own printf would need -Wformat exemptions).
+template <typename... Args>
+void Text(fmt::format_string<Args...> format, Args&&... args) {
+  const std::string text = fmt::format(format, std::forward<Args>(args)...);
+  ImGui::TextUnformatted(text.c_str());
+}
+
+void DrawRates(const PanelInfo& info) {
+  const engine::EngineSettings& e = info.session->engine;
+  Text("haptic   {:7.1f} Hz  (target {:.0f}, {})", info.loop.rate_hz, 1.0 / e.haptic_dt,
+       info.loop.fifo ? "SCHED_FIFO" : "normal priority");
+  Text("jitter   mean {:.0f} / p99 {:.0f} / max {:.0f} us", info.loop.jitter_mean_us,
+       info.loop.jitter_p99_us, info.loop.jitter_max_us);
+  Text("physics  {:7.1f} Hz  step {:.2f} ms", info.physics_hz, info.step_ms);
+  Text("overruns {}  dropped ticks {}", info.loop.overruns, info.dropped_ticks);
+}
+
+// Method and gains; an edit that is finished (Enter or focus lost) asks for a restart.
+bool DrawGains(engine::EngineSettings* edit) {
+  bool apply = false;
+  if (ImGui::BeginCombo("method", edit->method.c_str())) {
+    for (const auto& [name, summary] : engine::ListMethods()) {
+      if (ImGui::Selectable(name.c_str(), name == edit->method)) {
+        edit->method = name;
+        apply = true;
+      }
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", summary.c_str());
+    }
+    ImGui::EndCombo();
+  }
+  engine::RenderingSettings& r = edit->rendering;
+  ImGui::InputDouble("stiffness N/m", &r.stiffness, 100.0, 1000.0, "%.1f");
+  apply |= ImGui::IsItemDeactivatedAfterEdit();
+  ImGui::InputDouble("damping N s/m", &r.damping, 0.5, 5.0, "%.2f");
+  apply |= ImGui::IsItemDeactivatedAfterEdit();
+  ImGui::InputDouble("friction mu", &r.friction, 0.05, 0.5, "%.2f");
+  apply |= ImGui::IsItemDeactivatedAfterEdit();
+  ImGui::InputDouble("rot. stiffness N m/rad", &r.rot_stiffness, 1.0, 10.0, "%.2f");
+  apply |= ImGui::IsItemDeactivatedAfterEdit();
+  return apply;
+}
+
+void DrawInput(const PanelInfo& info, PanelState* state, PanelActions* actions) {
+  for (InputSource s : {InputSource::kMouse, InputSource::kSession}) {
+    if (ImGui::RadioButton(InputSourceName(s), info.source == s) && info.source != s) {
+      actions->source = s;
+    }
+    ImGui::SameLine();
+  }
+  ImGui::BeginDisabled(!info.replay_available);
+  if (ImGui::RadioButton("replay", info.source == InputSource::kReplay)) actions->replay = true;
+  ImGui::EndDisabled();
+  ImGui::InputText("file", state->record_path.data(), state->record_path.size());
+  if (!state->recording) {
+    actions->record = ImGui::Button("Record (resets)");
+  } else {
+    actions->stop_record = ImGui::Button("Stop recording");
+    ImGui::SameLine();
+    Text("{} ticks", state->recorded_rows);
+  }
+  ImGui::SameLine();
+  ImGui::BeginDisabled(!info.replay_available || state->recording);
+  actions->replay |= ImGui::Button("Replay");
+  ImGui::EndDisabled();
+}
+
+void DrawDisplay(DisplayOptions* d) {
+  ImGui::Checkbox("force", &d->force);
+  ImGui::SameLine();
+  ImGui::Checkbox("torque", &d->torque);
+  ImGui::SameLine();
+  ImGui::Checkbox("proxy ghost", &d->ghost);
+  ImGui::Checkbox("IR points", &d->ir_points);
+  ImGui::SameLine();
+  ImGui::Checkbox("IR planes", &d->ir_planes);
+  ImGui::SameLine();
+  ImGui::Checkbox("drag camera", &d->camera_drag);
+  ImGui::SliderFloat("m per N", &d->force_scale, 0.001f, 0.1f, "%.3f",
+                     ImGuiSliderFlags_Logarithmic);
+  ImGui::SliderFloat("m per N m", &d->torque_scale, 0.01f, 2.0f, "%.2f",
+                     ImGuiSliderFlags_Logarithmic);
+  ImGui::SliderFloat("plot s", &d->plot_seconds, 1.0f, 10.0f, "%.1f");
+}
+
+void DrawHelp() {
+  ImGui::TextUnformatted(
+      "Pointer: left drag moves it in the view plane,\n"
+      "  Shift+left drag or wheel in depth, right drag turns it,\n"
+      "  arrows / PgUp / PgDn nudge it (Shift: finer).\n"
+      "Camera: Ctrl+left orbit, Ctrl+right pan, Ctrl+wheel\n"
+      "  or middle drag zoom (C swaps plain and Ctrl drags).\n"
+      "Space pause, S step, Backspace reset, H panel, Home camera.");
+}
+
+}  // namespace
+
+PanelActions DrawPanel(const PanelInfo& info, PanelState* state, DisplayOptions* display,
+                       const PlotHistory& history, float scale) {
+  PanelActions actions;
+  ImGui::SetNextWindowPos(ImVec2(0, 0), ImGuiCond_Once);
+  ImGui::SetNextWindowSize(ImVec2(kPanelWidth * scale, 0), ImGuiCond_Once);
+  ImGui::Begin("mrh view", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  Text("{}", info.session->file.filename().string());
+  Text("{}  realtime  physics {} ms / haptic {} ms", info.session->engine.method,
+       info.session->engine.physics_dt * 1e3, info.session->engine.haptic_dt * 1e3);
+  Text("t {:.2f} s  contacts {}  |f| {:.2f} N  |tau| {:.3f} N m", info.t, info.contacts,
+       info.displayed_W.f.norm(), info.displayed_W.tau.norm());
+  if (ImGui::CollapsingHeader("Rates", ImGuiTreeNodeFlags_DefaultOpen)) DrawRates(info);
+  actions.toggle_pause = ImGui::Button(info.paused ? "Resume" : "Pause");
+  ImGui::SameLine();
+  ImGui::BeginDisabled(!info.paused);
+  actions.step = ImGui::Button("Step");
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  actions.reset = ImGui::Button("Reset");
+  if (ImGui::CollapsingHeader("Method and gains", ImGuiTreeNodeFlags_DefaultOpen)) {
+    actions.apply = DrawGains(&state->edit);
+  }
+  if (ImGui::CollapsingHeader("Input and recording", ImGuiTreeNodeFlags_DefaultOpen)) {
+    DrawInput(info, state, &actions);
+  }
+  if (ImGui::CollapsingHeader("Show")) DrawDisplay(display);
+  const float plot_width = kPanelWidth * scale - 2.0f * ImGui::GetStyle().WindowPadding.x;
+  ImGui::TextUnformatted("displayed force");
+  DrawPlot("##force", history, PlotQuantity::kForce, display->plot_seconds, plot_width,
+           kPlotHeight * scale);
+  ImGui::TextUnformatted("displayed torque");
+  DrawPlot("##torque", history, PlotQuantity::kTorque, display->plot_seconds, plot_width,
+           kPlotHeight * scale);
+  if (ImGui::CollapsingHeader("Help")) DrawHelp();
+  if (!state->message.empty()) {
+    ImGui::PushTextWrapPos(kPanelWidth * scale);
+    ImGui::TextColored(kErrorColor, "%s", state->message.c_str());
+    ImGui::PopTextWrapPos();
+  }
+  ImGui::End();
+  return actions;
+}
+
+}  // namespace mrh::viewer::internal

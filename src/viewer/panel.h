@@ -1,0 +1,59 @@
+// SPDX-License-Identifier: Apache-2.0
+// The Dear ImGui panel: rates, gains, pause/step/reset, input source, recording, plots.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "mrh/engine/settings.h"
+#include "mrh/session/session.h"
+#include "viewer/haptic_loop.h"
+#include "viewer/live_session.h"
+#include "viewer/overlay.h"
+#include "viewer/plot.h"
+
+namespace mrh::viewer::internal {
+
+/// What the panel edits and remembers between frames.
+struct PanelState {
+  engine::EngineSettings edit;  ///< method and gains being edited
+  std::array<char, 512> record_path{};
+  bool recording = false;
+  std::int64_t recorded_rows = 0;
+  std::string message;  ///< the last error or notice, shown in the panel
+};
+
+/// What the panel shows this frame.
+struct PanelInfo {
+  const session::Session* session = nullptr;
+  LoopStats loop;
+  InputSource source = InputSource::kMouse;
+  bool paused = false;
+  double physics_hz = 0.0;  ///< physics steps per wall second (last second)
+  double step_ms = 0.0;     ///< wall time of the last physics step
+  std::int64_t dropped_ticks = 0;
+  double t = 0.0;  ///< s, viewer clock of the newest tick
+  int contacts = 0;
+  Wrench displayed_W;             ///< newest displayed wrench
+  bool replay_available = false;  ///< the record file exists
+};
+
+/// What the user asked for this frame.
+struct PanelActions {
+  bool toggle_pause = false;
+  bool step = false;
+  bool reset = false;
+  bool apply = false;                 ///< restart with PanelState::edit
+  std::optional<InputSource> source;  ///< switch input (restart)
+  bool record = false;                ///< reset and start recording to record_path
+  bool stop_record = false;
+  bool replay = false;  ///< reset and play record_path
+};
+
+/// Draws the panel (a window docked at the left, `scale` = the display's content scale).
+PanelActions DrawPanel(const PanelInfo& info, PanelState* state, DisplayOptions* display,
+                       const PlotHistory& history, float scale);
+
+}  // namespace mrh::viewer::internal

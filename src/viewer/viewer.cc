@@ -1,0 +1,295 @@
+// SPDX-License-Identifier: Apache-2.0
+// RunViewer: the frame loop tying the window, the live session, the overlay and the panel.
+#include "mrh/viewer/viewer.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <optional>
+#include <thread>
+#include <vector>
+
+#include "mrh/core/error.h"
+#include "mrh/device/mouse.h"
+#include "mrh/world/scene_renderer.h"
+#include "mrh/world/world.h"
+#include "viewer/live_feed.h"
+#include "viewer/live_session.h"
+#include "viewer/overlay.h"
+#include "viewer/panel.h"
+#include "viewer/plot.h"
+#include "viewer/pointer_control.h"
+#include "viewer/tick_file.h"
+#include "viewer/window.h"
+
+namespace mrh::viewer {
+namespace internal {
+namespace {
+
+// Ticks the feed holds between frames: 30 s at 1 kHz, far more than a stalled frame needs.
+constexpr std::size_t kFeedTicks = std::size_t{1} << 15;
+// Ticks the plots keep: 10 s at 1 kHz, the longest plot window.
+constexpr std::size_t kPlotTicks = 10'000;
+
+// The initial camera frames the moving bodies and the pointer (MuJoCo's default frames the whole
+// model, where a large floor makes the objects small), slightly from the side and above.
+constexpr double kFrameAzimuthDeg = 120.0;
+constexpr double kFrameElevationDeg = -25.0;
+
+// The pointer's initial pose and body, and the initial scene, from the session's world.
+struct InitialView {
+  Pose X_WP;
+  int pointer_body = -1;
+  world::SceneState state;
+  std::vector<int> framed_bodies;  // moving bodies and the pointer
+  world::OrbitCamera camera;       // set once the renderer has framed them
+};
+
+InitialView LoadInitialView(const session::Session& session) {
+  const world::World world = session::LoadWorld(session);
+  InitialView view;
+  view.pointer_body = world.pointer_body();
+  if (view.pointer_body >= 0) view.X_WP = world.body_state(view.pointer_body).X_WB;
+  world::CaptureSceneState(world, &view.state);
+  for (int b = 0; b < world.num_bodies(); ++b) {
+    if (!world.body(b).is_static || b == view.pointer_body) view.framed_bodies.push_back(b);
+  }
+  return view;
+}
+
+std::string DefaultRecordPath(const session::Session& session) {
+  return (std::filesystem::path("out") / (session.file.stem().string() + "-view") / "ticks.csv")
+      .string();
+}
+
+class ViewerApp {
+ public:
+  ViewerApp(const session::Session& session, const ViewerSettings& settings)
+      : settings_(settings),
+        session_(session),
+        window_(WindowSettings{.title = "mrh view - " + session.file.filename().string(),
+                               .width = settings.width,
+                               .height = settings.height,
+                               .visible = !headless(),
+                               .input = !headless(),
+                               .install_callbacks = headless() ? nullptr : &PointerControl::Install,
+                               .callback_data = &control_}),
+        renderer_(session.scene, world::SceneRendererSettings{.font_scale = static_cast<int>(
+                                                                  100 * window_.content_scale())}),
+        feed_(kFeedTicks),
+        initial_(LoadInitialView(session)),
+        pointer_body_(initial_.pointer_body),
+        target_W_(initial_.X_WP),
+        mouse_(session.device.calibration.ToDevice(target_W_), device::MouseDeviceSettings{},
+               session.device.specs),
+        live_(session, &mouse_, &feed_),
+        history_(kPlotTicks) {
+    renderer_.Update(initial_.state);
+    renderer_.camera().azimuth_deg = kFrameAzimuthDeg;
+    renderer_.camera().elevation_deg = kFrameElevationDeg;
+    renderer_.FrameBodies(initial_.framed_bodies);
+    initial_.camera = renderer_.camera();
+    display_.panel = settings.panel;
+    panel_.edit = live_.settings();
+    const std::string path = DefaultRecordPath(session);
+    std::strncpy(panel_.record_path.data(), path.c_str(), panel_.record_path.size() - 1);
+    last_.X_WP = target_W_;
+    live_.Start(headless() ? InputSource::kSession : InputSource::kMouse);
+    rate_start_ = Clock::now();
+  }
+
+  void Run() {
+    const auto period = std::chrono::duration_cast<Clock::duration>(
+        std::chrono::duration<double>(1.0 / settings_.frame_rate_hz));
+    Clock::time_point due = Clock::now();
+    for (int frame = 0; !window_.ShouldClose(); ++frame) {
+      const bool last = headless() && frame + 1 == settings_.frames;
+      Frame(last);
+      if (last) break;
+      // At most frame_rate_hz even without vsync (Xvfb has none); a slow frame is not made up.
+      due = std::max(due + period, Clock::now());
+      std::this_thread::sleep_until(due);
+    }
+  }
+
+ private:
+  using Clock = std::chrono::steady_clock;
+
+  bool headless() const { return settings_.frames > 0; }
+
+  void Frame(bool last) {
+    window_.BeginFrame();
+    KeyActions keys;
+    if (!headless()) {
+      keys = control_.Process(window_.handle(), renderer_, display_.camera_drag, &target_W_);
+      FeedMouse();
+    }
+    DrainTicks();
+    DrawScene();
+    int width = 0, height = 0;
+    window_.FramebufferSize(&width, &height);
+    if (width > 0 && height > 0) renderer_.Render(width, height);  // 0 while minimized
+    PanelActions actions;
+    if (display_.panel)
+      actions = DrawPanel(Info(), &panel_, &display_, history_, window_.content_scale());
+    window_.RenderUi();
+    if (last && !settings_.screenshot.empty() && width > 0 && height > 0) {
+      WritePng(settings_.screenshot, width, height, renderer_.ReadPixels(width, height));
+    }
+    window_.Swap();
+    Handle(actions, keys);
+  }
+
+  // The target stays inside the device's workspace so that it never runs away from the tool.
+  void FeedMouse() {
+    const device::Calibration& c = session_.device.calibration;
+    Pose X_DT = c.ToDevice(target_W_);
+    const device::Specifications& specs = mouse_.specifications();
+    X_DT.p = X_DT.p.cwiseMax(specs.workspace_min).cwiseMin(specs.workspace_max);
+    target_W_ = c.ToWorld(X_DT);
+    if (live_.source() == InputSource::kMouse) mouse_.SetTarget(X_DT);
+  }
+
+  void DrainTicks() {
+    TickSample sample;
+    while (feed_.PopTick(&sample)) {
+      history_.Push(sample);
+      last_ = sample;
+      if (recording_ && sample.t >= record_from_) recording_->Write(sample);
+    }
+    if (recording_) panel_.recorded_rows = recording_->rows();
+    // Other inputs move the pointer: the mouse takes over from where it is.
+    if (live_.source() != InputSource::kMouse) target_W_ = last_.X_WP;
+  }
+
+  void DrawScene() {
+    feed_.UpdateScene();
+    feed_.UpdateIr();
+    state_ = feed_.scene();
+    // The pointer is drawn at the newest tick's pose (1 kHz), not the last physics step's.
+    for (auto& [body, X_WB] : state_.mocap) {
+      if (body == pointer_body_) X_WB = last_.X_WP;
+    }
+    renderer_.Update(state_);
+    const engine::RenderingSettings& r = live_.settings().rendering;
+    DrawOverlay(renderer_, last_, feed_.ir(), display_,
+                Coupling{pointer_body_, r.stiffness, r.rot_stiffness});
+  }
+
+  PanelInfo Info() {
+    const Clock::time_point now = Clock::now();
+    const double elapsed = std::chrono::duration<double>(now - rate_start_).count();
+    if (elapsed >= 1.0) {
+      physics_hz_ = static_cast<double>(feed_.steps() - rate_steps_) / elapsed;
+      rate_steps_ = feed_.steps();
+      rate_start_ = now;
+    }
+    PanelInfo info;
+    info.session = &live_.session();
+    info.loop = live_.loop().stats();
+    info.source = live_.source();
+    info.paused = live_.loop().paused();
+    info.physics_hz = physics_hz_;
+    info.step_ms = feed_.step_ms();
+    info.dropped_ticks = feed_.dropped_ticks();
+    info.t = last_.t;
+    info.contacts = last_.contacts;
+    info.displayed_W = last_.displayed_W;
+    info.replay_available = std::filesystem::is_regular_file(panel_.record_path.data());
+    return info;
+  }
+
+  void Handle(const PanelActions& a, const KeyActions& k) {
+    HapticLoop& loop = live_.loop();
+    if (a.toggle_pause || k.toggle_pause) loop.set_paused(!loop.paused());
+    if ((a.step || k.step) && loop.paused()) loop.StepTicks(live_.settings().ticks_per_step());
+    if (k.toggle_panel) display_.panel = !display_.panel;
+    if (k.toggle_camera) display_.camera_drag = !display_.camera_drag;
+    if (k.reset_camera) renderer_.camera() = initial_.camera;
+    if (a.stop_record || ((a.record || a.replay) && recording_)) StopRecording();
+    if (a.reset || k.reset) Restart(live_.settings(), live_.source(), false);
+    if (a.apply) Restart(panel_.edit, live_.source(), true);
+    if (a.source) {
+      if (*a.source == InputSource::kMouse) {
+        target_W_ = last_.X_WP;
+        mouse_.Teleport(session_.device.calibration.ToDevice(target_W_));
+      }
+      Restart(live_.settings(), *a.source, true);
+    }
+    if (a.record) StartRecording();
+    if (a.replay) {
+      live_.set_replay_file(panel_.record_path.data());
+      Restart(live_.settings(), InputSource::kReplay, false);
+    }
+  }
+
+  void Restart(const engine::EngineSettings& settings, InputSource source, bool keep_world) {
+    try {
+      live_.Restart(settings, source, keep_world);
+      panel_.message.clear();
+    } catch (const Error& e) {
+      panel_.message = e.what();
+    }
+    panel_.edit = live_.settings();
+  }
+
+  // Recording starts from a reset so that replaying the file reproduces the run.
+  void StartRecording() {
+    try {
+      recording_.emplace(panel_.record_path.data());
+    } catch (const Error& e) {
+      panel_.message = e.what();
+      return;
+    }
+    Restart(live_.settings(), live_.source(), false);
+    record_from_ = live_.time_offset();
+    panel_.recording = true;
+  }
+
+  void StopRecording() {
+    if (!recording_) return;
+    try {
+      recording_->Close();
+      panel_.message =
+          fmt::format("recorded {} ticks to {}", recording_->rows(), recording_->path().string());
+    } catch (const Error& e) {
+      panel_.message = e.what();
+    }
+    recording_.reset();
+    panel_.recording = false;
+  }
+
+  ViewerSettings settings_;
+  session::Session session_;
+  PointerControl control_;
+  Window window_;
+  world::SceneRenderer renderer_;
+  LiveFeed feed_;
+  InitialView initial_;
+  int pointer_body_ = -1;
+  Pose target_W_;  // the pointer target the mouse drives (world frame)
+  device::MouseDevice mouse_;
+  LiveSession live_;  // after feed_ and mouse_: its threads stop before they go
+  PlotHistory history_;
+  PanelState panel_;
+  DisplayOptions display_;
+  TickSample last_;
+  world::SceneState state_;
+  std::optional<TickFile> recording_;
+  double record_from_ = 0.0;
+  Clock::time_point rate_start_;
+  std::int64_t rate_steps_ = 0;
+  double physics_hz_ = 0.0;
+};
+
+}  // namespace
+}  // namespace internal
+
+void RunViewer(const session::Session& session, const ViewerSettings& settings) {
+  internal::ViewerApp app(session, settings);
+  app.Run();
+}
+
+}  // namespace mrh::viewer

@@ -1,0 +1,429 @@
+// SPDX-License-Identifier: Apache-2.0
+// Perturbation simulations over MuJoCo 2.2: minimal state copy and mj_forwardSkip from the
+// velocity stage (DEPENDENCIES.md), with a full step as the exact fallback.
+#include "mrh/world/perturbation.h"
+
+#include <mujoco/mujoco.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+
+#include "mrh/core/assert.h"
+#include "world/world_impl.h"
+
+namespace mrh::world {
+namespace {
+
+// A body belongs to the measured body's group when the test forces change its velocity by more
+// than this fraction of the measured body's change (far above solver noise, ~1e-12 relative).
+constexpr double kGroupTolerance = 1e-6;
+
+// e2 starts from x̂ unless x̂ is this close to e1 (|x̂·e1| above it), then from ŷ: keeps
+// |x̂ − (x̂·e1)e1| >= sqrt(1 − 0.9²) ≈ 0.44, far from cancellation.
+constexpr double kParallelDot = 0.9;
+
+Vec3 ToVec3(const mjtNum* v) {
+  return Vec3(v[0], v[1], v[2]);
+}
+
+Vec6 ToVec6(const Twist& t) {
+  Vec6 out;
+  out << t.v, t.w;
+  return out;
+}
+
+std::int64_t NowNs() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+bool IsFreeBody(const mjModel& m, int body) {
+  return m.body_jntnum[body] == 1 && m.jnt_type[m.body_jntadr[body]] == mjJNT_FREE;
+}
+
+// Slide joints only, on a parent that cannot move: the body never rotates and its COM velocity
+// is the sum of the joint axes (fixed in the world) times the joint speeds.
+bool IsSlideBody(const mjModel& m, int body) {
+  const int count = m.body_jntnum[body];
+  if (count == 0 || m.body_weldid[m.body_parentid[body]] != 0) return false;
+  for (int j = m.body_jntadr[body]; j < m.body_jntadr[body] + count; ++j) {
+    if (m.jnt_type[j] != mjJNT_SLIDE) return false;
+  }
+  return true;
+}
+
+// The velocities mj_step would produce from the forwarded state in `d` with accelerations `qacc`
+// (mj_Euler without damping: qvel + dt·qacc, then mj_integratePos), read as World::body_state
+// would read them after the step, for one free or slide body. `dt` = 0 reads the current ones.
+Twist TwistAfterEuler(const mjModel& m, const mjData& d, int body, double dt, const mjtNum* qacc) {
+  const int joint = m.body_jntadr[body];
+  if (IsFreeBody(m, body)) {
+    const int qadr = m.jnt_qposadr[joint];
+    const int vadr = m.jnt_dofadr[joint];
+    std::array<mjtNum, 6> qvel{};
+    for (int i = 0; i < 6; ++i) qvel[i] = d.qvel[vadr + i] + dt * qacc[vadr + i];
+    std::array<mjtNum, 4> quat{};
+    std::copy_n(d.qpos + qadr + 3, 4, quat.data());
+    if (dt > 0.0) mju_quatIntegrate(quat.data(), qvel.data() + 3, dt);
+    mju_normalize4(quat.data());  // as mj_kinematics does
+    std::array<mjtNum, 9> R{};
+    mju_quat2Mat(R.data(), quat.data());
+    const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> R_WB(R.data());
+    // Free-joint qvel: body-origin velocity (world axes), then angular velocity (body axes).
+    const Vec3 w_W = R_WB * Vec3(qvel[3], qvel[4], qvel[5]);
+    const Vec3 p_BoCm_W = R_WB * ToVec3(m.body_ipos + 3 * body);
+    return Twist{Vec3(qvel[0], qvel[1], qvel[2]) + w_W.cross(p_BoCm_W), w_W};
+  }
+  Twist twist;
+  for (int j = joint; j < joint + m.body_jntnum[body]; ++j) {
+    const int vadr = m.jnt_dofadr[j];
+    twist.v += ToVec3(d.xaxis + 3 * j) * (d.qvel[vadr] + dt * qacc[vadr]);
+  }
+  return twist;
+}
+
+// The body's own degrees of freedom (a free joint has 6).
+constexpr int kMaxOwnDofs = 6;
+using OwnVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxOwnDofs, 1>;
+
+// Adds J_Bᵀ (f; τ) of contact `i` to `out`, over the body's own dofs. MuJoCo's contact frame has
+// its normal from geom1 to geom2, and the force acts on geom2 (sign +1; −1 for geom1).
+void AddContactForce(const mjModel& m, const mjData& d, int i, int body, double sign,
+                     std::vector<double>* jacp, std::vector<double>* jacr, OwnVector* out) {
+  const mjContact& c = d.contact[i];
+  std::array<mjtNum, 6> local{};
+  mj_contactForce(&m, &d, i, local.data());
+  Vec3 f_W = Vec3::Zero();
+  Vec3 tau_W = Vec3::Zero();
+  for (int axis = 0; axis < 3; ++axis) {
+    const Vec3 direction = ToVec3(c.frame + 3 * axis);
+    f_W += sign * local[static_cast<std::size_t>(axis)] * direction;
+    tau_W += sign * local[static_cast<std::size_t>(3 + axis)] * direction;
+  }
+  mj_jac(&m, &d, jacp->data(), jacr->data(), c.pos, body);
+  const int first = m.body_dofadr[body];
+  for (int k = 0; k < out->size(); ++k) {
+    for (int r = 0; r < 3; ++r) {
+      const auto column = static_cast<std::size_t>(r * m.nv + first + k);
+      (*out)[k] += (*jacp)[column] * f_W[r] + (*jacr)[column] * tau_W[r];
+    }
+  }
+}
+
+}  // namespace
+
+std::uint64_t ContactKey(int geom_a, int geom_b) {
+  const auto lo = static_cast<std::uint32_t>(std::min(geom_a, geom_b));
+  const auto hi = static_cast<std::uint32_t>(std::max(geom_a, geom_b));
+  return (static_cast<std::uint64_t>(lo) << 32) | hi;
+}
+
+Mat3 TestForces(const Vec3& f1) {
+  const double magnitude = f1.norm();
+  MRH_DEMAND(std::isfinite(magnitude) && magnitude > 0.0);
+  const Vec3 e1 = f1 / magnitude;
+  const Vec3 seed = std::abs(e1.x()) > kParallelDot ? Vec3::UnitY() : Vec3::UnitX();
+  const Vec3 e2 = (seed - seed.dot(e1) * e1).normalized();
+  const Vec3 e3 = e1.cross(e2);
+  Mat3 F;
+  F.col(0) = f1;
+  F.col(1) = magnitude * (e1 + e2).normalized();  // eq. 4.5
+  F.col(2) = magnitude * (e1 + e3).normalized();  // eq. 4.6, corrected (C7)
+  return F;
+}
+
+Perturber::Perturber(World* world, PerturbationPath path) : world_(world), path_(path) {
+  MRH_DEMAND(world_ != nullptr);
+  const mjModel& m = *world_->impl_->model;
+  // mj_Euler integrates damping implicitly, which changes qacc after the forward pass.
+  model_allows_skip_ = m.opt.integrator == mjINT_EULER;
+  for (int i = 0; i < m.nv; ++i) {
+    if (m.dof_damping[i] > 0.0) model_allows_skip_ = false;
+  }
+  snapshot_ = world_->MakeSnapshot();
+  warmstart_.assign(static_cast<std::size_t>(m.nv), 0.0);
+  jacp_.assign(3 * static_cast<std::size_t>(m.nv), 0.0);
+  jacr_.assign(3 * static_cast<std::size_t>(m.nv), 0.0);
+  const auto nv = static_cast<std::size_t>(m.nv);
+  const auto nbody = static_cast<std::size_t>(m.nbody);
+  zero_q_.assign(nv, 0.0);
+  zero_twists_.assign(nbody, Twist{});
+  for (std::size_t k = 0; k < 3; ++k) {
+    run_q_[k].assign(nv, 0.0);
+    run_twists_[k].assign(nbody, Twist{});
+  }
+  group_.reserve(nbody);
+  const auto capacity = static_cast<std::size_t>(m.nbody);
+  bodies_.reserve(capacity);
+  start_.reserve(capacity);
+  zero_.reserve(capacity);
+}
+
+Perturber::~Perturber() = default;
+Perturber::Perturber(Perturber&&) noexcept = default;
+Perturber& Perturber::operator=(Perturber&&) noexcept = default;
+
+void Perturber::Begin(std::span<const int> bodies) {
+  MRH_DEMAND(!open_);
+  const mjModel& m = *world_->impl_->model;
+  bodies_.assign(bodies.begin(), bodies.end());
+  forward_skip_ = path_ == PerturbationPath::kAuto && model_allows_skip_;
+  for (int body : bodies_) {
+    MRH_DEMAND(body > 0 && body < m.nbody && m.body_dofnum[body] > 0);
+    if (!IsFreeBody(m, body) && !IsSlideBody(m, body)) forward_skip_ = false;
+  }
+  world_->Save(&snapshot_);
+  dt_ = m.opt.timestep;
+  start_.resize(bodies_.size());
+  zero_.resize(bodies_.size());
+  open_ = true;
+  zero_done_ = false;
+  ++counters_.begins;
+  if (forward_skip_) {
+    const std::int64_t t0 = NowNs();
+    SetUpForwardSkip();
+    counters_.run_ns += NowNs() - t0;
+    return;
+  }
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    start_[i] = world_->body_state(bodies_[i]).V_WCm;
+  }
+}
+
+// The zero-force run is the forward pass of the step itself, done here. Its position and velocity
+// stages (kinematics, collision, constraint Jacobians, bias forces) do not depend on applied
+// forces, so every test-force run keeps them and redoes only actuation, acceleration and the
+// constraint solve.
+void Perturber::SetUpForwardSkip() {
+  World::Impl& w = *world_->impl_;
+  const mjModel* m = w.model.get();
+  mjData* d = w.data.get();
+  std::copy_n(d->qacc_warmstart, m->nv, warmstart_.data());
+  mj_forwardSkip(m, d, mjSTAGE_NONE, 1);
+  w.kinematics_stale = false;
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    start_[i] = TwistAfterEuler(*m, *d, bodies_[i], 0.0, d->qacc);
+    zero_[i] = TwistAfterEuler(*m, *d, bodies_[i], dt_, d->qacc);
+  }
+  std::copy_n(d->qacc, m->nv, zero_q_.data());
+}
+
+void Perturber::ZeroForceRun() {
+  MRH_DEMAND(open_);
+  const std::int64_t t0 = NowNs();
+  if (forward_skip_) {
+    // Begin() already did this run's forward pass; its results are still in the data.
+    RecordBaseContacts();
+    ++counters_.forward_skip_runs;
+  } else {
+    world_->Step();
+    RecordBaseContacts();  // the step's forward pass ran at the saved state
+    CaptureFullStep(&zero_q_, &zero_twists_);
+    for (std::size_t i = 0; i < bodies_.size(); ++i) {
+      zero_[i] = zero_twists_[static_cast<std::size_t>(bodies_[i])];
+    }
+    world_->Restore(snapshot_);
+    ++counters_.full_step_runs;
+  }
+  zero_done_ = true;
+  ++counters_.zero_force_runs;
+  counters_.run_ns += NowNs() - t0;
+}
+
+Twist Perturber::ForceRun(std::size_t index, const Vec3& f_W, const Vec3& p_W) {
+  return Run(index, f_W, p_W, -1);
+}
+
+Twist Perturber::Run(std::size_t index, const Vec3& f_W, const Vec3& p_W, int slot) {
+  MRH_DEMAND(open_ && zero_done_ && index < bodies_.size());
+  const std::int64_t t0 = NowNs();
+  const Twist result =
+      forward_skip_ ? RunForwardSkip(index, f_W, p_W, slot) : RunFullStep(index, f_W, p_W, slot);
+  ++counters_.force_runs;
+  counters_.run_ns += NowNs() - t0;
+  return result;
+}
+
+Twist Perturber::RunForwardSkip(std::size_t index, const Vec3& f_W, const Vec3& p_W, int slot) {
+  World::Impl& w = *world_->impl_;
+  const mjModel* m = w.model.get();
+  mjData* d = w.data.get();
+  const int body = bodies_[index];
+  // The solver's warm start must be the saved one, as in a step from the saved state.
+  std::copy_n(warmstart_.data(), m->nv, d->qacc_warmstart);
+  mjtNum* xfrc = d->xfrc_applied + 6 * body;
+  std::array<mjtNum, 6> saved{};
+  std::copy_n(xfrc, 6, saved.data());
+  // xfrc_applied takes the torque about the COM (xipos, current from the base forward pass).
+  const Vec3 tau = (p_W - ToVec3(d->xipos + 3 * body)).cross(f_W);
+  for (int i = 0; i < 3; ++i) {
+    xfrc[i] += f_W[i];
+    xfrc[3 + i] += tau[i];
+  }
+  mj_forwardSkip(m, d, mjSTAGE_VEL, 1);
+  std::copy_n(saved.data(), 6, xfrc);
+  if (slot >= 0) std::copy_n(d->qacc, m->nv, run_q_[static_cast<std::size_t>(slot)].data());
+  ++counters_.forward_skip_runs;
+  return TwistAfterEuler(*m, *d, body, dt_, d->qacc);
+}
+
+Twist Perturber::RunFullStep(std::size_t index, const Vec3& f_W, const Vec3& p_W, int slot) {
+  const int body = bodies_[index];
+  world_->AddForceAtPoint(body, f_W, p_W);
+  world_->Step();
+  const Twist result = world_->body_state(body).V_WCm;
+  if (slot >= 0) {
+    const auto k = static_cast<std::size_t>(slot);
+    CaptureFullStep(&run_q_[k], &run_twists_[k]);
+  }
+  world_->Restore(snapshot_);
+  ++counters_.full_step_runs;
+  return result;
+}
+
+DynamicIr Perturber::Measure(std::size_t index, const Vec3& f1, const Vec3& p_W) {
+  MRH_DEMAND(open_ && zero_done_ && index < bodies_.size());
+  const Mat3 F = TestForces(f1);
+  const Vec6 u0 = ToVec6(zero_[index]);
+  Mat63 Y;
+  for (int k = 0; k < 3; ++k) {
+    // eq. 4.8 (corrected, C8): y_k = (u_k − u_0)/Δt; b cancels.
+    Y.col(k) = (ToVec6(Run(index, F.col(k), p_W, k)) - u0) / dt_;
+  }
+  const Mat3 F_inverse = F.inverse();
+  DynamicIr ir;
+  ir.A = Y * F_inverse;                       // eq. 4.10
+  ir.b = (u0 - ToVec6(start_[index])) / dt_;  // eq. 4.3 with f = 0
+  CollectGroup(bodies_[index], F_inverse);
+  return ir;
+}
+
+// After a full-step run, before restoring: generalized velocities, and the COM twists of every
+// body with degrees of freedom (which ones responded is known only after all three runs).
+void Perturber::CaptureFullStep(std::vector<double>* qvel, std::vector<Twist>* twists) {
+  const World::Impl& w = *world_->impl_;
+  std::copy_n(w.data->qvel, w.model->nv, qvel->data());
+  for (int b = 1; b < w.model->nbody; ++b) {
+    if (w.model->body_dofnum[b] > 0)
+      (*twists)[static_cast<std::size_t>(b)] = world_->body_state(b).V_WCm;
+  }
+}
+
+// Bodies other than `measured` whose generalized velocities the three runs changed by more than
+// kGroupTolerance of the measured body's change, with their accelerances for the same forces.
+void Perturber::CollectGroup(int measured, const Mat3& F_inverse) {
+  const World::Impl& w = *world_->impl_;
+  const mjModel& m = *w.model;
+  const mjData& d = *w.data;
+  // Velocity change of dof i in run k: (qacc_k − qacc_0)·Δt when skipping, else qvel_k − qvel_0.
+  const double scale = forward_skip_ ? dt_ : 1.0;
+  auto response = [&](int body) {
+    double largest = 0.0;
+    for (const std::vector<double>& run : run_q_) {
+      for (int i = m.body_dofadr[body]; i < m.body_dofadr[body] + m.body_dofnum[body]; ++i) {
+        const auto dof = static_cast<std::size_t>(i);
+        largest = std::max(largest, std::abs(run[dof] - zero_q_[dof]) * scale);
+      }
+    }
+    return largest;
+  };
+  group_.clear();
+  const double threshold = kGroupTolerance * response(measured);
+  for (int body = 1; body < m.nbody; ++body) {
+    if (body == measured || m.body_dofnum[body] == 0 || !(response(body) > threshold)) continue;
+    if (forward_skip_ && !IsFreeBody(m, body) && !IsSlideBody(m, body)) {
+      ++counters_.group_bodies_unread;
+      continue;
+    }
+    const auto b = static_cast<std::size_t>(body);
+    const Vec6 u0 =
+        ToVec6(forward_skip_ ? TwistAfterEuler(m, d, body, dt_, zero_q_.data()) : zero_twists_[b]);
+    Mat63 Y;
+    for (std::size_t k = 0; k < 3; ++k) {
+      const Twist u =
+          forward_skip_ ? TwistAfterEuler(m, d, body, dt_, run_q_[k].data()) : run_twists_[k][b];
+      Y.col(static_cast<int>(k)) = (ToVec6(u) - u0) / dt_;
+    }
+    group_.push_back(GroupResponse{body, Y * F_inverse});
+  }
+}
+
+void Perturber::End() {
+  MRH_DEMAND(open_);
+  world_->Restore(snapshot_);
+  open_ = false;  // the velocities stay readable until the next Begin()
+}
+
+void Perturber::RecordBaseContacts() {
+  const mjData& d = *world_->impl_->data;
+  base_contacts_.clear();
+  for (int i = 0; i < d.ncon; ++i) {
+    base_contacts_.push_back(ContactKey(d.contact[i].geom1, d.contact[i].geom2));
+  }
+  std::sort(base_contacts_.begin(), base_contacts_.end());
+}
+
+std::span<const std::uint64_t> Perturber::base_contacts() const {
+  MRH_DEMAND(zero_done_);
+  return base_contacts_;
+}
+
+// The contacts and constraint forces in the data are those of the step's forward pass (at the
+// state the step started from), as are the kinematics and the mass matrix until a query
+// refreshes them: exactly what the integrator used.
+Twist Perturber::NewContactVelocityChange(int body, std::span<const std::uint64_t> known) {
+  const World::Impl& w = *world_->impl_;
+  const mjModel& m = *w.model;
+  const mjData& d = *w.data;
+  MRH_DEMAND(body >= 0 && body < m.nbody);
+  const int first = m.body_dofadr[body];
+  const int count = m.body_dofnum[body];
+  if (count <= 0 || count > kMaxOwnDofs) return Twist{};
+  OwnVector generalized = OwnVector::Zero(count);
+  bool any = false;
+  for (int i = 0; i < d.ncon; ++i) {
+    const mjContact& c = d.contact[i];
+    const int body1 = m.geom_bodyid[c.geom1];
+    const int body2 = m.geom_bodyid[c.geom2];
+    if ((body1 == body) == (body2 == body) || c.efc_address < 0) continue;
+    if (std::binary_search(known.begin(), known.end(), ContactKey(c.geom1, c.geom2))) continue;
+    AddContactForce(m, d, i, body, body2 == body ? 1.0 : -1.0, &jacp_, &jacr_, &generalized);
+    any = true;
+  }
+  if (!any) return Twist{};
+  // M_B: the body's own block of the joint-space mass matrix (its dofs form one chain in qM).
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxOwnDofs, kMaxOwnDofs> M(count,
+                                                                                       count);
+  M.setZero();
+  for (int i = 0; i < count; ++i) {
+    int address = m.dof_Madr[first + i];
+    for (int j = first + i; j >= first; j = m.dof_parentid[j], ++address) {
+      M(i, j - first) = M(j - first, i) = d.qM[address];
+    }
+  }
+  const auto dq = (M.llt().solve(generalized) * m.opt.timestep).eval();
+  mj_jacBodyCom(&m, &d, jacp_.data(), jacr_.data(), body);
+  Twist dV;
+  for (int r = 0; r < 3; ++r) {
+    for (int k = 0; k < count; ++k) {
+      dV.v[r] += jacp_[static_cast<std::size_t>(r * m.nv + first + k)] * dq[k];
+      dV.w[r] += jacr_[static_cast<std::size_t>(r * m.nv + first + k)] * dq[k];
+    }
+  }
+  return dV;
+}
+
+const Twist& Perturber::start_velocity(std::size_t index) const {
+  MRH_DEMAND(index < start_.size());
+  return start_[index];
+}
+
+const Twist& Perturber::zero_force_velocity(std::size_t index) const {
+  MRH_DEMAND(zero_done_ && index < zero_.size());
+  return zero_[index];
+}
+
+}  // namespace mrh::world

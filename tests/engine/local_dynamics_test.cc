@@ -1,0 +1,461 @@
+// SPDX-License-Identifier: Apache-2.0
+// Method local-dynamics: accelerance of free bodies and of a row of cubes, felt mass,
+// synchronization, rest, T4.1, RT contract and determinism (issue 5).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "engine/engine_impl.h"
+#include "engine/local_dynamics_method.h"
+#include "engine_test_util.h"
+#include "support/alloc_guard.h"
+
+namespace mrh::engine::testing {
+namespace {
+
+using internal::CorrectionModel;
+using internal::EngineState;
+using internal::LocalDynamicsMethod;
+using internal::LocalDynamicsOptions;
+using internal::PhysicsSide;
+
+// A free 2 kg box, turned, in zero gravity, with a pointer 1 cm off its +x face, away from the
+// face centre so that a push also turns it.
+constexpr char kFreeBox[] = R"(
+<mujoco>
+  <option timestep="0.05" gravity="0 0 0"/>
+  <worldbody>
+    <body name="box" pos="0 0 0" euler="0 0 20"><freejoint/>
+      <geom type="box" size="0.05 0.1 0.15" mass="2"/></body>
+    <body name="pointer" mocap="true" pos="0.08 0.05 0.07">
+      <geom type="sphere" size="0.02" contype="0" conaffinity="0"/></body>
+  </worldbody>
+</mujoco>)";
+
+// A 1 kg cube on a floor with friction, and a pointer 1 cm from its −x face at COM height. The
+// cube starts just touching and first settles 0.36 mm into MuJoCo's soft contact: a bounce the
+// local simulation must follow without going unstable.
+constexpr char kCubeOnFloor[] = R"(
+<mujoco>
+  <option timestep="0.05" gravity="0 0 -9.81"/>
+  <worldbody>
+    <geom name="floor" type="plane" size="3 3 0.1" friction="0.5 0.005 0.0001"/>
+    <body name="cube" pos="0 0 0.05"><freejoint/>
+      <geom type="box" size="0.05 0.05 0.05" mass="1" friction="0.5 0.005 0.0001"/></body>
+    <body name="pointer" mocap="true" pos="-0.08 0 0.05">
+      <geom type="sphere" size="0.02" contype="0" conaffinity="0"/></body>
+  </worldbody>
+</mujoco>)";
+
+constexpr double kCubeMassRow = 1.0;     // kg, each cube of scenes/row_of_cubes.xml
+constexpr double kRowZ = 0.0499;         // m, COM height of the row (and of the pointer)
+constexpr double kRowPointerX = -0.075;  // m, pointer start, 5 mm from the first cube
+constexpr double kPushSpeed = 0.05;      // m/s, scripted pointer speed into the row
+
+EngineSettings LocalSettings(double duration) {
+  EngineSettings s;
+  s.method = "local-dynamics";
+  s.physics_dt = 0.05;
+  s.haptic_dt = 0.001;
+  s.duration = duration;
+  s.pointer.radius = 0.02;
+  s.rendering.stiffness = 1000.0;
+  s.safety.ramp = false;
+  s.realtime_priority = false;
+  return s;
+}
+
+world::World RowWorld(int k) {
+  world::World w = world::World::LoadFile(std::string(MRH_SOURCE_DIR) + "/scenes/row_of_cubes.xml");
+  w.ApplyKeyframe("row" + std::to_string(k));
+  return w;
+}
+
+// A pointer moving from p0 at `speed` along +x for the whole run (scripted: the user is an
+// infinitely stiff hand, as in T4.1).
+std::unique_ptr<device::Device> PushingDevice(const Vec3& p0, double speed, double duration) {
+  device::Specifications specs;
+  specs.max_force = 100.0;
+  return device::MakeScriptedDevice(
+      {{0.0, Pose{p0, Quat::Identity()}},
+       {duration, Pose{p0 + Vec3(speed * duration, 0, 0), Quat::Identity()}}},
+      specs);
+}
+
+Vec3 ImpulseOn(const RunStats& stats, int body) {
+  for (const BodyImpulseTotal& total : stats.impulses) {
+    if (total.body == body) return total.linear;
+  }
+  return Vec3::Zero();
+}
+
+Mat3 Cross(const Vec3& r) {
+  Mat3 m;
+  m << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
+  return m;
+}
+
+// The snapshot PhysicsStart makes for period 0: the dynamic IR measured at the initial state
+// (with the nominal test force: no user force yet).
+ir::PhysicsSnapshot InitialSnapshot(world::World* world, const EngineSettings& settings,
+                                    const Pose& X_WP) {
+  const MethodContext context{world, &settings, world->pointer_body(), settings.pointer.radius};
+  LocalDynamicsMethod method(context);
+  ir::HapticReport initial;
+  initial.X_WP = X_WP;
+  auto snapshot = std::make_unique<ir::PhysicsSnapshot>();
+  method.PhysicsStart(initial, snapshot.get());
+  return *snapshot;
+}
+
+const ir::BodyMotion* MotionOf(const ir::PhysicsSnapshot& snapshot, int body) {
+  for (const ir::BodyMotion& m : snapshot.bodies) {
+    if (m.body == body) return &m;
+  }
+  return nullptr;
+}
+
+// M⁻¹J of a free body for a force at body point p_BA (eq. 4.1–4.2).
+ir::Mat63 FreeBodyAccelerance(const world::World& world, int body, const Vec3& p_BA) {
+  const world::BodyInfo& info = world.body(body);
+  const world::BodyState state = world.body_state(body);
+  const Mat3 R = state.X_WB.q.toRotationMatrix();
+  ir::Mat63 A;
+  A.topRows<3>() = Mat3::Identity() / info.mass;
+  A.bottomRows<3>() =
+      (R * info.inertia_B * R.transpose()).inverse() * Cross(state.X_WB * p_BA - state.p_WCm);
+  return A;
+}
+
+TEST(LocalDynamicsTest, FreeBodyAcceleranceIsInverseMassAndLeverArmCoupling) {
+  // The issue's tolerance; roundoff of the perturbation runs is ~1e-15.
+  constexpr double kTol = 1e-9;
+  for (bool perturbation : {true, false}) {
+    world::World world = world::World::LoadString(kFreeBox);
+    EngineSettings settings = LocalSettings(1.0);
+    settings.rendering.perturbation = perturbation;
+    const Pose X_WP{Vec3(0.08, 0.05, 0.07), Quat::Identity()};
+    const ir::PhysicsSnapshot snapshot = InitialSnapshot(&world, settings, X_WP);
+    const int box = world.FindBody("box");
+    const ir::BodyMotion* motion = MotionOf(snapshot, box);
+    ASSERT_NE(motion, nullptr);
+    ASSERT_TRUE(motion->has_dynamics);
+    const ir::Mat63 expected = FreeBodyAccelerance(world, box, motion->p_BA);
+    EXPECT_LE((motion->A - expected).norm(), kTol * expected.norm())
+        << "perturbation " << perturbation;
+    EXPECT_LE(motion->b.norm(), kTol);
+    EXPECT_GT(expected.bottomRows<3>().norm(), 1.0);  // the lever arm matters here
+  }
+}
+
+class RowOfCubesTest : public ::testing::TestWithParam<int> {};
+
+TEST_P(RowOfCubesTest, EstimatedMassIsTheWholeRow) {
+  // MuJoCo's contacts are soft even at impedance 0.999: each contact passes on slightly less
+  // than the whole push (measured 0.1 % per contact); 2 % leaves room for five cubes.
+  constexpr double kRelTol = 0.02;
+  const int k = GetParam();
+  world::World world = RowWorld(k);
+  const ir::PhysicsSnapshot snapshot = InitialSnapshot(
+      &world, LocalSettings(1.0), Pose{Vec3(kRowPointerX, 0, kRowZ), Quat::Identity()});
+  const ir::BodyMotion* first = MotionOf(snapshot, world.FindBody("cube1"));
+  ASSERT_NE(first, nullptr);
+  EXPECT_NEAR(1.0 / first->A(0, 0), k * kCubeMassRow, kRelTol * k * kCubeMassRow);
+}
+
+TEST_P(RowOfCubesTest, FeltMassIsTheWholeRowAndTheGlobalRowMovesAlong) {
+  // The pointer moves into the row at v and the row bounces off its spring (k = 1000 N/m, no
+  // damper): an elastic bounce of a mass M delivers J = 2Mv, and every cube leaves at 2v. The
+  // 1 ms spring–mass discretization and the soft contacts account for ~1 %.
+  constexpr double kRelTol = 0.03;
+  constexpr double kDuration = 0.8;  // contact lasts π√(M/k) ≤ 0.23 s from t ≈ 0.1 s
+  const int k = GetParam();
+  for (CorrectionModel model :
+       {CorrectionModel::kVelocityResidual, CorrectionModel::kNewContacts}) {
+    const std::string name =
+        model == CorrectionModel::kNewContacts ? "ld-new-contacts" : "ld-residual";
+    LocalDynamicsOptions options;
+    options.correction = model;
+    RegisterMethod(name, "test", [options](const MethodContext& c) {
+      return std::make_unique<LocalDynamicsMethod>(c, options);
+    });
+    EngineSettings settings = LocalSettings(kDuration);
+    settings.method = name;
+    Engine engine(RowWorld(k), PushingDevice(Vec3(kRowPointerX, 0, kRowZ), kPushSpeed, kDuration),
+                  device::Calibration{}, settings);
+    const RunStats stats = engine.Run(nullptr);
+    const double felt = ImpulseOn(stats, engine.world().FindBody("cube1")).x() / (2 * kPushSpeed);
+    EXPECT_NEAR(felt, k * kCubeMassRow, kRelTol * k * kCubeMassRow) << name;
+    for (int i = 1; i <= k; ++i) {
+      const int cube = engine.world().FindBody("cube" + std::to_string(i));
+      EXPECT_NEAR(engine.world().body_state(cube).V_WCm.v.x(), 2 * kPushSpeed,
+                  kRelTol * 2 * kPushSpeed)
+          << name << " cube " << i;
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Cubes, RowOfCubesTest, ::testing::Values(1, 2, 3, 4, 5));
+
+// Runs lockstep periods of `state` by hand (as RunLockstep does), calling `on_tick` after every
+// haptic tick.
+template <typename OnTick>
+void RunPeriods(EngineState& state, int periods, OnTick on_tick) {
+  PhysicsSide physics(&state, nullptr);
+  physics.Start();
+  std::int64_t tick = 0;
+  for (int k = 0; k < periods; ++k) {
+    physics.Step(k);
+    for (int j = 0; j < state.ticks_per_step; ++j, ++tick) {
+      state.haptic->Tick(static_cast<double>(tick) * state.settings.haptic_dt);
+      on_tick(k, j);
+    }
+    physics.TakeReports();
+    physics.Publish();
+    physics.DrainTickRecords();
+  }
+}
+
+LocalDynamicsMethod& MethodOf(EngineState& state) {
+  return *static_cast<LocalDynamicsMethod*>(state.method.get());
+}
+
+TEST(LocalDynamicsTest, GlobalStepStartsFromTheLocalStateOfTheLastPeriod) {
+  // Zero gravity, nothing else to touch: the global step is pure drift, so the state it ends in
+  // is the overwritten local state moved by v·Δt^G (eq. 4.16–4.17).
+  constexpr double kTol = 1e-12;
+  const double duration = 1.0;
+  EngineSettings settings = LocalSettings(duration);
+  world::World world = world::World::LoadString(kFreeBox);
+  const int box = world.FindBody("box");
+  // Pushed along −x: the COM drifts at constant velocity between pushes, whatever the spin.
+  EngineState state(std::move(world), PushingDevice(Vec3(0.09, 0, 0), -0.05, duration),
+                    device::Calibration{}, settings);
+  ir::LocalBodyState last;
+  int checked = 0;
+  RunPeriods(state, 16, [&](int k, int j) {
+    const render::LocalBody* local = MethodOf(state).local_body(box);
+    if (local == nullptr || j != state.ticks_per_step - 1) return;
+    if (k >= 2 && last.body == box) {
+      // Step k started from period k−1's local end state (recorded at its last tick).
+      const world::BodyState global = state.world.body_state(box);
+      const Vec3 expected = last.X_WB.p + last.V_WCm.v * settings.physics_dt;
+      EXPECT_LE((global.X_WB.p - expected).norm(), kTol) << "step " << k;
+      EXPECT_LE((global.V_WCm.v - last.V_WCm.v).norm(), kTol) << "step " << k;
+      ++checked;
+    }
+    last = ir::LocalBodyState{box, local->X_WB(), local->V_WCm()};
+  });
+  EXPECT_GT(checked, 10);
+  EXPECT_GT(MethodOf(state).counters().overwrites, 10);
+  EXPECT_GT(last.V_WCm.v.norm(), 0.01);  // the pointer did push the box
+}
+
+TEST(LocalDynamicsTest, LocalPoseNeverJumpsAtSynchronization) {
+  // A cube pushed across a floor with friction: contacts and friction make the correction of
+  // eq. 4.18 non-zero, but the pose only ever moves by one tick of the current velocity.
+  constexpr double kTol = 1e-12;
+  const double duration = 2.0;
+  EngineState state(world::World::LoadString(kCubeOnFloor),
+                    PushingDevice(Vec3(-0.08, 0, 0.05), 0.1, duration), device::Calibration{},
+                    LocalSettings(duration));
+  const int cube = state.world.FindBody("cube");
+  Vec3 previous = Vec3::Constant(std::nan(""));
+  int ticks = 0;
+  RunPeriods(state, 40, [&](int, int) {
+    const render::LocalBody* local = MethodOf(state).local_body(cube);
+    ASSERT_NE(local, nullptr);
+    if (!std::isnan(previous.x())) {
+      const Vec3 step = local->p_WCm() - previous;
+      EXPECT_LE((step - local->V_WCm().v * state.settings.haptic_dt).norm(), kTol);
+      ++ticks;
+    }
+    previous = local->p_WCm();
+  });
+  EXPECT_EQ(ticks, 40 * 50 - 1);
+  EXPECT_GT(MethodOf(state).haptic_counters().corrections, 30);
+  EXPECT_GT(previous.x(), 0.05);  // the cube was pushed along
+}
+
+TEST(LocalDynamicsTest, FreeSpacePointerFeelsNothing) {
+  const double duration = 1.0;
+  Engine engine(world::World::LoadString(kCubeOnFloor),
+                PushingDevice(Vec3(-0.3, 0.5, 0.4), 0.2, duration), device::Calibration{},
+                LocalSettings(duration));
+  const RunStats stats = engine.Run(nullptr);
+  EXPECT_EQ(stats.max_force, 0.0);
+  EXPECT_TRUE(stats.impulses.empty());
+}
+
+TEST(LocalDynamicsTest, UntouchedRestingNeighborStaysAtRest) {
+  // The cube is a neighbor (pointer 1 cm away, never touching): it is simulated locally,
+  // perturbed every step and overwritten every step, and must not move more than MuJoCo's own
+  // resting contact does.
+  constexpr double kRestTol = 1e-6;  // m and m/s
+  const double duration = 5.0;
+  Engine engine(world::World::LoadString(kCubeOnFloor),
+                PushingDevice(Vec3(-0.08, 0, 0.05), 0.0, duration), device::Calibration{},
+                LocalSettings(duration));
+  world::World reference = world::World::LoadString(kCubeOnFloor);
+  reference.set_timestep(0.05);
+  for (int i = 0; i < 100; ++i) reference.Step();
+  const RunStats stats = engine.Run(nullptr);
+  const int cube = engine.world().FindBody("cube");
+  const world::BodyState state = engine.world().body_state(cube);
+  EXPECT_EQ(stats.max_force, 0.0);
+  EXPECT_LE((state.p_WCm - reference.body_state(cube).p_WCm).norm(), kRestTol);
+  EXPECT_LE(state.V_WCm.v.norm(), kRestTol);
+  EXPECT_LE(state.V_WCm.w.norm(), kRestTol);
+}
+
+TEST(LocalDynamicsTest, T41ImpulseMatchesTheElasticBounceAndTheCubeMomentum) {
+  // SPEC T4.1: the proposed method's impulse is within a few percent of B1's (2.0466 N·s here)
+  // and of the elastic 2mv = 2.04 N·s; momentum bookkeeping holds to roundoff.
+  constexpr double kRelTol = 0.02;
+  constexpr double kMomentumTol = 1e-9;
+  auto engine = T41Engine(T41Settings("local-dynamics"));
+  const RunStats stats = engine->Run(nullptr);
+  const int cube = engine->world().FindBody("cube");
+  const double impulse = -ImpulseOn(stats, cube).x();
+  const double elastic = 2.0 * kCubeMass * kCubeSpeed;
+  EXPECT_NEAR(impulse, elastic, kRelTol * elastic);
+  const double dp = kCubeMass * (engine->world().body_state(cube).V_WCm.v.x() - kCubeSpeed);
+  EXPECT_NEAR(dp, -impulse, kMomentumTol * elastic);
+  EXPECT_EQ(stats.fault_nonfinite_wrench, 0);
+}
+
+TEST(LocalDynamicsTest, CountsOneMeasuredNeighborAndFourForwardSkipRunsPerStepInT41) {
+  EngineState state(T41World(), device::MakeFixedDevice(Pose{}), device::Calibration{},
+                    T41Settings("local-dynamics"));
+  state.world.ApplyKeyframe("approach");
+  const int periods = 10;
+  RunPeriods(state, periods, [](int, int) {});
+  const LocalDynamicsMethod& method = MethodOf(state);
+  // PhysicsStart and every step measure the cube: one zero-force and three test-force runs,
+  // all by forward skipping (slide joints on the world).
+  const std::int64_t measurements = periods + 1;
+  EXPECT_EQ(method.counters().steps, periods);
+  EXPECT_EQ(method.counters().perturbed_bodies, measurements);
+  EXPECT_EQ(method.perturber_counters().forward_skip_runs, 4 * measurements);
+  EXPECT_EQ(method.perturber_counters().full_step_runs, 0);
+  EXPECT_EQ(method.counters().overwrites, periods - 1);  // step 0 has no local state yet
+  EXPECT_GT(method.counters().total.perturbation_ms, 0.0);
+}
+
+TEST(LocalDynamicsTest, HingedBodyFallsBackToImpulsesAndStillTurns) {
+  // A door on a hinge: its free local motion leaves the hinge's circle, so the world cannot
+  // take the local state; the period's reaction then acts as a force (as in B4) and the local
+  // simulation restarts from the global state.
+  constexpr char kDoor[] = R"(
+<mujoco><option timestep="0.05" gravity="0 0 0"/><worldbody>
+  <body name="door" pos="0 0 0"><joint type="hinge" axis="0 0 1"/>
+    <geom type="box" size="0.3 0.02 0.2" pos="0.3 0 0" mass="2"/></body>
+  <body name="pointer" mocap="true" pos="0.5 -0.05 0">
+    <geom type="sphere" size="0.02" contype="0" conaffinity="0"/></body>
+</worldbody></mujoco>)";
+  const double duration = 1.0;
+  Engine engine(
+      world::World::LoadString(kDoor),
+      [] {
+        device::Specifications specs;
+        specs.max_force = 100.0;
+        return device::MakeScriptedDevice({{0.0, Pose{Vec3(0.5, -0.05, 0), Quat::Identity()}},
+                                           {1.0, Pose{Vec3(0.5, 0.05, 0), Quat::Identity()}}},
+                                          specs);
+      }(),
+      device::Calibration{}, LocalSettings(duration));
+  const RunStats stats = engine.Run(nullptr);
+  const world::BodyState door = engine.world().body_state(engine.world().FindBody("door"));
+  EXPECT_GT(stats.max_force, 0.0);
+  EXPECT_EQ(stats.fault_nonfinite_wrench, 0);
+  EXPECT_GT(door.V_WCm.w.z(), 0.0);  // pushed along +y at x = 0.5: turns about +z
+  EXPECT_LT(door.V_WCm.w.head<2>().norm(), 1e-9);
+}
+
+TEST(LocalDynamicsTest, RealtimeModeRendersTheT41Bounce) {
+  EngineSettings settings = T41Settings("local-dynamics");
+  settings.mode = Mode::kRealtime;
+  settings.duration = 0.6;  // contact starts at ~0.29 s
+  auto engine = T41Engine(settings);
+  const RunStats stats = engine->Run(nullptr);
+  EXPECT_GT(stats.steps, 0);
+  EXPECT_GT(stats.max_force, 0.0);
+  EXPECT_EQ(stats.fault_nonfinite_wrench, 0);
+}
+
+TEST(LocalDynamicsTest, HapticTicksNeverAllocateInContact) {
+  for (int scene = 0; scene < 2; ++scene) {
+    const double duration = 1.0;
+    EngineSettings settings = scene == 0 ? T41Settings("local-dynamics") : LocalSettings(duration);
+    world::World world = scene == 0 ? T41World() : RowWorld(3);
+    if (scene == 0) world.ApplyKeyframe("approach");
+    auto device = scene == 0 ? device::MakeFixedDevice(Pose{})
+                             : PushingDevice(Vec3(kRowPointerX, 0, kRowZ), kPushSpeed, duration);
+    EngineState state(std::move(world), std::move(device), device::Calibration{}, settings);
+    PhysicsSide physics(&state, nullptr);
+    physics.Start();
+    std::int64_t allocations = 0;
+    std::int64_t tick = 0;
+    for (int k = 0; k < 20; ++k) {
+      physics.Step(k);
+      {
+        mrh::testing::AllocGuard guard;  // the haptic period only (adoption included)
+        for (int j = 0; j < state.ticks_per_step; ++j, ++tick) {
+          state.haptic->Tick(static_cast<double>(tick) * settings.haptic_dt);
+        }
+        allocations += guard.count();
+      }
+      physics.TakeReports();
+      physics.Publish();
+      physics.DrainTickRecords();
+    }
+    EXPECT_EQ(allocations, 0) << "scene " << scene;
+    EXPECT_GT(state.haptic->counters().max_force, 1.0) << "scene " << scene;
+  }
+}
+
+// FNV-1a over every recorded double, as in determinism_test.cc.
+class HashingRecorder final : public Recorder {
+ public:
+  void OnTick(const TickRecord& t) override {
+    for (int i = 0; i < 3; ++i) Add(t.rendered_W.f[i]);
+  }
+
+  void OnStep(const StepRecord&, const world::World& world) override {
+    for (double q : world.qpos()) Add(q);
+    for (double v : world.qvel()) Add(v);
+  }
+
+  std::uint64_t hash() const { return hash_; }
+
+ private:
+  void Add(double value) {
+    std::uint64_t bits = 0;
+    std::memcpy(&bits, &value, sizeof bits);
+    for (int i = 0; i < 8; ++i) {
+      hash_ ^= (bits >> (8 * i)) & 0xffu;
+      hash_ *= 0x100000001b3ull;
+    }
+  }
+
+  std::uint64_t hash_ = 0xcbf29ce484222325ull;
+};
+
+std::uint64_t RowRunHash() {
+  HashingRecorder recorder;
+  Engine engine(RowWorld(3), PushingDevice(Vec3(kRowPointerX, 0, kRowZ), kPushSpeed, 0.6),
+                device::Calibration{}, LocalSettings(0.6));
+  (void)engine.Run(&recorder);
+  return recorder.hash();
+}
+
+TEST(LocalDynamicsTest, LockstepRerunIsBitIdentical) {
+  EXPECT_EQ(RowRunHash(), RowRunHash());
+}
+
+}  // namespace
+}  // namespace mrh::engine::testing

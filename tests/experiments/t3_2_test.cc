@@ -1,0 +1,43 @@
+// SPDX-License-Identifier: Apache-2.0
+// The T3.2 driver shows static/kinetic friction switching with μ = 0.5 (SPEC T3.2 acceptance).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "mrh/experiments/experiments.h"
+
+namespace mrh::experiments {
+namespace {
+
+constexpr double kMu = 0.5;
+
+TEST(T32ExperimentTest, KineticFrictionIsMuTimesNormalAndStaticStaysBelow) {
+  const std::filesystem::path out =
+      std::filesystem::temp_directory_path() / "mrh_experiments_test_t3_2";
+  std::filesystem::remove_all(out);
+  ASSERT_EQ(experiments::Run("t3.2", out, /*quiet=*/true), 0);
+  for (const char* file : {"t3_2.csv", "t3_2_direction.csv", "t3_2.gp", "summary.json"}) {
+    EXPECT_TRUE(std::filesystem::exists(out / file)) << file;
+  }
+  std::ifstream in(out / "summary.json");
+  const nlohmann::json s = nlohmann::json::parse(in);
+  for (const auto& [name, pass] : s["checks"].items()) EXPECT_TRUE(pass.get<bool>()) << name;
+  const nlohmann::json& n = s["numbers"];
+  // ε bounds what the proxy's rotation can bend a row (SPEC U1); it must be small for the
+  // comparison to mean anything.
+  const double eps = n["rotation_share_eps"].get<double>();
+  ASSERT_LT(eps, 1e-4);
+  EXPECT_GT(n["kinetic_ticks"].get<int>(), 1000);
+  EXPECT_NEAR(n["kinetic_cone_ratio_min"].get<double>(), kMu, kMu * eps);
+  EXPECT_NEAR(n["kinetic_cone_ratio_max"].get<double>(), kMu, kMu * eps);
+  EXPECT_LT(n["static_cone_ratio_max"].get<double>(), kMu * (1.0 + eps));
+  // Start, three reversals and the end of the strokes.
+  EXPECT_GE(n["static_intervals_during_strokes"].get<int>(), 5);
+  EXPECT_LE(n["friction_vs_motion_worst_cos"].get<double>(), -(1.0 - eps));
+  std::filesystem::remove_all(out);
+}
+
+}  // namespace
+}  // namespace mrh::experiments

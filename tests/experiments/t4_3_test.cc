@@ -1,0 +1,108 @@
+// SPDX-License-Identifier: Apache-2.0
+// The T4.3 driver times every variant at every cube count and writes complete, finite tables.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "experiments/experiments_impl.h"
+
+namespace mrh::experiments::internal {
+namespace {
+
+// Each test runs in its own process (ctest, maybe in parallel): one folder per process.
+std::filesystem::path TempDir(const std::string& stem) {
+  return std::filesystem::temp_directory_path() / (stem + std::to_string(getpid()));
+}
+
+std::vector<std::vector<std::string>> ReadCsv(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::vector<std::vector<std::string>> rows;
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> cells;
+    std::stringstream s(line);
+    for (std::string cell; std::getline(s, cell, ',');) cells.push_back(cell);
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+// Occupancy is wall-clock data: only completeness and finiteness are checked, never its size.
+class T43ExperimentTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    out_ = new std::filesystem::path(TempDir("mrh_experiments_test_t4_3_"));
+    std::filesystem::remove_all(*out_);
+    options_.cubes = {1, 10};
+    options_.steps = 6;
+    options_.single_rate_steps = 30;
+    exit_code_ = RunT43(*out_, /*quiet=*/true, options_);
+  }
+
+  static void TearDownTestSuite() {
+    std::filesystem::remove_all(*out_);
+    delete out_;
+  }
+
+  static std::filesystem::path* out_;
+  static T43Options options_;
+  static int exit_code_;
+};
+
+std::filesystem::path* T43ExperimentTest::out_ = nullptr;
+T43Options T43ExperimentTest::options_;
+int T43ExperimentTest::exit_code_ = -1;
+
+TEST_F(T43ExperimentTest, ReportsEveryRunCompleteAndFinite) {
+  EXPECT_EQ(exit_code_, 0);
+}
+
+TEST_F(T43ExperimentTest, SummaryHasOneFiniteRowPerVariantAndCubeCount) {
+  const auto rows = ReadCsv(*out_ / "occupancy_summary.csv");
+  ASSERT_EQ(rows.size(), 1 + options_.variants.size() * options_.cubes.size());
+  std::set<std::pair<std::string, std::string>> seen;
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    ASSERT_EQ(rows[i].size(), rows[0].size()) << i;
+    seen.emplace(rows[i][0], rows[i][1]);
+    for (std::size_t c = 2; c < rows[i].size(); ++c) {
+      const double v = std::stod(rows[i][c]);
+      EXPECT_TRUE(std::isfinite(v) && v >= 0.0) << rows[0][c] << " of " << rows[i][0];
+    }
+  }
+  EXPECT_EQ(seen.size(), options_.variants.size() * options_.cubes.size());
+}
+
+TEST_F(T43ExperimentTest, TimeSeriesHaveOneRowPerPhysicsStep) {
+  for (const std::string& variant : options_.variants) {
+    std::string slug = variant;
+    for (char& c : slug) c = c == '/' ? '-' : c;
+    const std::size_t steps = static_cast<std::size_t>(
+        variant == "single-rate" ? options_.single_rate_steps : options_.steps);
+    for (const int cubes : options_.cubes) {
+      const auto rows = ReadCsv(*out_ / "runs" / (slug + "_" + std::to_string(cubes) + ".csv"));
+      EXPECT_EQ(rows.size(), 1 + steps) << variant << " " << cubes;
+    }
+  }
+}
+
+TEST_F(T43ExperimentTest, GeneratedScenesHoldTheRequestedCubes) {
+  for (const int cubes : options_.cubes) {
+    std::ifstream in(*out_ / "scenes" / ("t4_3_" + std::to_string(cubes) + ".xml"));
+    const std::string xml((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::size_t count = 0;
+    for (auto at = xml.find("<freejoint/>"); at != std::string::npos;
+         at = xml.find("<freejoint/>", at + 1)) {
+      ++count;
+    }
+    EXPECT_EQ(count, static_cast<std::size_t>(cubes));
+  }
+}
+
+}  // namespace
+}  // namespace mrh::experiments::internal

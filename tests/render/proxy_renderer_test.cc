@@ -1,0 +1,545 @@
+// SPDX-License-Identifier: Apache-2.0
+// Tests of the 6-DOF proxy renderer (SPEC §3.4–3.8, §5.0 U1–U4): wrench, friction states,
+// moving objects, reactions, RT contract and settings errors.
+#include "mrh/render/proxy_renderer.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <numbers>
+#include <random>
+#include <vector>
+
+#include "mrh/core/error.h"
+#include "support/alloc_guard.h"
+
+namespace mrh::render {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::ThrowsMessage;
+
+constexpr double kDt = 1e-3;     // haptic period (s)
+constexpr double kDepth = 1e-3;  // penetration (m)
+constexpr double kHalf = 0.1;    // half side of the 0.2 m cube pointer (T3.1)
+constexpr double kKt = 9000.0;   // N/m (T3.1)
+constexpr double kKr = 9000.0;   // N·m/rad (T3.1)
+constexpr double kMu = 0.5;      // T3.2
+// PGS converges slowly on face and edge contacts when R_w ≫ |r|² (T3.1: 3.33 m² vs 0.02 m²,
+// ~1700 sweeps per 1e-7 reduction for 4 points), so the tests solve to 1e-14 m with a budget
+// that always suffices; the error in f is then below 1e4 × the last change (rate ≥ 1 − 1e-4),
+// i.e. ~1e-10 m, ~1e-6 N of force. Geometry alone is exact to ~1e-15 m.
+constexpr double kSolverTol = 1e-14;
+constexpr int kSolverBudget = kMaxProxyIterations;
+constexpr double kForceTol = kKt * 1e4 * kSolverTol * 10.0;
+// Large enough that Δθ is negligible: c_tt − 1 = |r × t|² / R_w ≈ 1e-14.
+const Mat3 kStiffRotation = 1e12 * Mat3::Identity();
+
+// One object pair: plane and pointer points (pointer frame), as the interpolator would send it.
+struct PairSpec {
+  std::uint64_t key = 1;
+  int body = 0;
+  bool is_static = true;
+  Pose X_WB;
+  Vec3 p_BCm = Vec3::Zero();
+  Vec3 n_B = Vec3::UnitZ();  // plane normal in the object frame, object → pointer
+  Vec3 p_BC = Vec3::Zero();
+  std::vector<Vec3> points_P;
+};
+
+// Fills `ir` like IrInterpolator::Evaluate: points re-posed with X_WP, depth = n·(c − v).
+void Fill(const std::vector<PairSpec>& specs, const Pose& X_WP, TickIr* ir) {
+  ir->pairs.Clear();
+  ir->points.Clear();
+  for (const PairSpec& spec : specs) {
+    TickPair pair;
+    pair.key = spec.key;
+    pair.body = spec.body;
+    pair.is_static = spec.is_static;
+    pair.X_WB = spec.X_WB;
+    pair.p_WCm = spec.X_WB * spec.p_BCm;
+    pair.n_W = spec.X_WB.q * spec.n_B;
+    pair.c_W = spec.X_WB * spec.p_BC;
+    pair.p_BC = spec.p_BC;
+    pair.first = static_cast<int>(ir->points.size());
+    for (const Vec3& p_PV : spec.points_P) {
+      const Vec3 v_W = X_WP * p_PV;
+      (void)ir->points.PushBack(
+          TickPoint{p_PV, v_W, pair.n_W.dot(pair.c_W - v_W), static_cast<int>(ir->pairs.size())});
+    }
+    pair.count = static_cast<int>(ir->points.size()) - pair.first;
+    (void)ir->pairs.PushBack(pair);
+  }
+}
+
+std::vector<Vec3> BottomFace() {
+  return {Vec3(kHalf, kHalf, -kHalf), Vec3(-kHalf, kHalf, -kHalf), Vec3(-kHalf, -kHalf, -kHalf),
+          Vec3(kHalf, -kHalf, -kHalf)};
+}
+
+PairSpec Floor(std::vector<Vec3> points) {
+  PairSpec s;
+  s.points_P = std::move(points);
+  return s;
+}
+
+ProxyRendererSettings T31() {
+  return ProxyRendererSettings{.k_t = kKt,
+                               .k_r = kKr,
+                               .rotation_weight = 3.33 * Mat3::Identity(),
+                               .max_iterations = kSolverBudget,
+                               .tolerance = kSolverTol};
+}
+
+ProxyRendererSettings Friction(const Mat3& weight = kStiffRotation) {
+  ProxyRendererSettings s = T31();
+  s.rotation_weight = weight;
+  s.mu = kMu;
+  return s;
+}
+
+// Pointer origin above the floor so its bottom face is kDepth deep, moved and turned.
+Pose Pressed(const Vec3& shift = Vec3::Zero(), const Quat& q = Quat::Identity()) {
+  return Pose{Vec3(0, 0, kHalf - kDepth) + shift, q};
+}
+
+Quat About(const Vec3& axis, double angle) {
+  return Quat(Eigen::AngleAxisd(angle, axis));
+}
+
+struct Rig {
+  explicit Rig(const ProxyRendererSettings& settings) : renderer(settings) {}
+
+  const ProxyOutput& Tick(const std::vector<PairSpec>& specs, const Pose& X_WP) {
+    Fill(specs, X_WP, ir.get());
+    renderer.Tick(*ir, X_WP, kDt, out.get());
+    return *out;
+  }
+
+  ProxyRenderer renderer;
+  std::unique_ptr<TickIr> ir = std::make_unique<TickIr>();
+  std::unique_ptr<ProxyOutput> out = std::make_unique<ProxyOutput>();
+};
+
+TEST(ProxyRendererTest, SingleContactBelowTheCentrePushesStraightOutWithoutTorque) {
+  Rig rig(T31());
+  const ProxyOutput& out = rig.Tick({Floor({Vec3(0, 0, -kHalf)})}, Pressed());
+  EXPECT_LT((out.w_W.f - kKt * kDepth * Vec3::UnitZ()).norm(), kForceTol);
+  EXPECT_LT(out.w_W.tau.norm(), kForceTol);
+  EXPECT_LT((out.X_WQ.p - (Pressed().p + kDepth * Vec3::UnitZ())).norm(), 1e-9);
+  EXPECT_EQ(out.diagnostics.contacts, 1);
+}
+
+TEST(ProxyRendererTest, FaceContactGivesKtTimesDepthWhateverTheContactCount) {
+  Rig rig(T31());
+  const ProxyOutput& out = rig.Tick({Floor(BottomFace())}, Pressed());
+  EXPECT_EQ(out.diagnostics.contacts, 4);
+  EXPECT_LT((out.w_W.f - kKt * kDepth * Vec3::UnitZ()).norm(), kForceTol);
+  EXPECT_LT(out.w_W.tau.norm(), kForceTol);
+}
+
+TEST(ProxyRendererTest, FortyFiveDegreeEdgeContactGivesKtTimesDepthWithoutTorque) {
+  // Turned 45° about x, the edge y_P = z_P = −0.1 lies at z = −0.1√2 below the centre.
+  const Quat q = About(Vec3::UnitX(), std::numbers::pi / 4);
+  const Pose X_WP{Vec3(0, 0, kHalf * std::sqrt(2.0) - kDepth), q};
+  Rig rig(T31());
+  const ProxyOutput& out =
+      rig.Tick({Floor({Vec3(kHalf, -kHalf, -kHalf), Vec3(-kHalf, -kHalf, -kHalf)})}, X_WP);
+  EXPECT_EQ(out.diagnostics.contacts, 2);
+  EXPECT_LT((out.w_W.f - kKt * kDepth * Vec3::UnitZ()).norm(), kForceTol);
+  EXPECT_LT(out.w_W.tau.norm(), kForceTol);
+}
+
+TEST(ProxyRendererTest, TiltedEdgeContactGivesTorqueWithTheSignOfTheLever) {
+  // Turned +30° about x, the lowest edge is at y = r_y < 0: the floor pushes up behind the
+  // centre, τ_x < 0. Symmetric pair of rows with R_w = w I: τ_x = k_r δ r_y / (w + r_y²).
+  const double angle = std::numbers::pi / 6;
+  const Quat q = About(Vec3::UnitX(), angle);
+  const Vec3 corner(0, -kHalf, -kHalf);
+  const Vec3 r = q * corner;
+  const Pose X_WP{Vec3(0, 0, -r.z() - kDepth), q};
+  Rig rig(T31());
+  const ProxyOutput& out =
+      rig.Tick({Floor({Vec3(kHalf, -kHalf, -kHalf), Vec3(-kHalf, -kHalf, -kHalf)})}, X_WP);
+  const double w = 3.33;
+  EXPECT_LT(r.y(), 0.0);
+  EXPECT_NEAR(out.w_W.tau.x(), kKr * kDepth * r.y() / (w + r.y() * r.y()), kForceTol);
+  EXPECT_LT(out.w_W.tau.x(), 0.0);
+  EXPECT_NEAR(out.w_W.f.z(), kKt * kDepth / (1.0 + r.y() * r.y() / w), kForceTol);
+}
+
+TEST(ProxyRendererTest, KineticFrictionIsMuTimesTheNormalForceAgainstTheMotion) {
+  Rig rig(Friction());
+  const std::vector<PairSpec> floor{Floor({Vec3(0, 0, -kHalf)})};
+  (void)rig.Tick(floor, Pressed());
+  for (int tick = 1; tick <= 5; ++tick) {
+    const double u = 4.0 * kMu * kDepth * tick;  // beyond the cone radius μδ every tick
+    const ProxyOutput& out = rig.Tick(floor, Pressed(Vec3(u, 0, 0)));
+    EXPECT_EQ(out.diagnostics.sliding_rows, 1) << "tick " << tick;
+    EXPECT_NEAR(out.w_W.f.z(), kKt * kDepth, kForceTol);
+    EXPECT_NEAR(out.w_W.f.x(), -kMu * kKt * kDepth, kForceTol) << "tick " << tick;
+    EXPECT_NEAR(out.w_W.f.y(), 0.0, kForceTol);
+  }
+}
+
+TEST(ProxyRendererTest, StaticFrictionKeepsTheProxyPointWhereItWas) {
+  Rig rig(Friction());
+  const std::vector<PairSpec> floor{Floor({Vec3(0, 0, -kHalf)})};
+  const Vec3 p_PV(0, 0, -kHalf);
+  const Vec3 stuck = rig.Tick(floor, Pressed()).X_WQ * p_PV;
+  const double u = 0.4 * kMu * kDepth;  // inside the cone
+  for (int tick = 0; tick < 3; ++tick) {
+    const ProxyOutput& out = rig.Tick(floor, Pressed(Vec3(u, 0, 0)));
+    EXPECT_EQ(out.diagnostics.sticking_rows, 1);
+    EXPECT_LT((out.X_WQ * p_PV - stuck).norm(), 1e-9);
+    EXPECT_NEAR(out.w_W.f.x(), -kKt * u, kForceTol);
+    EXPECT_LT(std::abs(out.w_W.f.x()), kMu * out.w_W.f.z());
+  }
+}
+
+TEST(ProxyRendererTest, FirstTickOfAContactSticksWhateverThePointerDidBefore) {
+  Rig rig(Friction());
+  const std::vector<PairSpec> floor{Floor({Vec3(0, 0, -kHalf)})};
+  (void)rig.Tick(floor, Pressed(Vec3(0, 0, 0.05)));  // above the floor
+  const ProxyOutput& out = rig.Tick(floor, Pressed(Vec3(0.05, 0, 0)));
+  EXPECT_EQ(out.diagnostics.contacts, 1);
+  EXPECT_EQ(out.diagnostics.sticking_rows + out.diagnostics.sliding_rows, 0);
+  EXPECT_EQ(out.w_W.f.x(), 0.0);
+}
+
+TEST(ProxyRendererTest, NoContactGivesZeroWrenchWhateverTheMotion) {
+  ProxyRendererSettings settings = Friction(3.33 * Mat3::Identity());
+  settings.d_t = 10.0;
+  settings.d_r = 1.0;
+  Rig rig(settings);
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const std::vector<PairSpec> floor{Floor(BottomFace())};
+  for (int tick = 0; tick < 500; ++tick) {
+    // Above z = 0.2 m the cube (half diagonal 0.173 m) never reaches the floor.
+    const Vec3 p(unit(rng), unit(rng), 0.6 + 0.4 * unit(rng));
+    const Quat q = Quat(unit(rng), unit(rng), unit(rng), unit(rng)).normalized();
+    const ProxyOutput& out = rig.Tick(tick % 2 == 0 ? floor : std::vector<PairSpec>{}, {p, q});
+    ASSERT_EQ(out.diagnostics.contacts, 0);
+    EXPECT_EQ(out.w_W.f.norm(), 0.0) << "tick " << tick;
+    EXPECT_EQ(out.w_W.tau.norm(), 0.0) << "tick " << tick;
+  }
+}
+
+TEST(ProxyRendererTest, TwistingAFaceContactGivesATorqueOpposingTheTwist) {
+  // Static case: every point slips |r_xy| φ < μδ, the proxy keeps the old angle: Δθ = −φ ẑ.
+  Rig rig(Friction(3.33 * Mat3::Identity()));
+  const std::vector<PairSpec> floor{Floor(BottomFace())};
+  (void)rig.Tick(floor, Pressed());
+  const double phi = 2e-3;
+  const ProxyOutput& out = rig.Tick(floor, Pressed(Vec3::Zero(), About(Vec3::UnitZ(), phi)));
+  EXPECT_EQ(out.diagnostics.sticking_rows, 4);
+  EXPECT_NEAR(out.w_W.tau.z(), -kKr * phi, 1e-3 * kKr * phi);
+  EXPECT_LT(out.w_W.tau.head<2>().norm(), kForceTol);
+}
+
+TEST(ProxyRendererTest, TwistingBeyondTheConesGivesAWeakerOpposingTorque) {
+  Rig rig(Friction(3.33 * Mat3::Identity()));
+  const std::vector<PairSpec> floor{Floor(BottomFace())};
+  (void)rig.Tick(floor, Pressed());
+  const double phi = 0.05;
+  const ProxyOutput& out = rig.Tick(floor, Pressed(Vec3::Zero(), About(Vec3::UnitZ(), phi)));
+  EXPECT_EQ(out.diagnostics.sliding_rows, 4);
+  EXPECT_LT(out.w_W.tau.z(), 0.0);
+  EXPECT_GT(out.w_W.tau.z(), -kKr * phi);
+}
+
+PairSpec Box(int body, const Pose& X_WB) {
+  PairSpec s = Floor(BottomFace());
+  s.key = 9;
+  s.body = body;
+  s.is_static = false;
+  s.X_WB = X_WB;
+  s.p_BCm = Vec3(0, 0, -0.05);
+  return s;
+}
+
+TEST(ProxyRendererTest, ContactCarriedWithAMovingObjectDoesNotSlip) {
+  // Object and pointer move together, 2 mm (4× the cone radius) and 0.01 rad per tick.
+  Rig rig(Friction(3.33 * Mat3::Identity()));
+  for (int tick = 0; tick < 10; ++tick) {
+    const Pose X_WB{Vec3(2e-3 * tick, 0, 0), About(Vec3::UnitZ(), 0.01 * tick)};
+    const ProxyOutput& out = rig.Tick({Box(5, X_WB)}, X_WB * Pressed());
+    EXPECT_EQ(out.diagnostics.sliding_rows, 0) << "tick " << tick;
+    EXPECT_LT(out.w_W.f.head<2>().norm(), kForceTol) << "tick " << tick;
+    EXPECT_NEAR(out.w_W.f.z(), kKt * kDepth, kForceTol);
+  }
+}
+
+TEST(ProxyRendererTest, MovingObjectDragsTheStillPointerThroughStaticFriction) {
+  Rig rig(Friction());
+  (void)rig.Tick({Box(5, Pose{})}, Pressed());
+  const double u = 0.4 * kMu * kDepth;
+  const ProxyOutput& out = rig.Tick({Box(5, Pose{Vec3(u, 0, 0), Quat::Identity()})}, Pressed());
+  EXPECT_EQ(out.diagnostics.sticking_rows, 4);
+  EXPECT_NEAR(out.w_W.f.x(), kKt * u, kForceTol);
+  EXPECT_NEAR(out.reactions[0].w_W.f.x(), -kKt * u, kForceTol);
+}
+
+TEST(ProxyRendererTest, ReactionsSumToMinusTheRenderedForceWithDamping) {
+  ProxyRendererSettings settings = Friction(3.33 * Mat3::Identity());
+  settings.d_t = 10.0;
+  Rig rig(settings);
+  // The face straddles two boxes: x < 0 on body 5, x > 0 on body 6.
+  auto specs = [](const Vec3& shift) {
+    PairSpec left = Box(5, Pose{shift, Quat::Identity()});
+    left.points_P = {Vec3(-kHalf, kHalf, -kHalf), Vec3(-kHalf, -kHalf, -kHalf)};
+    PairSpec right = Box(6, Pose{Vec3(0, 0, 0.2e-3), Quat::Identity()});
+    right.key = 10;
+    right.points_P = {Vec3(kHalf, kHalf, -kHalf), Vec3(kHalf, -kHalf, -kHalf)};
+    return std::vector<PairSpec>{left, right};
+  };
+  (void)rig.Tick(specs(Vec3::Zero()), Pressed());
+  const ProxyOutput& out = rig.Tick(specs(Vec3(1e-4, 0, 0)), Pressed(Vec3(0, 2e-4, -1e-4)));
+  ASSERT_EQ(out.reactions.size(), 2u);
+  const Vec3 sum = out.reactions[0].w_W.f + out.reactions[1].w_W.f;
+  EXPECT_LT((sum + out.w_W.f).norm(), 1e-9 * out.w_W.f.norm());
+  EXPECT_GT(out.diagnostics.sticking_rows, 0);
+}
+
+TEST(ProxyRendererTest, ReactionMomentIsAboutTheObjectCentreOfMass) {
+  Rig rig(T31());
+  const Vec3 p_PV(0.05, 0.02, -kHalf);
+  PairSpec box = Box(5, Pose{});
+  box.points_P = {p_PV};
+  const ProxyOutput& one = rig.Tick({box}, Pressed());
+  const Vec3 force = -one.w_W.f;  // d_t = 0: the single row carries the whole spring force
+  const Vec3 applied = Pressed() * p_PV + kDepth * Vec3::UnitZ();  // v + δ n, on the plane
+  const Vec3 moment = (applied - box.p_BCm).cross(force);
+  EXPECT_LT((one.reactions[0].w_W.f - force).norm(), 1e-12 * force.norm());
+  EXPECT_LT((one.reactions[0].w_W.tau - moment).norm(), kForceTol);
+}
+
+TEST(ProxyRendererTest, ImpulsesGoToMovingBodiesOnlySummedPerBody) {
+  Rig rig(T31());
+  // Three points not on a line, so each row's f is unique and every pair carries load.
+  PairSpec a = Box(5, Pose{});
+  a.points_P = {Vec3(-kHalf, -kHalf, -kHalf)};
+  PairSpec b = Box(5, Pose{});
+  b.key = 11;
+  b.points_P = {Vec3(kHalf, -kHalf, -kHalf)};
+  const ProxyOutput& out = rig.Tick({Floor({Vec3(0, kHalf, -kHalf)}), a, b}, Pressed());
+  ir::HapticReport report;
+  AddReactionImpulses(out, kDt, &report);
+  ASSERT_EQ(report.impulses.size(), 1u);
+  EXPECT_EQ(out.reactions[0].w_W.f.norm(), 0.0);  // the static floor takes no reaction
+  const Vec3 force = out.reactions[1].w_W.f + out.reactions[2].w_W.f;
+  EXPECT_EQ(report.impulses[0].body, 5);
+  EXPECT_LT((report.impulses[0].linear - force * kDt).norm(), 1e-15);
+  EXPECT_LT((report.impulses[0].last_force - force).norm(), 1e-12);
+  EXPECT_LT(force.z(), 0.0);
+}
+
+TEST(ProxyRendererTest, DampersActOnTheChangeOfTheProxyOffset) {
+  ProxyRendererSettings settings = T31();
+  settings.d_t = 10.0;
+  settings.d_r = 2.0;
+  Rig rig(settings);
+  const std::vector<PairSpec> floor{Floor({Vec3(0.05, 0, -kHalf)})};
+  const Vec3 dr1 = rig.Tick(floor, Pressed()).dr;
+  const Vec3 dtheta1 = rig.out->dtheta;
+  const ProxyOutput& out = rig.Tick(floor, Pressed(Vec3(0, 0, -5e-4)));
+  EXPECT_LT((out.w_W.f - (kKt * out.dr + 10.0 * (out.dr - dr1) / kDt)).norm(), 1e-9);
+  EXPECT_LT((out.w_W.tau - (kKr * out.dtheta + 2.0 * (out.dtheta - dtheta1) / kDt)).norm(), 1e-9);
+  EXPECT_GT(out.dr.z(), dr1.z());
+}
+
+TEST(ProxyRendererTest, PersistingContactsWarmStartAndConvergeInOneSweep) {
+  Rig rig(Friction(3.33 * Mat3::Identity()));
+  const std::vector<PairSpec> floor{Floor(BottomFace())};
+  (void)rig.Tick(floor, Pressed());
+  (void)rig.Tick(floor, Pressed(Vec3(1e-4, 0, 0)));
+  const ProxyOutput& out = rig.Tick(floor, Pressed(Vec3(1e-4, 0, 0)));
+  EXPECT_EQ(out.diagnostics.rows, 8);
+  EXPECT_EQ(out.diagnostics.warm_rows, 8);
+  EXPECT_EQ(out.diagnostics.iterations, 1);
+}
+
+TEST(ProxyRendererTest, HeldFaceContactConvergesAcrossTicksThroughTheWarmStart) {
+  // With 50 sweeps a tick, the first tick leaves a rotation error (PGS is slow when
+  // R_w ≫ |r|²); the warm start continues the iteration tick after tick until it converges.
+  ProxyRendererSettings settings = T31();
+  settings.max_iterations = 50;
+  settings.tolerance = 1e-10;
+  Rig rig(settings);
+  const std::vector<PairSpec> floor{Floor(BottomFace())};
+  const ProxyOutput& first = rig.Tick(floor, Pressed());
+  EXPECT_FALSE(first.diagnostics.converged);
+  EXPECT_GT(first.w_W.tau.norm(), 1e-3 * kKt * kDepth * kHalf);
+  for (int tick = 0; tick < 100; ++tick) (void)rig.Tick(floor, Pressed());
+  const ProxyOutput& out = rig.Tick(floor, Pressed());
+  EXPECT_TRUE(out.diagnostics.converged);
+  EXPECT_LT(out.w_W.tau.norm(), 1e-4 * kKt * kDepth * kHalf);
+  EXPECT_LT((out.w_W.f - kKt * kDepth * Vec3::UnitZ()).norm(), 1e-4 * kKt * kDepth);
+}
+
+TEST(ProxyRendererTest, RowUpdateBudgetCapsTheSweepsOfLargeContactSets) {
+  ProxyRendererSettings settings = T31();
+  settings.max_row_updates = 10;
+  Rig rig(settings);
+  const ProxyOutput& face = rig.Tick({Floor(BottomFace())}, Pressed());
+  EXPECT_EQ(face.diagnostics.iterations, 2);  // 10 updates / 4 rows
+  EXPECT_FALSE(face.diagnostics.converged);
+  rig.renderer.Reset();
+  const ProxyOutput& single = rig.Tick({Floor({Vec3(0, 0, -kHalf)})}, Pressed());
+  EXPECT_TRUE(single.diagnostics.converged);  // 1 row: exact in one sweep, confirmed by the next
+  EXPECT_EQ(single.diagnostics.iterations, 2);
+}
+
+TEST(ProxyRendererTest, ResetMakesTheNextTickAFirstContact) {
+  Rig rig(Friction());
+  const std::vector<PairSpec> floor{Floor({Vec3(0, 0, -kHalf)})};
+  (void)rig.Tick(floor, Pressed());
+  rig.renderer.Reset();
+  const ProxyOutput& out = rig.Tick(floor, Pressed(Vec3(0.01, 0, 0)));
+  EXPECT_EQ(out.diagnostics.rows, 1);
+  EXPECT_EQ(out.diagnostics.warm_rows, 0);
+}
+
+TEST(ProxyRendererTest, TickDoesNotAllocate) {
+  ProxyRendererSettings settings = Friction(3.33 * Mat3::Identity());
+  settings.max_iterations = 50;
+  Rig rig(settings);
+  std::vector<PairSpec> specs{Floor(BottomFace()), Box(5, Pose{})};
+  mrh::testing::AllocGuard guard;
+  for (int tick = 0; tick < 300; ++tick) {
+    const double s = 1e-4 * tick;
+    specs[1].X_WB.p.x() = -s;
+    (void)rig.Tick(specs, Pressed(Vec3(s, 0, 0), About(Vec3::UnitZ(), s)));
+  }
+  EXPECT_EQ(guard.count(), 0);
+}
+
+TEST(ProxyRendererTest, NonFiniteInputGivesZeroWrenchAndTheBadInputBit) {
+  Rig rig(T31());
+  const std::vector<PairSpec> floor{Floor(BottomFace())};
+  Pose bad = Pressed();
+  bad.p.x() = NAN;
+  EXPECT_EQ(rig.Tick(floor, bad).diagnostics.status, kProxyStatusBadInput);
+  EXPECT_EQ(rig.out->w_W.f.norm(), 0.0);
+  Fill(floor, Pressed(), rig.ir.get());
+  rig.renderer.Tick(*rig.ir, Pressed(), 0.0, rig.out.get());
+  EXPECT_EQ(rig.out->diagnostics.status, kProxyStatusBadInput);
+  rig.ir->points[0].depth = INFINITY;
+  rig.renderer.Tick(*rig.ir, Pressed(), kDt, rig.out.get());
+  EXPECT_EQ(rig.out->diagnostics.status, kProxyStatusBadInput);
+  EXPECT_EQ(rig.out->w_W.f.norm() + rig.out->w_W.tau.norm(), 0.0);
+}
+
+TEST(ProxyRendererTest, IterationCapGivesFiniteOutputAndTheNotConvergedBit) {
+  ProxyRendererSettings settings = T31();
+  settings.max_iterations = 1;
+  settings.tolerance = 0.0;
+  Rig rig(settings);
+  const ProxyOutput& out = rig.Tick({Floor(BottomFace())}, Pressed());
+  EXPECT_EQ(out.diagnostics.iterations, 1);
+  EXPECT_NE(out.diagnostics.status & kProxyStatusNotConverged, 0u);
+  EXPECT_TRUE(IsFinite(out.w_W));
+}
+
+TEST(ProxyRendererTest, RowsBeyondCapacityAreDroppedWithTheRowsFullBit) {
+  ProxyRendererSettings settings = T31();
+  settings.max_rows = 2;
+  Rig rig(settings);
+  const ProxyOutput& out = rig.Tick({Floor(BottomFace())}, Pressed());
+  EXPECT_EQ(out.diagnostics.rows, 2);
+  EXPECT_NE(out.diagnostics.status & kProxyStatusRowsFull, 0u);
+}
+
+TEST(ProxyRendererTest, RotationWeightFromInertiaScalesTheUnitMassInertia) {
+  // SPEC §3.10: a 0.2 m cube has 0.2²/6 m²; ×500 gives T3.1's R_w ≈ 3.33.
+  const Mat3 weight = RotationWeightFromInertia((0.04 / 6.0) * Mat3::Identity(), 500.0);
+  EXPECT_NEAR(weight(0, 0), 3.3333333333, 1e-9);
+  EXPECT_EQ(weight(0, 1), 0.0);
+}
+
+TEST(ProxyRendererTest, RotationWeightFromInertiaRejectsBadInput) {
+  EXPECT_THAT(
+      [] {
+        (void)RotationWeightFromInertia(Mat3::Identity(), 0.0);
+      },
+      ThrowsMessage<InvalidArgument>(HasSubstr("scale = 0")));
+  EXPECT_THAT(
+      [] {
+        (void)RotationWeightFromInertia(-Mat3::Identity(), 1.0);
+      },
+      ThrowsMessage<InvalidArgument>(HasSubstr("symmetric positive definite tensor")));
+}
+
+void ExpectRejected(void (*edit)(ProxyRendererSettings*), const char* message) {
+  ProxyRendererSettings settings;
+  edit(&settings);
+  EXPECT_THAT(
+      [&] {
+        ProxyRenderer renderer(settings);
+      },
+      ThrowsMessage<InvalidArgument>(HasSubstr(message)));
+}
+
+TEST(ProxyRendererTest, SettingsErrorsNameTheFieldAndTheExpectedRange) {
+  ExpectRejected(
+      [](ProxyRendererSettings* s) {
+        s->k_t = -1;
+      },
+      "k_t = -1 N/m; expected");
+  ExpectRejected(
+      [](ProxyRendererSettings* s) {
+        s->d_t = NAN;
+      },
+      "d_t = nan");
+  ExpectRejected(
+      [](ProxyRendererSettings* s) {
+        s->k_r = -2;
+      },
+      "k_r = -2 N·m/rad");
+  ExpectRejected(
+      [](ProxyRendererSettings* s) {
+        s->d_r = -3;
+      },
+      "d_r = -3");
+  ExpectRejected(
+      [](ProxyRendererSettings* s) {
+        s->mu = -0.1;
+      },
+      "mu = -0.1");
+  ExpectRejected(
+      [](ProxyRendererSettings* s) {
+        s->tolerance = -1;
+      },
+      "tolerance = -1 m");
+  ExpectRejected(
+      [](ProxyRendererSettings* s) {
+        s->rotation_weight(0, 1) = 0.5;
+      },
+      "rotation_weight = [1 0.5 0; 0 1 0; 0 0 1] m²; expected a finite symmetric");
+  ExpectRejected(
+      [](ProxyRendererSettings* s) {
+        s->rotation_weight(2, 2) = 0;
+      },
+      "positive definite");
+  ExpectRejected(
+      [](ProxyRendererSettings* s) {
+        s->max_iterations = 0;
+      },
+      "max_iterations = 0; expected 1..100000");
+  ExpectRejected(
+      [](ProxyRendererSettings* s) {
+        s->max_rows = 0;
+      },
+      "max_rows = 0; expected 1..");
+  ExpectRejected(
+      [](ProxyRendererSettings* s) {
+        s->max_rows = kMaxProxyRows + 1;
+      },
+      "max_rows = 4097");
+}
+
+}  // namespace
+}  // namespace mrh::render

@@ -1,0 +1,249 @@
+// SPDX-License-Identifier: Apache-2.0
+// Tests of the proxy LCP solver (SPEC §3.4–3.5, §5.0 U1, U2, U5): analytic cases, LCP conditions
+// and equality of the O(m) sweep with the dense eq. 3.6 iteration.
+#include "mrh/render/proxy_solver.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "mrh/core/error.h"
+
+namespace mrh::render {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::ThrowsMessage;
+
+// Depths are ~1e-3 m and levers ~0.1 m; double rounding of f is ~1e-19 m, so 1e-14 m is far
+// above noise and far below anything physical.
+constexpr double kExact = 1e-14;
+// The bound for the O(m) sweep against the dense reference (m).
+constexpr double kDenseAgreement = 1e-10;
+// LCP residuals after convergence to kConvergence (m).
+constexpr double kConvergence = 1e-14;
+constexpr double kLcpTol = 1e-10;
+
+ProxySolverSettings Converge() {
+  return ProxySolverSettings{100000, kConvergence};
+}
+
+struct Solved {
+  std::vector<double> f;
+  Vec3 dr = Vec3::Zero();
+  Vec3 dtheta = Vec3::Zero();
+  ProxySolveResult result;
+};
+
+Solved SolveFast(const std::vector<ProxyRow>& rows, const Mat3& w_inv,
+                 const ProxySolverSettings& settings, std::vector<double> start = {}) {
+  Solved s;
+  s.f = start.empty() ? std::vector<double>(rows.size(), 0.0) : start;
+  ProxySolver solver(rows.size() + 1);
+  s.result = solver.Solve(rows, w_inv, settings, s.f, &s.dr, &s.dtheta);
+  return s;
+}
+
+// A random problem with a known feasible displacement, so the LCP has a solution: rhs_k is the
+// move row k asks of x* minus a slack that is zero for about half the rows (active).
+struct Problem {
+  std::vector<ProxyRow> rows;
+  Mat3 w_inv;
+};
+
+Problem RandomProblem(std::mt19937* rng, int m) {
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const Vec3 dr_star = 1e-3 * Vec3(normal(*rng), normal(*rng), normal(*rng));
+  const Vec3 dtheta_star = 1e-2 * Vec3(normal(*rng), normal(*rng), normal(*rng));
+  Mat3 a;
+  for (int i = 0; i < 9; ++i) a(i / 3, i % 3) = normal(*rng);
+  const double scale = std::pow(10.0, -2.0 + 2.0 * unit(*rng));  // R_w ~ 1e-2 .. 1 m²
+  const Mat3 weight = scale * (a * a.transpose() + 0.1 * Mat3::Identity());
+  Problem p{{}, weight.inverse()};
+  for (int k = 0; k < m; ++k) {
+    ProxyRow row;
+    row.a = Vec3(normal(*rng), normal(*rng), normal(*rng)).normalized();
+    row.r = 0.1 * Vec3(normal(*rng), normal(*rng), normal(*rng));
+    const double slack = unit(*rng) < 0.5 ? 0.0 : 1e-3 * unit(*rng);
+    row.rhs = row.a.dot(dtheta_star.cross(row.r) + dr_star) - slack;
+    p.rows.push_back(row);
+  }
+  return p;
+}
+
+TEST(ProxySolverTest, SingleContactMatchesTheClosedFormOfU1) {
+  const Vec3 n = Vec3(0.2, 1.0, -0.1).normalized();
+  const ProxyRow row{n, Vec3(0.03, -0.1, 0.02), 2e-3};
+  const Mat3 w_inv = Vec3(1.0 / 2.0, 1.0 / 3.0, 1.0 / 4.0).asDiagonal();
+  const Solved s = SolveFast({row}, w_inv, Converge());
+  const Vec3 j = row.r.cross(n);
+  const double f = row.rhs / (1.0 + j.dot(w_inv * j));
+  EXPECT_NEAR(s.f[0], f, kExact);
+  EXPECT_LT((s.dr - f * n).norm(), kExact);
+  EXPECT_LT((s.dtheta - f * (w_inv * j)).norm(), kExact);
+  EXPECT_NEAR(n.dot(s.dtheta.cross(row.r) + s.dr), row.rhs, kExact);
+}
+
+TEST(ProxySolverTest, SingleContactWithLeverAlongNormalTranslatesOnly) {
+  const Vec3 n = Vec3::UnitY();
+  const double depth = 2e-3;
+  const Solved s = SolveFast({ProxyRow{n, Vec3(0, -0.1, 0), depth}}, Mat3::Identity(), Converge());
+  EXPECT_LT((s.dr - depth * n).norm(), kExact);
+  EXPECT_EQ(s.dtheta.norm(), 0.0);
+}
+
+TEST(ProxySolverTest, SymmetricFaceContactTranslatesByTheDepthWithoutRotation) {
+  const double depth = 1e-3;
+  std::vector<ProxyRow> rows;
+  for (double x : {-0.1, 0.1}) {
+    for (double z : {-0.1, 0.1}) rows.push_back(ProxyRow{Vec3::UnitY(), Vec3(x, -0.1, z), depth});
+  }
+  const Solved s = SolveFast(rows, Mat3::Identity() / 3.33, Converge());
+  EXPECT_TRUE(s.result.converged);
+  EXPECT_LT((s.dr - depth * Vec3::UnitY()).norm(), 1e-12);
+  EXPECT_LT(s.dtheta.norm(), 1e-12);
+}
+
+TEST(ProxySolverTest, SymmetricEdgeContactTranslatesByTheDepthWithoutRotation) {
+  const double depth = 1e-3;
+  const double h = 0.1 * std::sqrt(2.0);
+  const std::vector<ProxyRow> rows{ProxyRow{Vec3::UnitY(), Vec3(0, -h, 0.1), depth},
+                                   ProxyRow{Vec3::UnitY(), Vec3(0, -h, -0.1), depth}};
+  const Solved s = SolveFast(rows, Mat3::Identity() / 3.33, Converge());
+  EXPECT_LT((s.dr - depth * Vec3::UnitY()).norm(), 1e-12);
+  EXPECT_LT(s.dtheta.norm(), 1e-12);
+}
+
+TEST(ProxySolverTest, ConvergedSolutionSatisfiesTheLcpConditionsOnRandomProblems) {
+  // Up to 6 rows, so C is generically positive definite and PGS converges in f, not only in
+  // (Δr, Δθ).
+  std::mt19937 rng(20120901);
+  for (int trial = 0; trial < 200; ++trial) {
+    const Problem p = RandomProblem(&rng, 1 + trial % 6);
+    const Solved s = SolveFast(p.rows, p.w_inv, Converge());
+    ASSERT_TRUE(s.result.converged) << "trial " << trial;
+    const Eigen::MatrixXd c = ProxyMatrix(p.rows, p.w_inv);
+    for (std::size_t k = 0; k < p.rows.size(); ++k) {
+      double w = -p.rows[k].rhs;  // w = C f − rhs (eq. 3.4)
+      for (std::size_t l = 0; l < p.rows.size(); ++l) {
+        w += c(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(l)) * s.f[l];
+      }
+      EXPECT_GE(s.f[k], 0.0) << "trial " << trial << " row " << k;
+      EXPECT_GE(w, -kLcpTol) << "trial " << trial << " row " << k;
+      EXPECT_LE(std::min(s.f[k], std::abs(w)), kLcpTol) << "trial " << trial << " row " << k;
+    }
+  }
+}
+
+TEST(ProxySolverTest, LinearSweepEqualsDenseIterationOnRandomProblems) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int trial = 0; trial < 200; ++trial) {
+    const Problem p = RandomProblem(&rng, 1 + trial % 40);
+    std::vector<double> start(p.rows.size(), 0.0);
+    if (trial % 2 == 1) {
+      for (double& v : start) v = 1e-3 * unit(rng);  // a warm start
+    }
+    const ProxySolverSettings settings{1 + trial % 60, kExact};
+    const Solved fast = SolveFast(p.rows, p.w_inv, settings, start);
+    std::vector<double> dense = start;
+    const ProxySolveResult reference = SolveProxyDense(p.rows, p.w_inv, settings, dense);
+    ASSERT_EQ(fast.result.iterations, reference.iterations) << "trial " << trial;
+    EXPECT_EQ(fast.result.converged, reference.converged) << "trial " << trial;
+    for (std::size_t k = 0; k < dense.size(); ++k) {
+      EXPECT_NEAR(fast.f[k], dense[k], kDenseAgreement) << "trial " << trial << " row " << k;
+    }
+  }
+}
+
+TEST(ProxySolverTest, LinearSweepEqualsDenseIterationOnAFourHundredRowFrictionContact) {
+  // A 200-gon face pressed into a floor and dragged along x and twisted: normal rows along z
+  // and friction rows along the slip of each point (T3.4's shape, m = 400 rows).
+  std::vector<ProxyRow> rows;
+  const int n = 200;  // rows = 2n
+  for (int i = 0; i < n; ++i) {
+    const double angle = 2.0 * 3.141592653589793 * i / n;
+    const Vec3 r(0.05 * std::cos(angle), 0.05 * std::sin(angle), -0.05);
+    const double depth = 1e-3 * (1.0 + 0.2 * std::cos(angle));
+    rows.push_back(ProxyRow{Vec3::UnitZ(), r, depth});
+    const Vec3 slip = Vec3(-1e-4, 0, 0) - 1e-3 * Vec3::UnitZ().cross(r);
+    rows.push_back(ProxyRow{slip.normalized(), r, std::min(slip.norm(), 0.5 * depth)});
+  }
+  const Mat3 w_inv = (Vec3(1.0, 2.0, 3.0).asDiagonal() * 1e-2).toDenseMatrix().inverse();
+  const ProxySolverSettings settings{20, 0.0};
+  const Solved fast = SolveFast(rows, w_inv, settings);
+  std::vector<double> dense(rows.size(), 0.0);
+  const ProxySolveResult reference = SolveProxyDense(rows, w_inv, settings, dense);
+  ASSERT_EQ(fast.result.iterations, reference.iterations);
+  double worst = 0.0;
+  for (std::size_t k = 0; k < dense.size(); ++k) {
+    worst = std::max(worst, std::abs(fast.f[k] - dense[k]));
+  }
+  EXPECT_LE(worst, kDenseAgreement);
+}
+
+TEST(ProxySolverTest, DisplacementIsWeightedSumOfRowsOfTheReturnedMultipliers) {
+  std::mt19937 rng(3);
+  const Problem p = RandomProblem(&rng, 9);
+  const Solved s = SolveFast(p.rows, p.w_inv, ProxySolverSettings{7, 0.0});
+  Vec3 dr = Vec3::Zero();
+  Vec3 dtheta = Vec3::Zero();
+  for (std::size_t k = 0; k < p.rows.size(); ++k) {  // eq. 3.2–3.3
+    dr += s.f[k] * p.rows[k].a;
+    dtheta += s.f[k] * (p.w_inv * p.rows[k].r.cross(p.rows[k].a));
+  }
+  EXPECT_LT((s.dr - dr).norm(), kExact);
+  EXPECT_LT((s.dtheta - dtheta).norm(), kExact);
+}
+
+TEST(ProxySolverTest, WarmStartFromTheSolutionConvergesInOneSweep) {
+  std::mt19937 rng(11);
+  const Problem p = RandomProblem(&rng, 10);
+  const Solved cold = SolveFast(p.rows, p.w_inv, ProxySolverSettings{100000, 1e-13});
+  ASSERT_TRUE(cold.result.converged);
+  ASSERT_GT(cold.result.iterations, 1);
+  const Solved warm = SolveFast(p.rows, p.w_inv, ProxySolverSettings{100000, 1e-12}, cold.f);
+  EXPECT_EQ(warm.result.iterations, 1);
+  EXPECT_TRUE(warm.result.converged);
+}
+
+TEST(ProxySolverTest, IterationCapReportsNotConvergedWithFiniteOutput) {
+  std::mt19937 rng(5);
+  const Problem p = RandomProblem(&rng, 12);
+  const Solved s = SolveFast(p.rows, p.w_inv, ProxySolverSettings{1, 0.0});
+  EXPECT_EQ(s.result.iterations, 1);
+  EXPECT_FALSE(s.result.converged);
+  EXPECT_GT(s.result.max_change, 0.0);
+  EXPECT_TRUE(IsFinite(s.dr) && IsFinite(s.dtheta));
+}
+
+TEST(ProxySolverTest, NoRowsGiveZeroDisplacementAndConverged) {
+  const Solved s = SolveFast({}, Mat3::Identity(), ProxySolverSettings{});
+  EXPECT_EQ(s.result.iterations, 0);
+  EXPECT_TRUE(s.result.converged);
+  EXPECT_EQ(s.dr.norm() + s.dtheta.norm(), 0.0);
+}
+
+TEST(ProxySolverTest, NegativeOrNonFiniteStartValuesStartFromZero) {
+  const std::vector<ProxyRow> rows{ProxyRow{Vec3::UnitZ(), Vec3::Zero(), 1e-3}};
+  const Solved s = SolveFast(rows, Mat3::Identity(), ProxySolverSettings{1, 0.0}, {-5.0});
+  EXPECT_NEAR(s.f[0], 1e-3, kExact);
+  const Solved t = SolveFast(rows, Mat3::Identity(), ProxySolverSettings{1, 0.0}, {NAN});
+  EXPECT_NEAR(t.f[0], 1e-3, kExact);
+}
+
+TEST(ProxySolverTest, ZeroCapacityIsRejected) {
+  EXPECT_THAT(
+      [] {
+        ProxySolver solver(0);
+      },
+      ThrowsMessage<InvalidArgument>(HasSubstr("capacity = 0 rows")));
+}
+
+}  // namespace
+}  // namespace mrh::render
