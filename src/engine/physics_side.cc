@@ -2,6 +2,8 @@
 // The physics side of a run: one global step per call, exchange bookkeeping and statistics.
 #include <algorithm>
 #include <chrono>
+#include <string>
+#include <utility>
 
 #include "engine_impl.h"
 #include "rt_clock.h"
@@ -103,6 +105,9 @@ void PhysicsSide::Finish(RunStats* stats) {
   stats->step_ms_p99 = Percentile(step_ms_, 99.0);
   stats->step_ms_max = step_ms_.empty() ? 0.0 : *std::max_element(step_ms_.begin(), step_ms_.end());
   stats->ir_status = ir_status_;
+  for (std::string& line : state_->world.SimulatorWarnings()) {
+    stats->warnings.push_back(std::move(line));
+  }
   for (auto& [body, total] : impulses_) {
     total.name = state_->world.body(body).name;
     stats->impulses.push_back(total);

@@ -5,6 +5,7 @@
 #include <array>
 #include <cstring>
 #include <filesystem>
+#include <mutex>
 #include <sstream>
 #include <string>
 #include <system_error>
@@ -31,7 +32,16 @@ std::string OneLine(const char* message) {
   return out.empty() ? std::string("MuJoCo could not load the scene (no message)") : out;
 }
 
+// MuJoCo's default warning handler prints to stdout and appends to MUJOCO_LOG.TXT in the working
+// directory. Every warning it raises while stepping is also counted in mjData::warning, which
+// World::SimulatorWarnings() reports, so the handler only has to stay quiet.
+void SilenceMujocoWarnings() {
+  static std::once_flag once;
+  std::call_once(once, [] { mju_user_warning = [](const char*) {}; });
+}
+
 internal::ModelPtr LoadOrThrow(const char* file, const mjVFS* vfs, const std::string& origin) {
+  SilenceMujocoWarnings();
   std::array<char, 1024> error{};
   internal::ModelPtr model(mj_loadXML(file, vfs, error.data(), static_cast<int>(error.size())));
   if (!model) throw SceneError(origin + ": " + OneLine(error.data()));

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "mrh/core/assert.h"
 #include "mrh/core/error.h"
@@ -175,6 +176,36 @@ int World::num_contacts() const {
 
 int World::solver_iterations() const {
   return impl_->data->solver_iter;
+}
+
+std::vector<std::string> World::SimulatorWarnings() const {
+  struct Kind {
+    int index;
+    const char* what;
+    const char* fix;
+  };
+  static constexpr std::array<Kind, 8> kKinds{{
+      {mjWARN_INERTIA, "(near) singular inertia matrix", "give every body positive mass/inertia"},
+      {mjWARN_CONTACTFULL, "contact buffer full, contacts dropped",
+       "raise <size nconmax=...> in the scene"},
+      {mjWARN_CNSTRFULL, "constraint buffer full, constraints dropped",
+       "raise <size njmax=...> (and nstack) in the scene"},
+      {mjWARN_VGEOMFULL, "visual geom buffer full", "raise the viewer's maxgeom"},
+      {mjWARN_BADQPOS, "bad number in qpos, state reset", "lower the timestep or the gains"},
+      {mjWARN_BADQVEL, "bad number in qvel, state reset", "lower the timestep or the gains"},
+      {mjWARN_BADQACC, "bad number in qacc, state reset", "lower the timestep or the gains"},
+      {mjWARN_BADCTRL, "bad number in ctrl, ignored", "check the scene's actuators"},
+  }};
+  std::vector<std::string> lines;
+  const mjData* d = impl_->data.get();
+  for (const Kind& kind : kKinds) {
+    const int count = d->warning[kind.index].number;
+    if (count <= 0) continue;
+    lines.push_back(impl_->origin + ": MuJoCo warned " + std::to_string(count) + " time(s): " +
+                    kind.what + " (last info " +
+                    std::to_string(d->warning[kind.index].lastinfo) + "); " + kind.fix);
+  }
+  return lines;
 }
 
 std::span<const double> World::qpos() const {

@@ -7,6 +7,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
 
 #include "mrh/core/error.h"
 #include "world_test_util.h"
@@ -287,6 +290,42 @@ TEST(WorldSettingsTest, GravityIsReadAndWritten) {
   world.set_gravity(Vec3(0, 0, -2.0));
   world.Step();
   EXPECT_NEAR(world.body_state(world.FindBody("box")).V_WCm.v.z(), -2.0 * world.timestep(), 1e-12);
+}
+
+}  // namespace
+}  // namespace mrh::world
+
+namespace mrh::world {
+namespace {
+
+// Three boxes resting on a floor need 12 contacts; a buffer of 2 overflows on the first step.
+constexpr char kFullContactBufferScene[] = R"(
+<mujoco>
+  <size nconmax="2"/>
+  <worldbody>
+    <geom type="plane" size="5 5 0.1"/>
+    <body pos="0 0 0.1"><freejoint/><geom type="box" size="0.1 0.1 0.1"/></body>
+    <body pos="0.5 0 0.1"><freejoint/><geom type="box" size="0.1 0.1 0.1"/></body>
+    <body pos="1 0 0.1"><freejoint/><geom type="box" size="0.1 0.1 0.1"/></body>
+  </worldbody>
+</mujoco>)";
+
+TEST(WorldWarningsTest, NoneForAHealthyScene) {
+  World world = World::LoadString(kBoxScene, testing::kNoPointer);
+  for (int i = 0; i < 10; ++i) world.Step();
+  EXPECT_TRUE(world.SimulatorWarnings().empty());
+}
+
+TEST(WorldWarningsTest, FullContactBufferIsReportedWithItsFixAndNotLoggedToAFile) {
+  std::filesystem::remove("MUJOCO_LOG.TXT");
+  World world = World::LoadString(kFullContactBufferScene, testing::kNoPointer, "full.xml");
+  for (int i = 0; i < 3; ++i) world.Step();
+  const std::vector<std::string> warnings = world.SimulatorWarnings();
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_THAT(warnings[0], HasSubstr("full.xml"));
+  EXPECT_THAT(warnings[0], HasSubstr("contact buffer full"));
+  EXPECT_THAT(warnings[0], HasSubstr("nconmax"));
+  EXPECT_FALSE(std::filesystem::exists("MUJOCO_LOG.TXT"));
 }
 
 }  // namespace

@@ -123,6 +123,11 @@ class World {
   /// Contacts in the last step (MuJoCo ncon) and constraint solver iterations used.
   int num_contacts() const;
   int solver_iterations() const;
+  /// MuJoCo's warnings since loading (contact or constraint buffer full, bad qpos/qvel/qacc,
+  /// singular inertia), one line each with its count and what to change in the scene. Empty when
+  /// there were none. MuJoCo itself prints nothing and writes no MUJOCO_LOG.TXT: these lines are
+  /// the only report (the engine copies them into RunStats::warnings).
+  std::vector<std::string> SimulatorWarnings() const;
 
   Snapshot MakeSnapshot() const;
   void Save(Snapshot* snapshot) const;
