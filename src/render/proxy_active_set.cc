@@ -1,0 +1,294 @@
+// SPDX-License-Identifier: Apache-2.0
+// Goldfarb–Idnani dual active-set method on the 6-D proxy program (see proxy_active_set.h).
+#include "mrh/render/proxy_active_set.h"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "mrh/core/assert.h"
+#include "mrh/core/error.h"
+
+namespace mrh::render {
+namespace {
+
+// A new row's normal counts as dependent on the active ones when the part of it orthogonal to
+// them is below this fraction of its length (squared): 1e-10 keeps R's condition number below
+// ~1e5 times that of the rows themselves.
+constexpr double kRankTolerance = 1e-10;
+// Dual direction entries below this are zero (rounding of the back-substitution).
+constexpr double kDualTolerance = 1e-14;
+
+using Vec6 = std::array<double, 6>;
+
+double Dot(const Vec6& a, const Vec6& b) noexcept {
+  return ((a[0] * b[0] + a[1] * b[1]) + (a[2] * b[2] + a[3] * b[3])) + (a[4] * b[4] + a[5] * b[5]);
+}
+
+// v -= s·q
+void SubtractScaled(Vec6* v, double s, const Vec6& q) noexcept {
+  for (int i = 0; i < 6; ++i) (*v)[static_cast<std::size_t>(i)] -= s * q[static_cast<std::size_t>(i)];
+}
+
+}  // namespace
+
+ProxyActiveSetSolver::ProxyActiveSetSolver(std::size_t capacity) {
+  if (capacity == 0) {
+    throw InvalidArgument(
+        "ProxyActiveSetSolver: capacity = 0 rows; expected >= 1; pass the most constraint rows "
+        "one tick can have (2 per contact point with friction)");
+  }
+  normals_.resize(capacity);
+  rhs_.resize(capacity);
+  is_active_.resize(capacity);
+}
+
+ProxySolveResult ProxyActiveSetSolver::Solve(std::span<const ProxyRow> rows,
+                                             const Mat3& rotation_weight_inverse,
+                                             const ProxySolverSettings& settings,
+                                             std::span<double> f, Vec3* dr,
+                                             Vec3* dtheta) noexcept {
+  MRH_ASSERT(rows.size() == f.size() && rows.size() <= normals_.size());
+  MRH_ASSERT(settings.max_iterations >= 1);
+  m_ = std::min(rows.size(), normals_.size());
+  // R_w⁻¹ = K Kᵀ; Δθ = K y_θ.
+  const Eigen::LLT<Mat3> llt(rotation_weight_inverse);
+  const Mat3 k_lower = llt.matrixL();
+  Precompute(rows.first(m_), k_lower);
+  SetActiveFromStart(f.first(m_));
+
+  ProxySolveResult result;
+  int steps = 0;
+  double violation = 0.0;
+  for (;;) {
+    const int p = MostViolated(settings.tolerance, &violation);
+    if (p < 0) {
+      result.converged = true;
+      break;
+    }
+    if (steps >= settings.max_iterations || !AddRow(p, &steps, settings.max_iterations)) break;
+  }
+  // The multipliers were updated step by step; with large ones (R_w ≫ |r|² makes rotation
+  // cheap in f) that drifts from y by rounding. At the solution the active rows hold with
+  // equality, so solving for them afresh gives consistent λ and y, then the final violation.
+  if (result.converged && count_ > 0) {
+    SolveEqualityActive();
+    (void)MostViolated(settings.tolerance, &violation);
+  }
+  result.iterations = steps;
+  result.max_change = std::max(0.0, -violation);
+
+  for (std::size_t k = 0; k < m_; ++k) f[k] = 0.0;
+  for (int i = 0; i < count_; ++i) {
+    f[static_cast<std::size_t>(active_[static_cast<std::size_t>(i)])] =
+        std::max(0.0, lambda_[static_cast<std::size_t>(i)]);
+  }
+  *dr = Vec3(y_[0], y_[1], y_[2]);
+  *dtheta = k_lower * Vec3(y_[3], y_[4], y_[5]);
+  return result;
+}
+
+void ProxyActiveSetSolver::Precompute(std::span<const ProxyRow> rows,
+                                      const Mat3& k_lower) noexcept {
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    const Vec3& a = rows[k].a;
+    const Vec3 j = k_lower.transpose() * rows[k].r.cross(a);
+    normals_[k] = {a.x(), a.y(), a.z(), j.x(), j.y(), j.z()};
+    rhs_[k] = rows[k].rhs;
+    is_active_[k] = false;
+  }
+}
+
+// Warm start: the rows with f > 0 (independent ones, at most 6) as equalities, then drop those
+// whose multiplier is negative until the start is dual feasible (λ >= 0), which is what the dual
+// method needs; y is then the minimum of the program restricted to the active rows.
+void ProxyActiveSetSolver::SetActiveFromStart(std::span<double> f) noexcept {
+  count_ = 0;
+  y_ = {};
+  for (std::size_t k = 0; k < f.size() && count_ < kDim; ++k) {
+    if (!(std::isfinite(f[k]) && f[k] > 0.0)) continue;
+    active_[static_cast<std::size_t>(count_)] = static_cast<int>(k);
+    ++count_;
+    if (!Factorize()) {
+      --count_;  // dependent on the rows already taken
+      continue;
+    }
+    is_active_[k] = true;
+  }
+  if (count_ == 0) return;
+  Factorize();
+  for (;;) {
+    SolveEqualityActive();
+    int worst = -1;
+    double most_negative = 0.0;
+    for (int i = 0; i < count_; ++i) {
+      if (lambda_[static_cast<std::size_t>(i)] < most_negative) {
+        most_negative = lambda_[static_cast<std::size_t>(i)];
+        worst = i;
+      }
+    }
+    if (worst < 0) return;
+    DropActive(worst);
+    if (count_ == 0) {
+      y_ = {};
+      return;
+    }
+  }
+}
+
+// Gram–Schmidt (twice, for orthogonality to rounding) of the active normals into Q and R.
+// Returns false if the last column is dependent on the others.
+bool ProxyActiveSetSolver::Factorize() noexcept {
+  for (int c = 0; c < count_; ++c) {
+    const auto cu = static_cast<std::size_t>(c);
+    Vec6 v = normals_[static_cast<std::size_t>(active_[cu])];
+    const double length2 = Dot(v, v);
+    for (int i = 0; i < kDim; ++i) r_[static_cast<std::size_t>(i)][cu] = 0.0;
+    for (int pass = 0; pass < 2; ++pass) {
+      for (int i = 0; i < c; ++i) {
+        const auto iu = static_cast<std::size_t>(i);
+        const double d = Dot(q_[iu], v);
+        r_[iu][cu] += d;
+        SubtractScaled(&v, d, q_[iu]);
+      }
+    }
+    const double rest2 = Dot(v, v);
+    if (!(rest2 > kRankTolerance * length2)) return false;
+    const double rest = std::sqrt(rest2);
+    r_[cu][cu] = rest;
+    for (std::size_t i = 0; i < 6; ++i) q_[cu][i] = v[i] / rest;
+  }
+  return true;
+}
+
+// λ and y of min ½|y|² s.t. n_kᵀ y = rhs_k for the active rows: with N = Q R,
+// Rᵀ w = rhs, R λ = w, y = Q w.
+void ProxyActiveSetSolver::SolveEqualityActive() noexcept {
+  std::array<double, kDim> w{};
+  for (int i = 0; i < count_; ++i) {
+    const auto iu = static_cast<std::size_t>(i);
+    double s = rhs_[static_cast<std::size_t>(active_[iu])];
+    for (int k = 0; k < i; ++k) s -= r_[static_cast<std::size_t>(k)][iu] * w[static_cast<std::size_t>(k)];
+    w[iu] = s / r_[iu][iu];
+  }
+  for (int i = count_ - 1; i >= 0; --i) {
+    const auto iu = static_cast<std::size_t>(i);
+    double s = w[iu];
+    for (int k = i + 1; k < count_; ++k) {
+      s -= r_[iu][static_cast<std::size_t>(k)] * lambda_[static_cast<std::size_t>(k)];
+    }
+    lambda_[iu] = s / r_[iu][iu];
+  }
+  y_ = {};
+  for (int i = 0; i < count_; ++i) {
+    const auto iu = static_cast<std::size_t>(i);
+    for (std::size_t d = 0; d < 6; ++d) y_[d] += w[iu] * q_[iu][d];
+  }
+}
+
+// The inactive row with the most negative n_k·y − rhs_k below −tolerance, or −1.
+int ProxyActiveSetSolver::MostViolated(double tolerance, double* violation) const noexcept {
+  int best = -1;
+  double lowest = -tolerance;
+  *violation = 0.0;
+  for (std::size_t k = 0; k < m_; ++k) {
+    const double s = Dot(normals_[k], y_) - rhs_[k];
+    if (is_active_[k]) continue;
+    *violation = std::min(*violation, s);
+    if (s < lowest) {
+      lowest = s;
+      best = static_cast<int>(k);
+    }
+  }
+  return best;
+}
+
+// One Goldfarb–Idnani major iteration for row p: steps until p is active (true), or the step
+// budget runs out / the rows are infeasible (false). Each step is a full step (p becomes
+// active) or a partial one (an active row's multiplier reaches 0 and the row is dropped).
+bool ProxyActiveSetSolver::AddRow(int p, int* steps, int max_steps) noexcept {
+  const Vec6& n_p = normals_[static_cast<std::size_t>(p)];
+  const double length2 = Dot(n_p, n_p);
+  double lambda_p = 0.0;
+  while (*steps < max_steps) {
+    ++*steps;
+    // z: the part of n_p orthogonal to the active normals; r = R⁻¹ Qᵀ n_p, the change of the
+    // active multipliers per unit of λ_p.
+    std::array<double, kDim> d{};
+    Vec6 z = n_p;
+    for (int pass = 0; pass < 2; ++pass) {
+      for (int i = 0; i < count_; ++i) {
+        const auto iu = static_cast<std::size_t>(i);
+        const double c = Dot(q_[iu], z);
+        d[iu] += c;
+        SubtractScaled(&z, c, q_[iu]);
+      }
+    }
+    std::array<double, kDim> r{};
+    for (int i = count_ - 1; i >= 0; --i) {
+      const auto iu = static_cast<std::size_t>(i);
+      double s = d[iu];
+      for (int k = i + 1; k < count_; ++k) s -= r_[iu][static_cast<std::size_t>(k)] * r[static_cast<std::size_t>(k)];
+      r[iu] = s / r_[iu][iu];
+    }
+    // Partial step: the first active multiplier to reach zero.
+    double t_partial = std::numeric_limits<double>::infinity();
+    int drop = -1;
+    for (int i = 0; i < count_; ++i) {
+      const auto iu = static_cast<std::size_t>(i);
+      if (r[iu] > kDualTolerance) {
+        const double ratio = std::max(0.0, lambda_[iu]) / r[iu];
+        if (ratio < t_partial) {
+          t_partial = ratio;
+          drop = i;
+        }
+      }
+    }
+    // Full step: to where row p holds with equality.
+    const double zz = Dot(z, z);
+    const bool independent = zz > kRankTolerance * length2;
+    const double slack = Dot(n_p, y_) - rhs_[static_cast<std::size_t>(p)];
+    const double t_full =
+        independent ? std::max(0.0, -slack) / zz : std::numeric_limits<double>::infinity();
+    if (!independent && drop < 0) return false;  // infeasible: p contradicts the active rows
+    const bool full = t_full <= t_partial;
+    const double t = full ? t_full : t_partial;
+    if (independent) {
+      for (std::size_t i = 0; i < 6; ++i) y_[i] += t * z[i];
+    }
+    for (int i = 0; i < count_; ++i) {
+      lambda_[static_cast<std::size_t>(i)] -= t * r[static_cast<std::size_t>(i)];
+    }
+    lambda_p += t;
+    if (full) {
+      const auto slot = static_cast<std::size_t>(count_);
+      active_[slot] = p;
+      lambda_[slot] = lambda_p;
+      ++count_;
+      is_active_[static_cast<std::size_t>(p)] = true;
+      for (int i = 0; i < count_ - 1; ++i) r_[static_cast<std::size_t>(i)][slot] = d[static_cast<std::size_t>(i)];
+      const double rest = std::sqrt(zz);
+      r_[slot][slot] = rest;
+      for (std::size_t i = 0; i < 6; ++i) q_[slot][i] = z[i] / rest;
+      return true;
+    }
+    DropActive(drop);
+  }
+  return false;
+}
+
+void ProxyActiveSetSolver::DropActive(int slot) noexcept {
+  is_active_[static_cast<std::size_t>(active_[static_cast<std::size_t>(slot)])] = false;
+  for (int i = slot; i + 1 < count_; ++i) {
+    active_[static_cast<std::size_t>(i)] = active_[static_cast<std::size_t>(i + 1)];
+    lambda_[static_cast<std::size_t>(i)] = lambda_[static_cast<std::size_t>(i + 1)];
+  }
+  --count_;
+  // The remaining normals were independent, so they stay so.
+  const bool ok = Factorize();
+  MRH_ASSERT(ok);
+  (void)ok;
+}
+
+}  // namespace mrh::render
