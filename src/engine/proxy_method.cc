@@ -47,6 +47,8 @@ render::ProxyRendererSettings ProxySettingsFor(const world::World& world, int po
   s.d_r = rendering.rot_damping;
   s.rotation_weight = PointerRotationWeight(world, pointer_body, rendering);
   s.mu = rendering.friction;
+  s.solver = rendering.proxy_solver == "pgs" ? render::ProxySolverKind::kPgs
+                                             : render::ProxySolverKind::kActiveSet;
   s.max_iterations = rendering.max_iterations;
   s.tolerance = rendering.solver_tolerance;
   return s;

@@ -51,6 +51,12 @@ void ValidateProxy(const RenderingSettings& r) {
     }
   }
   RequireNonNegative(r.friction, "rendering.friction", "");
+  if (r.proxy_solver != "active-set" && r.proxy_solver != "pgs") {
+    throw InvalidArgument(fmt::format(
+        "rendering.proxy_solver = \"{}\"; expected \"active-set\" (exact, default) or \"pgs\" "
+        "(the thesis' projected Gauss-Seidel)",
+        r.proxy_solver));
+  }
   RequireAtLeast(r.max_iterations, 1, "rendering.max_iterations");
   RequirePositive(r.solver_tolerance, "rendering.solver_tolerance", "m");
 }

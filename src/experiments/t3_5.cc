@@ -34,6 +34,8 @@ struct SweepPoint {
   double peak_torque = 0.0;           // N·m, max |τ| while rolling
   double peak_torque_analytic = 0.0;  // single edge at the flat limit, k_r δ h/(R_w + h²)
   double edge_torque_error = 0.0;  // N·m, max |τ − τ_analytic| over converged one-edge ticks
+  double edge_peak_torque = 0.0;   // N·m, max |τ| over those ticks
+  double edge_peak_analytic = 0.0;  // N·m, the analytic τ of that tick (its own δ and lever)
   int edge_ticks = 0;
   double mean_torque = 0.0;  // N·m, mean |τ| while rolling
   double max_torque = 0.0;   // N·m, max |τ| over the run
@@ -110,6 +112,10 @@ SweepPoint Measure(double multiplier, const ProxyRun& run, const engine::Renderi
         EdgeTorque(tick, r.rot_stiffness, p.R_w, &tau_an)) {
       ++p.edge_ticks;
       p.edge_torque_error = std::max(p.edge_torque_error, std::abs(tick.w_W.tau.x() - tau_an));
+      if (tau > p.edge_peak_torque) {
+        p.edge_peak_torque = tau;
+        p.edge_peak_analytic = std::abs(tau_an);
+      }
     }
     if (In(tick.t, kRoll)) {
       ++rolling;
@@ -222,6 +228,8 @@ int RunT35(const std::filesystem::path& out, bool quiet, const T35Options& optio
                                  {"R_w_m2", p.R_w},
                                  {"free_vertex_penetration_m", p.free_penetration},
                                  {"roll_peak_torque_Nm", p.peak_torque},
+                                 {"one_edge_peak_torque_Nm", p.edge_peak_torque},
+                                 {"one_edge_peak_torque_analytic_Nm", p.edge_peak_analytic},
                                  {"one_edge_ticks_compared", p.edge_ticks},
                                  {"one_edge_max_torque_error_Nm", p.edge_torque_error},
                                  {"roll_mean_torque_Nm", p.mean_torque},

@@ -119,7 +119,9 @@ Mat3 RotationWeightFromInertia(const Mat3& unit_mass_inertia, double scale) {
 }
 
 ProxyRenderer::ProxyRenderer(const ProxyRendererSettings& settings)
-    : settings_(Validated(settings)), solver_(settings.max_rows) {
+    : settings_(Validated(settings)),
+      pgs_(settings.solver == ProxySolverKind::kPgs ? settings.max_rows : 1),
+      active_set_(settings.solver == ProxySolverKind::kActiveSet ? settings.max_rows : 1) {
   // Symmetrize both ways so the row weights g_k see an exactly symmetric R_w⁻¹.
   const Mat3 weight = 0.5 * (settings_.rotation_weight + settings_.rotation_weight.transpose());
   const Mat3 inverse = weight.inverse();
@@ -157,10 +159,13 @@ void ProxyRenderer::Tick(const TickIr& ir, const Pose& X_WP, double dt, ProxyOut
   CarryPreviousProxy(ir, X_WP);
   BuildRows(ir, X_WP, &diag);
   WarmStart(&diag);
+  const std::span<const ProxyRow> rows(rows_.data(), row_count_);
+  const std::span<double> f(f_.data(), row_count_);
+  const ProxySolverSettings budget{SweepBudget(), settings_.tolerance};
   const ProxySolveResult solved =
-      solver_.Solve(std::span<const ProxyRow>(rows_.data(), row_count_), rotation_weight_inverse_,
-                    ProxySolverSettings{SweepBudget(), settings_.tolerance},
-                    std::span<double>(f_.data(), row_count_), &out->dr, &out->dtheta);
+      settings_.solver == ProxySolverKind::kPgs
+          ? pgs_.Solve(rows, rotation_weight_inverse_, budget, f, &out->dr, &out->dtheta)
+          : active_set_.Solve(rows, rotation_weight_inverse_, budget, f, &out->dr, &out->dtheta);
   diag.rows = static_cast<int>(row_count_);
   diag.iterations = solved.iterations;
   diag.converged = solved.converged;
@@ -178,12 +183,15 @@ void ProxyRenderer::Tick(const TickIr& ir, const Pose& X_WP, double dt, ProxyOut
   out->rows = std::span<const ProxyRow>(rows_.data(), row_count_);
   out->row_info = std::span<const ProxyRowInfo>(info_.data(), row_count_);
   out->f = std::span<const double>(f_.data(), row_count_);
-  ComputeReactions(ir, dt, out);
+  ComputeReactions(ir, X_WP, dt, out);
   Remember(ir, *out);
 }
 
 int ProxyRenderer::SweepBudget() const noexcept {
-  if (settings_.max_row_updates == 0 || row_count_ == 0) return settings_.max_iterations;
+  if (settings_.solver != ProxySolverKind::kPgs || settings_.max_row_updates == 0 ||
+      row_count_ == 0) {
+    return settings_.max_iterations;
+  }
   const std::size_t sweeps = std::max<std::size_t>(1, settings_.max_row_updates / row_count_);
   return static_cast<int>(std::min(sweeps, static_cast<std::size_t>(settings_.max_iterations)));
 }
@@ -218,6 +226,7 @@ void ProxyRenderer::CarryPreviousProxy(const TickIr& ir, const Pose& X_WP) noexc
       if (memory_[o].key == pair.key) memory = &memory_[o];
     }
     previous_dr_pair_[i] = memory != nullptr ? memory->dr_pair : Vec3::Zero();
+    previous_dtheta_pair_[i] = memory != nullptr ? memory->dtheta_pair : Vec3::Zero();
     first_tick_[i] = !(has_previous_ && memory != nullptr && memory->in_contact);
     const Pose carried =
         first_tick_[i] ? X_WP : pair.X_WB * (memory->X_WB.Inverse() * previous_X_WQ_);
@@ -297,36 +306,37 @@ void ProxyRenderer::WarmStart(ProxyDiagnostics* diag) noexcept {
   }
 }
 
-// SPEC §3.6 / I5: row k pushes the pointer with k_t f_k a_k at its contact point projected on
-// the plane; each pair adds its share of the damper. The object receives the opposite.
-void ProxyRenderer::ComputeReactions(const TickIr& ir, double dt, ProxyOutput* out) noexcept {
-  std::array<Wrench, ir::kMaxGeometricPairs> push{};
-  std::array<Vec3, ir::kMaxGeometricPairs> weighted_point{};
-  std::array<double, ir::kMaxGeometricPairs> weight{};
-  for (std::size_t i = 0; i < ir.pairs.size(); ++i) dr_pair_[i].setZero();
+// SPEC §3.6 / I5, made consistent with what the user feels: pair i's rows contribute
+// Δr_i = Σ f_k a_k and Δθ_i = Σ f_k R_w⁻¹(r_k × a_k) to the proxy offset (Σ_i Δr_i = Δr,
+// Σ_i Δθ_i = Δθ), so it pushes the pointer with the spring–damper share
+// F_i = k_t Δr_i + d_t (Δr_i − Δr_i,prev)/dt and τ_i = k_r Δθ_i + d_r (Δθ_i − Δθ_i,prev)/dt
+// about the pointer origin. The object receives −(F_i, τ_i), moved to its COM. Summed over
+// the pairs this is exactly minus the rendered wrench (action = reaction). SPEC's per-row
+// moment Σ (p_k − c) × k_t f_k a_k would instead give the objects k_t R_w Δθ, which for the
+// thesis weights (R_w = 3.33–8420 m², k_t ≈ k_r) is 3–8000× the torque the user feels.
+void ProxyRenderer::ComputeReactions(const TickIr& ir, const Pose& X_WP, double dt,
+                                     ProxyOutput* out) noexcept {
+  for (std::size_t i = 0; i < ir.pairs.size(); ++i) {
+    dr_pair_[i].setZero();
+    dtheta_pair_[i].setZero();
+  }
   for (std::size_t k = 0; k < row_count_; ++k) {
     const auto i = static_cast<std::size_t>(info_[k].pair);
-    const TickPair& pair = ir.pairs[i];
-    if (pair.is_static) continue;  // takes no reaction (and static floors carry most rows)
-    const TickPoint& point = ir.points[static_cast<std::size_t>(info_[k].point)];
-    const Vec3 p_W = point.v_W + point.depth * pair.n_W;
-    const Vec3 force = settings_.k_t * f_[k] * rows_[k].a;
-    push[i].f += force;
-    push[i].tau += (p_W - pair.p_WCm).cross(force);
     dr_pair_[i] += f_[k] * rows_[k].a;
-    weighted_point[i] += f_[k] * p_W;
-    weight[i] += f_[k];
+    dtheta_pair_[i] += f_[k] * (rotation_weight_inverse_ * rows_[k].r.cross(rows_[k].a));
   }
   for (std::size_t i = 0; i < ir.pairs.size(); ++i) {
     const TickPair& pair = ir.pairs[i];
-    Wrench w = push[i];
-    if (weight[i] > 0.0) {
-      const Vec3 damping = settings_.d_t * (dr_pair_[i] - previous_dr_pair_[i]) / dt;
-      w.f += damping;
-      w.tau += (weighted_point[i] / weight[i] - pair.p_WCm).cross(damping);
+    Wrench w_W;  // on the object, torque about its COM
+    if (!pair.is_static && pair_rows_[i] > 0) {
+      const Vec3 force = settings_.k_t * dr_pair_[i] +
+                         settings_.d_t * (dr_pair_[i] - previous_dr_pair_[i]) / dt;
+      const Vec3 torque = settings_.k_r * dtheta_pair_[i] +
+                          settings_.d_r * (dtheta_pair_[i] - previous_dtheta_pair_[i]) / dt;
+      w_W.f = -force;
+      w_W.tau = -(torque + (X_WP.p - pair.p_WCm).cross(force));
     }
-    (void)out->reactions.PushBack(
-        ProxyPairReaction{pair.key, pair.body, pair.is_static, Wrench{-w.f, -w.tau}});
+    (void)out->reactions.PushBack(ProxyPairReaction{pair.key, pair.body, pair.is_static, w_W});
   }
 }
 
@@ -334,7 +344,7 @@ void ProxyRenderer::Remember(const TickIr& ir, const ProxyOutput& out) noexcept 
   memory_count_ = ir.pairs.size();
   for (std::size_t i = 0; i < memory_count_; ++i) {
     const TickPair& pair = ir.pairs[i];
-    memory_[i] = PairMemory{pair.key, pair.X_WB, pair_rows_[i] > 0, dr_pair_[i]};
+    memory_[i] = PairMemory{pair.key, pair.X_WB, pair_rows_[i] > 0, dr_pair_[i], dtheta_pair_[i]};
   }
   has_previous_ = true;
   previous_X_WQ_ = out.X_WQ;

@@ -42,7 +42,7 @@ inline constexpr std::array<Field<engine::PointerSettings>, 2> kPointerFields{{
 }};
 
 /// `rendering` block.
-inline constexpr std::array<Field<engine::RenderingSettings>, 13> kRenderingFields{{
+inline constexpr std::array<Field<engine::RenderingSettings>, 14> kRenderingFields{{
     {"stiffness", &engine::RenderingSettings::stiffness, "N/m", "penalty spring k (eq. 4.11)"},
     {"damping", &engine::RenderingSettings::damping, "N*s/m", "penalty damper d (eq. 4.11)"},
     {"neighbor_distance", &engine::RenderingSettings::neighbor_distance, "m",
@@ -58,10 +58,12 @@ inline constexpr std::array<Field<engine::RenderingSettings>, 13> kRenderingFiel
     {"rotation_weight_scale", &engine::RenderingSettings::rotation_weight_scale, "",
      "multiplier on the pointer's unit-mass inertia for R_w"},
     {"friction", &engine::RenderingSettings::friction, "", "friction coefficient mu"},
+    {"proxy_solver", &engine::RenderingSettings::proxy_solver, "",
+     "\"active-set\" (exact) or \"pgs\" (thesis eq. 3.6)"},
     {"max_iterations", &engine::RenderingSettings::max_iterations, "",
-     "projected Gauss-Seidel sweeps per tick at most"},
+     "proxy solver sweeps (pgs) or steps (active-set) per tick at most"},
     {"solver_tolerance", &engine::RenderingSettings::solver_tolerance, "m",
-     "PGS stops when no multiplier changes more than this"},
+     "proxy solver tolerance: multiplier change (pgs) or row violation (active-set)"},
     {"perturbation", &engine::RenderingSettings::perturbation, "",
      "measure A and b by perturbation simulations (local-dynamics)"},
     {"perturbation_force", &engine::RenderingSettings::perturbation_force, "N",

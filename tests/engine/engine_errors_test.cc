@@ -9,6 +9,7 @@
 namespace mrh::engine::testing {
 namespace {
 
+using ::testing::AllOf;
 using ::testing::HasSubstr;
 using ::testing::ThrowsMessage;
 
@@ -21,6 +22,15 @@ TEST(EngineErrorsTest, PhysicsStepNotMultipleOfHapticTickIsRejected) {
   EngineSettings s = T41Settings("impulse");
   s.physics_dt = 0.0505;
   EXPECT_THAT([&] { T41Engine(s); }, ThrowsMessage<InvalidArgument>(HasSubstr("physics_dt")));
+}
+
+TEST(EngineErrorsTest, UnknownProxySolverIsRejectedNamingTheChoices) {
+  EngineSettings s = T41Settings("impulse");
+  s.rendering.proxy_solver = "newton";
+  EXPECT_THAT([&] { T41Engine(s); },
+              ThrowsMessage<InvalidArgument>(AllOf(HasSubstr("rendering.proxy_solver = \"newton\""),
+                                                   HasSubstr("\"active-set\""),
+                                                   HasSubstr("\"pgs\""))));
 }
 
 TEST(EngineErrorsTest, WatchdogShorterThanPhysicsStepIsRejected) {

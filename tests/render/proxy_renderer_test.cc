@@ -304,17 +304,51 @@ TEST(ProxyRendererTest, ReactionsSumToMinusTheRenderedForceWithDamping) {
   EXPECT_GT(out.diagnostics.sticking_rows, 0);
 }
 
-TEST(ProxyRendererTest, ReactionMomentIsAboutTheObjectCentreOfMass) {
+TEST(ProxyRendererTest, ReactionIsMinusTheRenderedWrenchAboutTheObjectCentreOfMass) {
   Rig rig(T31());
   const Vec3 p_PV(0.05, 0.02, -kHalf);
   PairSpec box = Box(5, Pose{});
   box.points_P = {p_PV};
   const ProxyOutput& one = rig.Tick({box}, Pressed());
-  const Vec3 force = -one.w_W.f;  // d_t = 0: the single row carries the whole spring force
-  const Vec3 applied = Pressed() * p_PV + kDepth * Vec3::UnitZ();  // v + δ n, on the plane
-  const Vec3 moment = (applied - box.p_BCm).cross(force);
+  ASSERT_GT(one.w_W.tau.norm(), 0.0);
+  // The only pair takes the whole wrench: −f at the pointer origin plus −τ, moved to the COM.
+  const Vec3 force = -one.w_W.f;
+  const Vec3 moment = -one.w_W.tau + (Pressed().p - box.p_BCm).cross(force);
   EXPECT_LT((one.reactions[0].w_W.f - force).norm(), 1e-12 * force.norm());
   EXPECT_LT((one.reactions[0].w_W.tau - moment).norm(), kForceTol);
+}
+
+TEST(ProxyRendererTest, ReactionsOfSeveralObjectsAddUpToMinusTheRenderedWrench) {
+  // Two boxes under a twisted, sliding face with friction and dampers, at T3.2's weight where
+  // the rows' own moments k_t f_k (r_k × a_k) would be thousands of times the felt torque.
+  ProxyRendererSettings settings = Friction(Vec3(8420.0, 1670.0, 8420.0).asDiagonal());
+  settings.k_r = 9000.0;
+  settings.d_t = 10.0;
+  settings.d_r = 1.0;
+  Rig rig(settings);
+  auto specs = [] {
+    PairSpec left = Box(5, Pose{});
+    left.points_P = {Vec3(-kHalf, kHalf, -kHalf), Vec3(-kHalf, -kHalf, -kHalf)};
+    PairSpec right = Box(6, Pose{});
+    right.key = 10;
+    right.p_BCm = Vec3(0.3, -0.1, -0.2);
+    right.points_P = {Vec3(kHalf, kHalf, -kHalf), Vec3(kHalf, -kHalf, -kHalf)};
+    return std::vector<PairSpec>{left, right};
+  };
+  (void)rig.Tick(specs(), Pressed());
+  const Pose X_WP = Pressed(Vec3(2e-4, 1e-4, -1e-4), About(Vec3::UnitZ(), 0.01));
+  const ProxyOutput& out = rig.Tick(specs(), X_WP);
+  ASSERT_EQ(out.reactions.size(), 2u);
+  ASSERT_GT(out.diagnostics.sliding_rows + out.diagnostics.sticking_rows, 0);
+  Wrench sum;  // about the pointer origin
+  for (const ProxyPairReaction& r : out.reactions) {
+    const Vec3 p_WCm = r.body == 5 ? Box(5, Pose{}).p_BCm : Vec3(0.3, -0.1, -0.2);
+    sum.f += r.w_W.f;
+    sum.tau += r.w_W.tau + (p_WCm - X_WP.p).cross(r.w_W.f);
+  }
+  EXPECT_LT((sum.f + out.w_W.f).norm(), 1e-9 * out.w_W.f.norm());
+  EXPECT_LT((sum.tau + out.w_W.tau).norm(), 1e-9 * out.w_W.tau.norm());
+  EXPECT_GT(out.w_W.tau.norm(), 1e-3);
 }
 
 TEST(ProxyRendererTest, ImpulsesGoToMovingBodiesOnlySummedPerBody) {
@@ -352,7 +386,9 @@ TEST(ProxyRendererTest, DampersActOnTheChangeOfTheProxyOffset) {
 }
 
 TEST(ProxyRendererTest, PersistingContactsWarmStartAndConvergeInOneSweep) {
-  Rig rig(Friction(3.33 * Mat3::Identity()));
+  ProxyRendererSettings settings = Friction(3.33 * Mat3::Identity());
+  settings.solver = ProxySolverKind::kPgs;
+  Rig rig(settings);
   const std::vector<PairSpec> floor{Floor(BottomFace())};
   (void)rig.Tick(floor, Pressed());
   (void)rig.Tick(floor, Pressed(Vec3(1e-4, 0, 0)));
@@ -366,6 +402,7 @@ TEST(ProxyRendererTest, HeldFaceContactConvergesAcrossTicksThroughTheWarmStart) 
   // With 50 sweeps a tick, the first tick leaves a rotation error (PGS is slow when
   // R_w ≫ |r|²); the warm start continues the iteration tick after tick until it converges.
   ProxyRendererSettings settings = T31();
+  settings.solver = ProxySolverKind::kPgs;
   settings.max_iterations = 50;
   settings.tolerance = 1e-10;
   Rig rig(settings);
@@ -380,8 +417,24 @@ TEST(ProxyRendererTest, HeldFaceContactConvergesAcrossTicksThroughTheWarmStart) 
   EXPECT_LT((out.w_W.f - kKt * kDepth * Vec3::UnitZ()).norm(), 1e-4 * kKt * kDepth);
 }
 
+TEST(ProxyRendererTest, ActiveSetSolvesAHeldFaceContactExactlyOnTheFirstTick) {
+  // What PGS reaches only after ~100 warm-started ticks (test above), in one tick.
+  Rig rig(T31());
+  const std::vector<PairSpec> floor{Floor(BottomFace())};
+  const ProxyOutput& first = rig.Tick(floor, Pressed());
+  EXPECT_TRUE(first.diagnostics.converged);
+  EXPECT_LE(first.diagnostics.iterations, 4);
+  EXPECT_LT(first.w_W.tau.norm(), 1e-9 * kKt * kDepth * kHalf);
+  EXPECT_LT((first.w_W.f - kKt * kDepth * Vec3::UnitZ()).norm(), 1e-9 * kKt * kDepth);
+  // Held: the warm start is the solution, so the next tick takes no step.
+  const ProxyOutput& held = rig.Tick(floor, Pressed());
+  EXPECT_TRUE(held.diagnostics.converged);
+  EXPECT_EQ(held.diagnostics.iterations, 0);
+}
+
 TEST(ProxyRendererTest, RowUpdateBudgetCapsTheSweepsOfLargeContactSets) {
   ProxyRendererSettings settings = T31();
+  settings.solver = ProxySolverKind::kPgs;
   settings.max_row_updates = 10;
   Rig rig(settings);
   const ProxyOutput& face = rig.Tick({Floor(BottomFace())}, Pressed());

@@ -40,7 +40,7 @@ TEST(SessionKeysTest, UnknownNestedKeyIsNamedByItsFullDottedPath) {
       ThrowsInvalidExactly(
           "session.json: rendering.stifness: unknown key; expected one of: stiffness, "
           "damping, neighbor_distance, neighbor_margin, curved_segments, rot_stiffness, rot_damping, rotation_weight_scale, "
-          "friction, max_iterations, solver_tolerance, perturbation, perturbation_force, "
+          "friction, proxy_solver, max_iterations, solver_tolerance, perturbation, perturbation_force, "
           "rotation_weight (did you mean \"stiffness\"?)"));
 }
 
@@ -147,7 +147,7 @@ TEST(SessionKeysTest, BlockGivenAsNumberListsItsKeys) {
       },
       ThrowsInvalidExactly(
           "session.json: rendering: found a number (5); expected an object with keys: "
-          "stiffness, damping, neighbor_distance, neighbor_margin, curved_segments, rot_stiffness, rot_damping, rotation_weight_scale, friction, max_iterations, solver_tolerance, perturbation, perturbation_force, rotation_weight"));
+          "stiffness, damping, neighbor_distance, neighbor_margin, curved_segments, rot_stiffness, rot_damping, rotation_weight_scale, friction, proxy_solver, max_iterations, solver_tolerance, perturbation, perturbation_force, rotation_weight"));
 }
 
 TEST(SessionKeysTest, WrongArrayElementIsNamedByIndex) {

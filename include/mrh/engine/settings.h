@@ -52,9 +52,14 @@ struct RenderingSettings {
   double rotation_weight_scale = 1.0;
   /// Coulomb friction coefficient μ of the friction cones (eq. 3.9–3.10), static = kinetic.
   double friction = 0.0;
-  /// Projected Gauss–Seidel sweeps per tick at most (>= 1).
+  /// Proxy solver: "active-set" (exact dual active-set method, the converged answer of the
+  /// LCP in a few steps) or "pgs" (the thesis' projected Gauss–Seidel, eq. 3.6, which converges
+  /// slowly in rotation when R_w ≫ |r|²).
+  std::string proxy_solver = "active-set";
+  /// Per tick at most: PGS sweeps, or active-set steps (>= 1).
   int max_iterations = 50;
-  /// PGS stops when no multiplier changed by more than this in a sweep (m).
+  /// Tolerance of the proxy solve (m): PGS stops when no multiplier changed more than this in a
+  /// sweep; active-set stops when no row is violated by more than this.
   double solver_tolerance = 1e-10;
 
   // Local simulation (method local-dynamics, SPEC §4.5–4.8).

@@ -11,6 +11,7 @@
 #include "mrh/core/fixed_vector.h"
 #include "mrh/core/spatial.h"
 #include "mrh/ir/snapshot.h"
+#include "mrh/render/proxy_active_set.h"
 #include "mrh/render/proxy_solver.h"
 #include "mrh/render/tick_ir.h"
 
@@ -25,10 +26,20 @@ inline constexpr int kMaxProxyIterations = 100000;
 enum ProxyStatusBits : std::uint32_t {
   kProxyStatusOk = 0,
   kProxyStatusRowsFull = 1u << 0,      ///< more rows than max_rows: the excess was dropped
-  kProxyStatusNotConverged = 1u << 1,  ///< PGS stopped at max_iterations above tolerance
+  /// The solver stopped at max_iterations above tolerance (or, active-set, the rows were
+  /// contradictory).
+  kProxyStatusNotConverged = 1u << 1,
   /// Non-finite pointer pose, dt <= 0 or non-finite IR data or result: the wrench is zero, the
   /// proxy is the pointer and the renderer was Reset.
   kProxyStatusBadInput = 1u << 2,
+};
+
+/// Which algorithm solves the proxy LCP of eq. 3.4 each tick.
+enum class ProxySolverKind : std::uint8_t {
+  /// ProxyActiveSetSolver: exact, a few steps of O(m) each (default).
+  kActiveSet,
+  /// ProxySolver: the thesis' projected Gauss–Seidel (eq. 3.6), O(m) per sweep.
+  kPgs,
 };
 
 /// Parameters of the proxy renderer (SPEC §3.4–3.10). Designated initializers welcome.
@@ -43,15 +54,18 @@ struct ProxyRendererSettings {
   /// Coulomb coefficient μ of the friction cones (eq. 3.9–3.10; static = kinetic, >= 0).
   /// 0 builds no friction rows.
   double mu = 0.0;
-  int max_iterations = 50;  ///< PGS sweeps per tick at most, in [1, kMaxProxyIterations]
-  /// PGS stops when no f_k changed more than this in a sweep (m). The change of row k is its
+  ProxySolverKind solver = ProxySolverKind::kActiveSet;
+  /// PGS sweeps or active-set steps per tick at most, in [1, kMaxProxyIterations].
+  int max_iterations = 50;
+  /// Active-set: stops when no row is violated by more than this (m).
+  /// PGS: stops when no f_k changed more than this in a sweep (m). The change of row k is its
   /// constraint violation / c_kk, so this is a penetration tolerance. On face and edge
   /// contacts with R_w ≫ |r|² PGS converges slowly (~1700 cold sweeps to 1e-10 m for a T3.1
   /// cube face; never within 50 for a 1000-point face). In sustained contact the warm-started
   /// solve reaches 1e-7 m (SPEC App. B; ~1 mN at k_t = 9000) in about 2 sweeps (T3.4 bench),
   /// while 1e-10 m mostly exhausts max_iterations.
   double tolerance = 1e-10;
-  /// If > 0, a time budget independent of the contact count: a tick with m rows runs at most
+  /// PGS only. If > 0, a time budget independent of the contact count: a tick with m rows runs at most
   /// max(1, max_row_updates / m) sweeps (and never more than max_iterations). PGS converges
   /// slowly on face/edge contacts when R_w ≫ |r|² (hundreds to thousands of sweeps), so a
   /// large max_iterations plus this budget lets small contact sets converge within the tick
@@ -86,13 +100,14 @@ struct ProxyRowInfo {
   int pair = -1;   ///< index into TickIr::pairs
 };
 
-/// Reaction of one TickIr pair on its object this tick (SPEC §3.6, I5): row k of the pair
-/// carries k_t f_k a_k, applied at its contact point projected onto the plane (v_i + δ_i n);
-/// the pair's damping share d_t (Δr_pair − Δr_pair,prev)/dt (Δr_pair = Σ_pair f_k a_k) acts
-/// at the f-weighted centroid of those points. The object receives minus the sum. A static
-/// pair's entry is zero (it takes no reaction). Where several coplanar contacts are redundant
-/// (more rows than the 6 the proxy has), f and hence the split between them is not unique:
-/// it is the one PGS reaches (row order, warm start); the sum over rows is unique.
+/// Reaction of one TickIr pair on its object this tick (SPEC §3.6, I5, made action = reaction):
+/// the pair's rows make up Δr_i = Σ_pair f_k a_k and Δθ_i = Σ_pair f_k R_w⁻¹(r_k × a_k) of the
+/// proxy offset, so the pair pushes the pointer with its share of eq. 3.7–3.8,
+/// F_i = k_t Δr_i + d_t ΔΔr_i/dt and τ_i = k_r Δθ_i + d_r ΔΔθ_i/dt about the pointer origin;
+/// the object receives −(F_i, τ_i), expressed about its COM. Summed over all pairs (static ones
+/// included) that is exactly minus the rendered wrench. A static pair's entry is zero (it takes
+/// no reaction). Where rows are redundant (more than the proxy's 6 degrees of freedom), f and
+/// hence the split between pairs is not unique: it is the one the solver reaches.
 struct ProxyPairReaction {
   std::uint64_t key = 0;   ///< TickPair::key
   int body = -1;           ///< TickPair::body
@@ -108,9 +123,11 @@ struct ProxyDiagnostics {
   int sticking_rows = 0;     ///< friction rows in the static state
   int sliding_rows = 0;      ///< friction rows in the kinetic state
   int warm_rows = 0;         ///< rows started from the previous tick's f (same pair, point, kind)
-  int iterations = 0;        ///< PGS sweeps used
-  bool converged = true;     ///< PGS met the tolerance
-  double max_change = 0.0;   ///< last sweep's largest change of an f_k (m)
+  int iterations = 0;        ///< PGS sweeps or active-set steps used
+  bool converged = true;     ///< the solver met its tolerance
+  /// PGS: the last sweep's largest change of an f_k (m); active-set: the largest remaining row
+  /// violation (m).
+  double max_change = 0.0;
   std::uint32_t status = 0;  ///< ProxyStatusBits
 };
 
@@ -181,6 +198,7 @@ class ProxyRenderer {
     Pose X_WB;
     bool in_contact = false;
     Vec3 dr_pair = Vec3::Zero();
+    Vec3 dtheta_pair = Vec3::Zero();
   };
 
   // Identity of a row for the warm start: a hash of (pair key, p_PV, normal/friction). A
@@ -195,13 +213,14 @@ class ProxyRenderer {
                       const ProxyRow& normal, ProxyDiagnostics* diag) noexcept;
   bool PushRow(const ProxyRow& row, const ProxyRowInfo& info, RowId id) noexcept;
   void WarmStart(ProxyDiagnostics* diag) noexcept;
-  void ComputeReactions(const TickIr& ir, double dt, ProxyOutput* out) noexcept;
+  void ComputeReactions(const TickIr& ir, const Pose& X_WP, double dt, ProxyOutput* out) noexcept;
   void Remember(const TickIr& ir, const ProxyOutput& out) noexcept;
   void Fault(const Pose& X_WP, ProxyOutput* out) noexcept;
 
   ProxyRendererSettings settings_;
   Mat3 rotation_weight_inverse_;
-  ProxySolver solver_;
+  ProxySolver pgs_;                  // sized for max_rows only when selected
+  ProxyActiveSetSolver active_set_;  // likewise
 
   // This tick's rows (and the previous tick's ids and f, swapped at each tick).
   std::size_t row_count_ = 0;
@@ -219,8 +238,10 @@ class ProxyRenderer {
   std::array<Vec3, ir::kMaxGeometricPairs> carried_p_WQ_{};
   std::array<bool, ir::kMaxGeometricPairs> first_tick_{};
   std::array<Vec3, ir::kMaxGeometricPairs> previous_dr_pair_{};
+  std::array<Vec3, ir::kMaxGeometricPairs> previous_dtheta_pair_{};
   std::array<int, ir::kMaxGeometricPairs> pair_rows_{};  // normal rows this tick
   std::array<Vec3, ir::kMaxGeometricPairs> dr_pair_{};   // Σ_pair f_k a_k this tick
+  std::array<Vec3, ir::kMaxGeometricPairs> dtheta_pair_{};  // Σ_pair f_k R_w⁻¹(r_k × a_k)
   std::array<PairMemory, ir::kMaxGeometricPairs> memory_{};
   std::size_t memory_count_ = 0;
 
