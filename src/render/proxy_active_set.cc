@@ -96,7 +96,7 @@ void ProxyActiveSetSolver::Precompute(std::span<const ProxyRow> rows,
     const Vec3 j = k_lower.transpose() * rows[k].r.cross(a);
     normals_[k] = {a.x(), a.y(), a.z(), j.x(), j.y(), j.z()};
     rhs_[k] = rows[k].rhs;
-    is_active_[k] = false;
+    is_active_[k] = 0;
   }
 }
 
@@ -114,7 +114,7 @@ void ProxyActiveSetSolver::SetActiveFromStart(std::span<double> f) noexcept {
       --count_;  // dependent on the rows already taken
       continue;
     }
-    is_active_[k] = true;
+    is_active_[k] = 1;
   }
   if (count_ == 0) return;
   Factorize();
@@ -193,8 +193,8 @@ int ProxyActiveSetSolver::MostViolated(double tolerance, double* violation) cons
   double lowest = -tolerance;
   *violation = 0.0;
   for (std::size_t k = 0; k < m_; ++k) {
+    if (is_active_[k] != 0) continue;
     const double s = Dot(normals_[k], y_) - rhs_[k];
-    if (is_active_[k]) continue;
     *violation = std::min(*violation, s);
     if (s < lowest) {
       lowest = s;
@@ -266,7 +266,7 @@ bool ProxyActiveSetSolver::AddRow(int p, int* steps, int max_steps) noexcept {
       active_[slot] = p;
       lambda_[slot] = lambda_p;
       ++count_;
-      is_active_[static_cast<std::size_t>(p)] = true;
+      is_active_[static_cast<std::size_t>(p)] = 1;
       for (int i = 0; i < count_ - 1; ++i) r_[static_cast<std::size_t>(i)][slot] = d[static_cast<std::size_t>(i)];
       const double rest = std::sqrt(zz);
       r_[slot][slot] = rest;
@@ -279,7 +279,7 @@ bool ProxyActiveSetSolver::AddRow(int p, int* steps, int max_steps) noexcept {
 }
 
 void ProxyActiveSetSolver::DropActive(int slot) noexcept {
-  is_active_[static_cast<std::size_t>(active_[static_cast<std::size_t>(slot)])] = false;
+  is_active_[static_cast<std::size_t>(active_[static_cast<std::size_t>(slot)])] = 0;
   for (int i = slot; i + 1 < count_; ++i) {
     active_[static_cast<std::size_t>(i)] = active_[static_cast<std::size_t>(i + 1)];
     lambda_[static_cast<std::size_t>(i)] = lambda_[static_cast<std::size_t>(i + 1)];

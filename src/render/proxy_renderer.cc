@@ -321,6 +321,7 @@ void ProxyRenderer::ComputeReactions(const TickIr& ir, const Pose& X_WP, double 
     dtheta_pair_[i].setZero();
   }
   for (std::size_t k = 0; k < row_count_; ++k) {
+    if (f_[k] == 0.0) continue;  // most rows: the active-set solution has <= 6 non-zero f
     const auto i = static_cast<std::size_t>(info_[k].pair);
     dr_pair_[i] += f_[k] * rows_[k].a;
     dtheta_pair_[i] += f_[k] * (rotation_weight_inverse_ * rows_[k].r.cross(rows_[k].a));

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// The T3.4 driver renders an N-gon prism with N contact points (timings are not checked).
+// The T3.4 driver renders an N-gon prism with N contact points (timings are not checked; contact
+// counts, convergence and the analytic sliding force are).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -22,11 +23,14 @@ TEST(T34ExperimentTest, PrismBaseGivesOneContactPerSideAndAFrictionRowEach) {
   std::ifstream in(out / "summary.json");
   const nlohmann::json s = nlohmann::json::parse(in);
   ASSERT_EQ(s["runs"].size(), 6u);
+  for (const auto& [name, pass] : s["checks"].items()) EXPECT_TRUE(pass.get<bool>()) << name;
   for (const nlohmann::json& run : s["runs"]) {
     const int sides = run["sides"].get<int>();
     EXPECT_EQ(run["contacts"].get<int>(), sides);
     EXPECT_EQ(run["rows"].get<int>(), run["friction"].get<bool>() ? 2 * sides : sides);
     EXPECT_GT(run["p50_us"].get<double>(), 0.0);
+    EXPECT_EQ(run["unconverged_ticks"].get<int>(), 0) << sides;
+    EXPECT_LT(run["force_error_N"].get<double>(), 9000.0 * 1e-8) << sides;  // k_t × 1e-8 m
   }
   EXPECT_TRUE(std::filesystem::exists(out / "t3_4.csv"));
   std::filesystem::remove_all(out);

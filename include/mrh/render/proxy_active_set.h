@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -74,7 +75,7 @@ class ProxyActiveSetSolver {
 
   std::vector<Vec6> normals_;  // n_k = (a_k, Kᵀ(r_k × a_k))
   std::vector<double> rhs_;
-  std::vector<bool> is_active_;
+  std::vector<std::uint8_t> is_active_;  // 1 for active rows (bytes: the scan reads them)
   std::size_t m_ = 0;
 
   // Active rows, their multipliers and the QR of their normals: N = Q R, Q 6×count orthonormal
