@@ -173,9 +173,7 @@ class ViewerApp {
       if (body == pointer_body_) X_WB = last_.X_WP;
     }
     renderer_.Update(state_);
-    const engine::RenderingSettings& r = live_.settings().rendering;
-    DrawOverlay(renderer_, last_, feed_.ir(), display_,
-                Coupling{pointer_body_, r.stiffness, r.rot_stiffness});
+    DrawOverlay(renderer_, last_, feed_.ir(), display_, pointer_body_);
   }
 
   PanelInfo Info() {
