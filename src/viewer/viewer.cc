@@ -186,7 +186,9 @@ class ViewerApp {
     }
     PanelInfo info;
     info.session = &live_.session();
+    info.settings = &live_.settings();
     info.loop = live_.loop().stats();
+    info.memory_locked = live_.memory_locked();
     info.source = live_.source();
     info.paused = live_.loop().paused();
     info.physics_hz = physics_hz_;
