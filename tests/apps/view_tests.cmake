@@ -54,9 +54,10 @@ else()
                view ${fixtures}/tiny.json)
 endif()
 
-# Unit tests of the viewer's GL-free parts (tests/viewer/): feed, session restarts, recording,
-# plots, the inferred proxy. No display needed.
+# Unit tests of the viewer's GL-free parts (tests/viewer/): feed, haptic loop, session restarts,
+# pointer control, recording, plots, the proxy ghost. No display needed. Label `threaded`: they
+# start the haptic and physics threads, so the TSan preset runs them with the `engine` tests.
 if(TARGET mrh_viewer)
   file(GLOB viewer_test_sources CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/tests/viewer/*_test.cc)
-  mrh_test(viewer_test LABEL viewer SOURCES ${viewer_test_sources} DEPS mrh_viewer)
+  mrh_test(viewer_test LABEL threaded SOURCES ${viewer_test_sources} DEPS mrh_viewer)
 endif()
