@@ -96,6 +96,7 @@ class ViewerApp {
     const std::string path = DefaultRecordPath(session);
     std::strncpy(panel_.record_path.data(), path.c_str(), panel_.record_path.size() - 1);
     last_.X_WP = target_W_;
+    last_.X_WQ = target_W_;  // no proxy (and no ghost) before the first tick
     live_.Start(headless() ? InputSource::kSession : InputSource::kMouse);
     rate_start_ = Clock::now();
   }
