@@ -91,7 +91,7 @@ void HapticLoop::Record(double period_error_us, std::int64_t now_ns) noexcept {
   window_start_ns_ = now_ns;
 }
 
-LoopStats HapticLoop::stats() {
+LoopStats HapticLoop::ReadStats() {
   if (windows_.Update()) {
     const Window& window = windows_.read_slot();
     std::copy(window.jitter_us.begin(), window.jitter_us.end(), scratch_.begin());

@@ -32,8 +32,8 @@ struct LoopStats {
 /// t = ticks · dt), so pausing freezes the session and the device together.
 ///
 /// The UI controls it through atomics. The haptic thread keeps only raw period samples: it
-/// hands each full window of them to the UI thread through a triple buffer, and stats() computes
-/// the percentiles there. Neither thread ever waits for the other.
+/// hands each full window of them to the UI thread through a triple buffer, and ReadStats()
+/// computes the percentiles there. Neither thread ever waits for the other.
 class HapticLoop {
  public:
   /// Period samples per statistics window (1 s at 1 kHz).
@@ -80,7 +80,7 @@ class HapticLoop {
 
   /// The counters now and the statistics of the newest full window (computed here, on the
   /// calling thread, from the window's raw samples). Not RT-safe; one thread only (the UI).
-  LoopStats stats();
+  LoopStats ReadStats();
 
  private:
   // One window of raw |period − dt| samples, as the haptic thread hands it over.

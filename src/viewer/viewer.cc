@@ -188,7 +188,7 @@ class ViewerApp {
     PanelInfo info;
     info.session = &live_.session();
     info.settings = &live_.settings();
-    info.loop = live_.loop().stats();
+    info.loop = live_.loop().ReadStats();
     info.memory_locked = live_.memory_locked();
     info.source = live_.source();
     info.paused = live_.loop().paused();

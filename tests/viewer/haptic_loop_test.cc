@@ -158,8 +158,8 @@ TEST_F(HapticLoopTest, StepRequestsWhileRunningAreIgnored) {
 
 TEST_F(HapticLoopTest, StatsCountTicksAndReportTheWindowRate) {
   // One full window (kWindow ticks) gives a rate; under load it may be below 1 kHz, never 0.
-  ASSERT_TRUE(WaitFor([&] { return loop_.stats().rate_hz > 0.0; }));
-  const LoopStats stats = loop_.stats();
+  ASSERT_TRUE(WaitFor([&] { return loop_.ReadStats().rate_hz > 0.0; }));
+  const LoopStats stats = loop_.ReadStats();
   EXPECT_GE(stats.ticks, static_cast<std::int64_t>(HapticLoop::kWindow));
   EXPECT_GT(stats.rate_hz, 0.0);
   EXPECT_LE(stats.jitter_mean_us, stats.jitter_max_us);
