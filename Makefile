@@ -30,9 +30,11 @@ test-asan: deps
 	cmake --build --preset asan
 	ctest --preset asan -j $(JOBS)
 
+# The threaded tests only: the engine's, and the viewer's GL-free ones when the viewer is built.
 test-tsan: deps
 	cmake --preset tsan >/dev/null
-	cmake --build --preset tsan --target engine_test
+	cmake --build --preset tsan --target engine_test \
+	  $$(grep -q '^MRH_BUILD_VIEWER:BOOL=ON' build-tsan/CMakeCache.txt && echo viewer_test)
 	ctest --preset tsan
 
 install: build

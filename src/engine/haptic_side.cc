@@ -58,7 +58,10 @@ void HapticSide::Tick(double t) noexcept {
   in.X_WP = X_WP_;
   in.V_WP = V_WP_;
   TickOutput out;
+  out.X_WQ = X_WP_;
   method_->HapticTick(in, &out);
+  // A non-finite proxy (after bad input) never reaches the records: the pointer stands in.
+  if (!IsFinite(out.X_WQ)) out.X_WQ = X_WP_;
 
   std::uint32_t bits = 0;
   const Wrench displayed = safety_.Apply(out.w_W, t, t - last_adopt_t_, device_ok_, &bits);
@@ -69,6 +72,7 @@ void HapticSide::Tick(double t) noexcept {
   record.tick = counters_.ticks;
   record.t = t;
   record.X_WP = X_WP_;
+  record.X_WQ = out.X_WQ;
   record.displayed_W = displayed;
   record.rendered_W = out.w_W;
   record.contacts = out.contacts;

@@ -6,7 +6,7 @@
 #include <utility>
 
 #include "engine_impl.h"
-#include "rt_clock.h"
+#include "mrh/engine/rt_clock.h"
 
 namespace mrh::engine::internal {
 

@@ -100,6 +100,7 @@ void ProxyMethod::HapticTick(const TickInput& in, TickOutput* out) noexcept {
   interpolator_.Evaluate(alpha, in.X_WP, &tick_ir_);
   renderer_.Tick(tick_ir_, in.X_WP, in.dt, &output_);
   out->w_W = output_.w_W;
+  out->X_WQ = output_.X_WQ;
   out->contacts = output_.diagnostics.contacts;
   out->status = output_.diagnostics.status;
   render::AddReactionImpulses(output_, in.dt, &period_);

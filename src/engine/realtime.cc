@@ -10,15 +10,11 @@
 #include <thread>
 
 #include "engine_impl.h"
-#include "rt_clock.h"
+#include "mrh/engine/rt_clock.h"
 
 namespace mrh::engine::internal {
 namespace {
 
-constexpr int kHapticFifoPriority = 80;
-// Sleep with the kernel to this much before a deadline, then spin (DEPENDENCIES.md: the kernel
-// wakes 50–110 µs late on this VM).
-constexpr std::int64_t kSpinNs = 150'000;
 constexpr std::int64_t kNsPerS = 1'000'000'000;
 // Room for jitter samples beyond the nominal tick count (start-up, rounding).
 constexpr std::size_t kJitterSlack = 1024;
@@ -41,7 +37,7 @@ void HapticLoop(EngineState& s, HapticTiming* timing, std::atomic<bool>* done,
   std::int64_t last_wake = start;
   while (true) {
     deadline += dt_ns;
-    SleepUntilNs(deadline, kSpinNs);
+    SleepUntilNs(deadline, kDeadlineSpinNs);
     const std::int64_t now = NowNs();
     if (now - deadline > dt_ns) {
       // Overrun: skip the missed ticks instead of bursting to catch up (STYLE §6.5).

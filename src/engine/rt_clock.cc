@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // Real-time helpers over POSIX: clock, sleeping, scheduling class and memory locking.
-#include "rt_clock.h"
+#include "mrh/engine/rt_clock.h"
 
 #include <pthread.h>
 #include <sched.h>
@@ -10,7 +10,7 @@
 #include <cstring>
 #include <ctime>
 
-namespace mrh::engine::internal {
+namespace mrh::engine {
 namespace {
 
 constexpr std::int64_t kNsPerS = 1'000'000'000;
@@ -73,4 +73,4 @@ bool LockAllMemory(std::string* why) {
 
 void UnlockAllMemory() noexcept { munlockall(); }
 
-}  // namespace mrh::engine::internal
+}  // namespace mrh::engine

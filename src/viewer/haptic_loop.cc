@@ -1,43 +1,35 @@
 // SPDX-License-Identifier: Apache-2.0
-// HapticLoop: absolute-deadline periods, skip-ahead on overrun, windowed jitter statistics.
+// HapticLoop: absolute-deadline periods, skip-ahead on overrun, raw jitter windows for the UI.
 #include "viewer/haptic_loop.h"
 
-#include <pthread.h>
-#include <sched.h>
-
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <numeric>
+#include <string>
+
+#include "mrh/engine/rt_clock.h"
 
 namespace mrh::viewer::internal {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-// The priority the engine gives its own haptic thread (src/engine/realtime.cc): above the
-// physics and UI threads, which stay at normal priority.
-constexpr int kFifoPriority = 80;
-
-bool RequestFifo() noexcept {
-  sched_param param{};
-  param.sched_priority = kFifoPriority;
-  return pthread_setschedparam(pthread_self(), SCHED_FIFO, &param) == 0;
-}
-
-double Micros(Clock::duration d) {
-  return std::chrono::duration<double, std::micro>(d).count();
-}
+constexpr double kNsPerS = 1e9;
 
 }  // namespace
 
 void HapticLoop::Start(engine::Engine* engine, device::Device* source, double dt, bool fifo) {
   Stop();
   quit_.store(false);
-  current_ = LoopStats{};
-  samples_ = 0;
+  step_budget_.store(0);
+  ticks_.store(0);
+  overruns_.store(0);
+  held_.store(0);
+  fifo_.store(false);
+  window_stats_ = LoopStats{};
   thread_ = std::thread([this, engine, source, dt, fifo] {
-    Run(engine, source, dt, fifo);
+    // Refusal (no privileges) is not an error: the loop runs at normal priority and says so.
+    std::string why;
+    fifo_.store(fifo && engine::RequestFifoPriority(engine::kHapticFifoPriority, &why));
+    Run(engine, source, dt);
   });
 }
 
@@ -46,60 +38,77 @@ void HapticLoop::Stop() {
   if (thread_.joinable()) thread_.join();
 }
 
-void HapticLoop::Run(engine::Engine* engine, device::Device* source, double dt,
-                     bool fifo) noexcept {
-  // Refusal (no privileges) is not an error: the loop runs at normal priority and says so.
-  current_.fifo = fifo && RequestFifo();
-  const auto period =
-      std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(dt));
-  Clock::time_point deadline = Clock::now();
-  Clock::time_point last_wake = deadline;
-  Clock::time_point window_start = deadline;
+bool HapticLoop::TakeStep() noexcept {
+  // A compare-exchange, not load + fetch_sub: set_paused may zero the budget in between, and a
+  // budget driven negative would swallow the next step request.
+  int budget = step_budget_.load();
+  while (budget > 0 && !step_budget_.compare_exchange_weak(budget, budget - 1)) {
+  }
+  return budget > 0;
+}
+
+void HapticLoop::Run(engine::Engine* engine, device::Device* source, double dt) noexcept {
+  const auto dt_ns = static_cast<std::int64_t>(std::llround(dt * kNsPerS));
+  std::int64_t deadline = engine::NowNs();
+  std::int64_t last_wake = deadline;
+  samples_ = 0;
+  window_start_ns_ = deadline;
   std::int64_t ticks = 0;
   while (!quit_.load(std::memory_order_relaxed)) {
-    deadline += period;
-    std::this_thread::sleep_until(deadline);
-    const Clock::time_point now = Clock::now();
-    if (now - deadline > period) {
+    deadline += dt_ns;
+    engine::SleepUntilNs(deadline, engine::kDeadlineSpinNs);
+    const std::int64_t now = engine::NowNs();
+    if (now - deadline > dt_ns) {
       // Overrun: skip the missed periods instead of bursting to catch up (STYLE §6.5).
-      ++current_.overruns;
+      overruns_.fetch_add(1, std::memory_order_relaxed);
       deadline = now;
     }
-    const double error_us = std::abs(Micros(now - last_wake - period));
+    const double error_us = std::abs(static_cast<double>(now - last_wake - dt_ns)) * 1e-3;
     last_wake = now;
-    if (paused_.load(std::memory_order_relaxed)) {
-      if (step_budget_.load(std::memory_order_relaxed) <= 0) {
-        window_start = now;  // a pause is not slowness: restart the rate window
-        samples_ = 0;
-        continue;
-      }
-      step_budget_.fetch_sub(1, std::memory_order_relaxed);
+    if (paused_.load() && !TakeStep()) {
+      window_start_ns_ = now;  // a pause is not slowness: restart the rate window
+      samples_ = 0;
+      held_.fetch_add(1, std::memory_order_release);  // orders the ticks_ store before it
+      continue;
     }
     const double t = static_cast<double>(ticks) * dt;
     const device::DeviceState reading = source->Read(t);
     source->SetWrench(engine->Tick(t, reading));
     ++ticks;
-    current_.ticks = ticks;
-    Measure(error_us, std::chrono::duration<double>(now - window_start).count());
-    if (samples_ == 0) window_start = now;
+    ticks_.store(ticks, std::memory_order_relaxed);
+    Record(error_us, now);
   }
 }
 
-void HapticLoop::Measure(double period_error_us, double window_s) noexcept {
-  jitter_us_[samples_++] = period_error_us;
+void HapticLoop::Record(double period_error_us, std::int64_t now_ns) noexcept {
+  Window& window = windows_.write_slot();
+  window.jitter_us[samples_++] = period_error_us;
   if (samples_ < kWindow) return;
-  // The window is full: publish its statistics (no allocation: fixed scratch array).
-  std::copy(jitter_us_.begin(), jitter_us_.end(), scratch_.begin());
-  const auto p99 = scratch_.begin() + static_cast<std::ptrdiff_t>(kWindow * 99 / 100);
-  std::nth_element(scratch_.begin(), p99, scratch_.end());
-  current_.jitter_p99_us = *p99;
-  current_.jitter_max_us = *std::max_element(jitter_us_.begin(), jitter_us_.end());
-  current_.jitter_mean_us =
-      std::accumulate(jitter_us_.begin(), jitter_us_.end(), 0.0) / static_cast<double>(kWindow);
-  current_.rate_hz = window_s > 0.0 ? static_cast<double>(kWindow) / window_s : 0.0;
-  stats_.write_slot() = current_;
-  stats_.Publish();
+  // The window is full: hand it over as it is. Sorting for the percentile is the UI's work.
+  window.duration_s = static_cast<double>(now_ns - window_start_ns_) / kNsPerS;
+  windows_.Publish();
   samples_ = 0;
+  window_start_ns_ = now_ns;
+}
+
+LoopStats HapticLoop::ReadStats() {
+  if (windows_.Update()) {
+    const Window& window = windows_.read_slot();
+    std::copy(window.jitter_us.begin(), window.jitter_us.end(), scratch_.begin());
+    const auto p99 = scratch_.begin() + static_cast<std::ptrdiff_t>(kWindow * 99 / 100);
+    std::nth_element(scratch_.begin(), p99, scratch_.end());
+    window_stats_.jitter_p99_us = *p99;
+    window_stats_.jitter_max_us = *std::max_element(scratch_.begin(), scratch_.end());
+    window_stats_.jitter_mean_us =
+        std::accumulate(scratch_.begin(), scratch_.end(), 0.0) / static_cast<double>(kWindow);
+    window_stats_.rate_hz =
+        window.duration_s > 0.0 ? static_cast<double>(kWindow) / window.duration_s : 0.0;
+  }
+  LoopStats stats = window_stats_;
+  stats.ticks = ticks_.load(std::memory_order_relaxed);
+  stats.overruns = overruns_.load(std::memory_order_relaxed);
+  stats.fifo = fifo_.load();
+  return stats;
 }
 
 }  // namespace mrh::viewer::internal

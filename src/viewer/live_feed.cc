@@ -27,6 +27,7 @@ void LiveFeed::OnTick(const engine::TickRecord& tick) {
   TickSample sample;
   sample.t = time_offset_ + tick.t;
   sample.X_WP = tick.X_WP;
+  sample.X_WQ = tick.X_WQ;
   sample.displayed_W = tick.displayed_W;
   sample.rendered_W = tick.rendered_W;
   sample.contacts = tick.contacts;

@@ -17,6 +17,7 @@ namespace mrh::viewer::internal {
 struct TickSample {
   double t = 0.0;      ///< s on the viewer clock (continues across engine restarts)
   Pose X_WP;           ///< pointer pose
+  Pose X_WQ;           ///< the method's proxy pose (= X_WP for methods without a proxy)
   Wrench displayed_W;  ///< after the safety layer (what a device would display)
   Wrench rendered_W;   ///< what the method rendered
   int contacts = 0;

@@ -2,9 +2,12 @@
 // LiveSession: builds, starts, stops and restarts the embedded engine behind the viewer.
 #include "viewer/live_session.h"
 
+#include <string>
+
 #include "mrh/core/error.h"
 #include "mrh/device/external.h"
 #include "mrh/device/simulated.h"
+#include "mrh/engine/rt_clock.h"
 
 namespace mrh::viewer::internal {
 namespace {
@@ -54,9 +57,15 @@ LiveSession::LiveSession(session::Session session, device::MouseDevice* mouse, L
 
 LiveSession::~LiveSession() {
   StopEngine();
+  if (memory_locked_) engine::UnlockAllMemory();
 }
 
 void LiveSession::Start(InputSource source) {
+  // Once for the viewer's lifetime, not per restart: mlockall faults in every mapped page.
+  if (settings_.realtime_priority && !memory_locked_) {
+    std::string why;  // a refusal shows in the panel's rates line (no "mlockall")
+    memory_locked_ = engine::LockAllMemory(&why);
+  }
   Launch(settings_, source, nullptr);
 }
 

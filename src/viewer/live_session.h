@@ -35,7 +35,9 @@ class LiveSession {
   LiveSession(const LiveSession&) = delete;
   LiveSession& operator=(const LiveSession&) = delete;
 
-  /// Starts the first engine from the scene's initial state.
+  /// Starts the first engine from the scene's initial state. With the session's
+  /// realtime_priority it first locks the process's memory (mlockall, as `mrh run --mode
+  /// realtime` does; kept until this object goes), and the haptic loop asks for SCHED_FIFO.
   /// @throws mrh::InvalidArgument / mrh::SceneError as session::MakeEngine does.
   void Start(InputSource source);
 
@@ -54,6 +56,9 @@ class LiveSession {
   InputSource source() const { return source_; }
 
   HapticLoop& loop() { return loop_; }
+
+  /// True if mlockall was granted (refused without privileges, and under sanitizers).
+  bool memory_locked() const { return memory_locked_; }
 
   /// Times the engine was (re)started.
   int starts() const { return starts_; }
@@ -79,6 +84,7 @@ class LiveSession {
   HapticLoop loop_;
   double time_offset_ = 0.0;  ///< viewer clock at the running engine's t = 0 (s)
   int starts_ = 0;
+  bool memory_locked_ = false;
 };
 
 }  // namespace mrh::viewer::internal

@@ -22,20 +22,13 @@ constexpr world::Rgba kPlaneColor{0.2f, 0.9f, 1.0f, 0.3f};
 
 }  // namespace
 
-Pose InferProxy(const Pose& X_WP, const Wrench& w, const Coupling& c) {
-  Pose X_WQ = X_WP;
-  if (c.stiffness > 0.0) X_WQ.p += w.f / c.stiffness;
-  if (c.rot_stiffness > 0.0) {
-    const Vec3 dtheta = w.tau / c.rot_stiffness;
-    const double angle = dtheta.norm();
-    if (angle > 0.0)
-      X_WQ.q = (Quat(Eigen::AngleAxisd(angle, dtheta / angle)) * X_WP.q).normalized();
-  }
-  return X_WQ;
+bool ShowsGhost(const TickSample& tick) {
+  return (tick.X_WQ.p - tick.X_WP.p).norm() > kGhostMinOffset ||
+         tick.X_WQ.q.angularDistance(tick.X_WP.q) > kGhostMinAngle;
 }
 
 void DrawOverlay(world::SceneRenderer& r, const TickSample& tick, const IrView& ir,
-                 const DisplayOptions& o, const Coupling& coupling) {
+                 const DisplayOptions& o, int pointer_body) {
   const Vec3& p = tick.X_WP.p;
   if (o.force) {
     r.AddArrow(p, p + o.force_scale * tick.displayed_W.f, kArrowWidth, kForceColor);
@@ -43,13 +36,7 @@ void DrawOverlay(world::SceneRenderer& r, const TickSample& tick, const IrView& 
   if (o.torque) {
     r.AddArrow(p, p + o.torque_scale * tick.displayed_W.tau, kArrowWidth, kTorqueColor);
   }
-  if (o.ghost) {
-    const Pose X_WQ = InferProxy(tick.X_WP, tick.rendered_W, coupling);
-    const double angle = X_WQ.q.angularDistance(tick.X_WP.q);
-    if ((X_WQ.p - p).norm() > kGhostMinOffset || angle > kGhostMinAngle) {
-      r.AddBodyGhost(coupling.pointer_body, X_WQ, kGhostColor);
-    }
-  }
+  if (o.ghost && ShowsGhost(tick)) r.AddBodyGhost(pointer_body, tick.X_WQ, kGhostColor);
   if (o.ir_planes) {
     for (const IrPlane& plane : ir.planes)
       r.AddPlane(plane.p_W, plane.n_W, kPlaneHalfSize, kPlaneColor);

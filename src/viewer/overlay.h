@@ -21,21 +21,14 @@ struct DisplayOptions {
   bool panel = true;          ///< draw the ImGui panel
 };
 
-/// The coupling the ghost is inferred from (the session's rendering gains).
-struct Coupling {
-  int pointer_body = -1;
-  double stiffness = 0.0;      ///< N/m
-  double rot_stiffness = 0.0;  ///< N·m/rad
-};
+/// True if the tick's proxy X_WQ (the method's own, engine::TickRecord::X_WQ) is far enough
+/// from the pointer X_WP to be drawn as a ghost: more than 0.2 mm or 2 mrad apart. Methods
+/// without a proxy report the pointer pose, so they never show one.
+bool ShowsGhost(const TickSample& tick);
 
-/// The proxy pose the virtual coupling implies: the pose Q at which the coupling springs give the
-/// rendered wrench, p_Q = p_P + f/k, R_Q = exp(τ/k_r) R_P (eq. 3.7–3.8 and, for the 3-DOF
-/// penalty methods, eq. 4.11: the pointer pushed back to the surface). With damping it includes
-/// the damper's share. A zero gain leaves that part of the pose at the pointer's.
-Pose InferProxy(const Pose& X_WP, const Wrench& rendered_W, const Coupling& coupling);
-
-/// Adds the debug geoms for the newest tick and IR to `renderer` (after its Update).
+/// Adds the debug geoms for the newest tick and IR to `renderer` (after its Update); the ghost
+/// is the body `pointer_body` drawn at the tick's proxy pose.
 void DrawOverlay(world::SceneRenderer& renderer, const TickSample& tick, const IrView& ir,
-                 const DisplayOptions& options, const Coupling& coupling);
+                 const DisplayOptions& options, int pointer_body);
 
 }  // namespace mrh::viewer::internal

@@ -22,9 +22,10 @@ void Text(fmt::format_string<Args...> format, Args&&... args) {
 }
 
 void DrawRates(const PanelInfo& info) {
-  const engine::EngineSettings& e = info.session->engine;
-  Text("haptic   {:7.1f} Hz  (target {:.0f}, {})", info.loop.rate_hz, 1.0 / e.haptic_dt,
-       info.loop.fifo ? "SCHED_FIFO" : "normal priority");
+  const engine::EngineSettings& e = *info.settings;
+  Text("haptic   {:7.1f} Hz  (target {:.0f}, {}{})", info.loop.rate_hz, 1.0 / e.haptic_dt,
+       info.loop.fifo ? "SCHED_FIFO" : "normal priority",
+       info.memory_locked ? ", mlockall" : "");
   Text("jitter   mean {:.0f} / p99 {:.0f} / max {:.0f} us", info.loop.jitter_mean_us,
        info.loop.jitter_p99_us, info.loop.jitter_max_us);
   Text("physics  {:7.1f} Hz  step {:.2f} ms", info.physics_hz, info.step_ms);
@@ -117,8 +118,9 @@ PanelActions DrawPanel(const PanelInfo& info, PanelState* state, DisplayOptions*
   ImGui::SetNextWindowSize(ImVec2(kPanelWidth * scale, 0), ImGuiCond_Once);
   ImGui::Begin("mrh view", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
   Text("{}", info.session->file.filename().string());
-  Text("{}  realtime  physics {} ms / haptic {} ms", info.session->engine.method,
-       info.session->engine.physics_dt * 1e3, info.session->engine.haptic_dt * 1e3);
+  const engine::EngineSettings& running = *info.settings;
+  Text("{}  realtime  physics {} ms / haptic {} ms", running.method, running.physics_dt * 1e3,
+       running.haptic_dt * 1e3);
   Text("t {:.2f} s  contacts {}  |f| {:.2f} N  |tau| {:.3f} N m", info.t, info.contacts,
        info.displayed_W.f.norm(), info.displayed_W.tau.norm());
   if (ImGui::CollapsingHeader("Rates", ImGuiTreeNodeFlags_DefaultOpen)) DrawRates(info);

@@ -28,7 +28,11 @@ struct PanelState {
 /// What the panel shows this frame.
 struct PanelInfo {
   const session::Session* session = nullptr;
+  /// The running engine's settings (method and gains as applied, which differ from the
+  /// session file's after an edit).
+  const engine::EngineSettings* settings = nullptr;
   LoopStats loop;
+  bool memory_locked = false;  ///< mlockall granted
   InputSource source = InputSource::kMouse;
   bool paused = false;
   double physics_hz = 0.0;  ///< physics steps per wall second (last second)

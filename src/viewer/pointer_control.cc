@@ -31,16 +31,6 @@ bool Held(GLFWwindow* w, int left, int right) {
   return glfwGetKey(w, left) == GLFW_PRESS || glfwGetKey(w, right) == GLFW_PRESS;
 }
 
-ViewAxes Axes(const world::CameraFrame& cam, const Vec3& p_W) {
-  ViewAxes a;
-  a.forward = cam.forward_W;
-  a.up = cam.up_W;
-  a.right = a.forward.cross(a.up).normalized();
-  a.depth = std::max(kMinDepth, (p_W - cam.p_WC).dot(a.forward));
-  a.metres_per_height = cam.frustum_height * a.depth;
-  return a;
-}
-
 // Arrows move in the view plane, Page Up/Down in depth; other keys do not move the pointer.
 Vec3 NudgeDirection(int key, const ViewAxes& a) {
   switch (key) {
@@ -62,6 +52,32 @@ Vec3 NudgeDirection(int key, const ViewAxes& a) {
 }
 
 }  // namespace
+
+ViewAxes AxesAt(const world::CameraFrame& cam, const Vec3& p_W) {
+  ViewAxes a;
+  a.forward = cam.forward_W;
+  a.up = cam.up_W;
+  a.right = a.forward.cross(a.up).normalized();
+  a.depth = std::max(kMinDepth, (p_W - cam.p_WC).dot(a.forward));
+  a.metres_per_height = cam.frustum_height * a.depth;
+  return a;
+}
+
+void MovePointer(const ViewAxes& a, const PointerDrag& d, Pose* X_WT) {
+  if (d.left) {
+    if (d.shift) {
+      X_WT->p -= d.ry * a.metres_per_height * a.forward;  // drag up: away from the eye
+    } else {
+      X_WT->p += a.metres_per_height * (d.rx * a.right - d.ry * a.up);
+    }
+  }
+  if (d.right && (d.rx != 0.0 || d.ry != 0.0)) {
+    const Quat turn = Quat(Eigen::AngleAxisd(d.ry * kTurnPerHeight, a.right)) *
+                      Quat(Eigen::AngleAxisd(d.rx * kTurnPerHeight, a.up));
+    X_WT->q = (turn * X_WT->q).normalized();
+  }
+  X_WT->p += d.scroll * kWheelFraction * a.depth * a.forward;  // wheel up: away from the eye
+}
 
 void PointerControl::Install(GLFWwindow* window, void* self) {
   glfwSetWindowUserPointer(window, self);
@@ -111,11 +127,18 @@ KeyActions PointerControl::Process(GLFWwindow* window, world::SceneRenderer& ren
   have_cursor_ = true;
   const bool shift = Held(window, GLFW_KEY_LEFT_SHIFT, GLFW_KEY_RIGHT_SHIFT);
   const bool camera = camera_drag != Held(window, GLFW_KEY_LEFT_CONTROL, GLFW_KEY_RIGHT_CONTROL);
-  const ViewAxes axes = Axes(renderer.camera_frame(), X_WT->p);
+  const ViewAxes axes = AxesAt(renderer.camera_frame(), X_WT->p);
   if (camera) {
     MoveCamera(renderer, rx, ry, shift);
   } else {
-    MovePointer(axes, rx, ry, shift, X_WT);
+    MovePointer(axes,
+                PointerDrag{.left = drag_[GLFW_MOUSE_BUTTON_LEFT],
+                            .right = drag_[GLFW_MOUSE_BUTTON_RIGHT],
+                            .shift = shift,
+                            .rx = rx,
+                            .ry = ry,
+                            .scroll = scroll_},
+                X_WT);
   }
   if (drag_[GLFW_MOUSE_BUTTON_MIDDLE] && ry != 0.0) {
     renderer.MoveCamera(world::CameraMotion::kZoom, 0, ry);
@@ -137,23 +160,6 @@ void PointerControl::MoveCamera(world::SceneRenderer& renderer, double rx, doubl
                         ry);
   }
   if (scroll_ != 0.0) renderer.MoveCamera(CameraMotion::kZoom, 0, -kCameraZoomPerNotch * scroll_);
-}
-
-void PointerControl::MovePointer(const ViewAxes& a, double rx, double ry, bool shift,
-                                 Pose* X_WT) const {
-  if (drag_[GLFW_MOUSE_BUTTON_LEFT]) {
-    if (shift) {
-      X_WT->p -= ry * a.metres_per_height * a.forward;  // drag up: away from the eye
-    } else {
-      X_WT->p += a.metres_per_height * (rx * a.right - ry * a.up);
-    }
-  }
-  if (drag_[GLFW_MOUSE_BUTTON_RIGHT] && (rx != 0.0 || ry != 0.0)) {
-    const Quat turn = Quat(Eigen::AngleAxisd(ry * kTurnPerHeight, a.right)) *
-                      Quat(Eigen::AngleAxisd(rx * kTurnPerHeight, a.up));
-    X_WT->q = (turn * X_WT->q).normalized();
-  }
-  X_WT->p += scroll_ * kWheelFraction * a.depth * a.forward;  // wheel up: away from the eye
 }
 
 KeyActions PointerControl::ApplyKeys(const ViewAxes& a, Pose* X_WT) {

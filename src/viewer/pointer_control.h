@@ -31,6 +31,27 @@ struct ViewAxes {
   double metres_per_height = 1.0;  ///< pointer motion per viewport height of mouse motion (m)
 };
 
+/// The camera's axes at p_W, the pointer target (world frame), for `camera`; the depth used to
+/// scale drags is at least 5 cm, so a pointer at the eye does not freeze the mouse.
+ViewAxes AxesAt(const world::CameraFrame& camera, const Vec3& p_W);
+
+/// One frame of pointer input: which drags are on (they began on the scene) and how far the
+/// cursor moved, in viewport heights (x right, y down, as GLFW's cursor), plus wheel notches.
+struct PointerDrag {
+  bool left = false;   ///< left button: move in the view plane (Shift: in depth)
+  bool right = false;  ///< right button: turn
+  bool shift = false;
+  double rx = 0.0, ry = 0.0;  ///< cursor motion / viewport height
+  double scroll = 0.0;        ///< wheel notches, up > 0
+};
+
+/// Moves the pointer target X_WT (world frame) for one frame of input, so that it follows the
+/// cursor at its depth: a left drag of (rx, ry) moves it metres_per_height · (rx right − ry up);
+/// Shift + left moves it −ry · metres_per_height along forward (drag up: away from the eye); a
+/// right drag turns it by π per viewport height about up (rx) and right (ry); each wheel notch
+/// moves it 2 % of its depth along forward.
+void MovePointer(const ViewAxes& axes, const PointerDrag& drag, Pose* X_WT);
+
 /// Turns GLFW input into camera moves and pointer-target moves. Plain drags move the pointer
 /// (left: in the view plane, Shift+left: in depth, right: rotate) and the wheel pushes it in
 /// depth; with Ctrl held (or with camera_drag set, without Ctrl) drags and wheel move the camera
@@ -50,7 +71,6 @@ class PointerControl {
 
  private:
   void MoveCamera(world::SceneRenderer& renderer, double rx, double ry, bool shift) const;
-  void MovePointer(const ViewAxes& axes, double rx, double ry, bool shift, Pose* X_WT) const;
   KeyActions ApplyKeys(const ViewAxes& axes, Pose* X_WT);
   void OnButton(int button, int action);
   void OnScroll(double y);

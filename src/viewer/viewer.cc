@@ -96,6 +96,7 @@ class ViewerApp {
     const std::string path = DefaultRecordPath(session);
     std::strncpy(panel_.record_path.data(), path.c_str(), panel_.record_path.size() - 1);
     last_.X_WP = target_W_;
+    last_.X_WQ = target_W_;  // no proxy (and no ghost) before the first tick
     live_.Start(headless() ? InputSource::kSession : InputSource::kMouse);
     rate_start_ = Clock::now();
   }
@@ -173,9 +174,7 @@ class ViewerApp {
       if (body == pointer_body_) X_WB = last_.X_WP;
     }
     renderer_.Update(state_);
-    const engine::RenderingSettings& r = live_.settings().rendering;
-    DrawOverlay(renderer_, last_, feed_.ir(), display_,
-                Coupling{pointer_body_, r.stiffness, r.rot_stiffness});
+    DrawOverlay(renderer_, last_, feed_.ir(), display_, pointer_body_);
   }
 
   PanelInfo Info() {
@@ -188,7 +187,9 @@ class ViewerApp {
     }
     PanelInfo info;
     info.session = &live_.session();
-    info.loop = live_.loop().stats();
+    info.settings = &live_.settings();
+    info.loop = live_.loop().ReadStats();
+    info.memory_locked = live_.memory_locked();
     info.source = live_.source();
     info.paused = live_.loop().paused();
     info.physics_hz = physics_hz_;

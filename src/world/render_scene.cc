@@ -90,11 +90,13 @@ struct SceneRenderer::Impl {
   }
 
   // The slot for one more debug geom, initialized as decoration, or null when the scene is full.
-  mjvGeom* NewGeom(int type, const Rgba& color) {
+  // `size`: a model geom's size parameters (geom_size), which mjv_initGeom turns into the
+  // renderer's xyz scales (a sphere's radius into all three); null for scales set afterwards.
+  mjvGeom* NewGeom(int type, const Rgba& color, const mjtNum* size = nullptr) {
     if (scene.ngeom >= scene.maxgeom) return nullptr;
     mjvGeom* g = &scene.geoms[scene.ngeom];
     const float rgba[4] = {color.r, color.g, color.b, color.a};
-    mjv_initGeom(g, type, nullptr, nullptr, nullptr, rgba);
+    mjv_initGeom(g, type, size, nullptr, nullptr, rgba);
     g->category = mjCAT_DECOR;
     g->objtype = mjOBJ_UNKNOWN;
     g->objid = -1;
@@ -246,10 +248,10 @@ bool SceneRenderer::AddBodyGhost(int body, const Pose& X_WB, const Rgba& color) 
   if (body < 0 || body >= m.nbody) return false;
   for (int id = 0; id < m.ngeom; ++id) {
     if (m.geom_bodyid[id] != body || m.geom_type[id] == mjGEOM_PLANE) continue;
-    mjvGeom* g = impl_->NewGeom(m.geom_type[id], color);
+    // Copying geom_size as the scales would flatten spheres and capsules (size[1..2] = 0).
+    mjvGeom* g = impl_->NewGeom(m.geom_type[id], color, m.geom_size + 3 * id);
     if (g == nullptr) return false;
     g->dataid = m.geom_dataid[id];
-    for (int i = 0; i < 3; ++i) g->size[i] = static_cast<float>(m.geom_size[3 * id + i]);
     const Pose X_BG{Vec3(m.geom_pos[3 * id], m.geom_pos[3 * id + 1], m.geom_pos[3 * id + 2]),
                     Quat(m.geom_quat[4 * id], m.geom_quat[4 * id + 1], m.geom_quat[4 * id + 2],
                          m.geom_quat[4 * id + 3])};

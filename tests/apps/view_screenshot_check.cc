@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: Apache-2.0
-// Checks a `mrh view` screenshot of scenes/demo.json: not blank, and the floor and cubes appear.
+// Checks a `mrh view` screenshot of scenes/demo_push.xml: not blank, the floor and cubes appear.
 //
-//   view_screenshot_check IMAGE.png [--panel]
+//   view_screenshot_check IMAGE.png [--panel] [--force]
 //
 // Exits 0 if every check passes, 1 (printing which failed) otherwise. The scene's colours are
 // demo_push.xml's: a light grey floor and a red, a green and a blue cube; lighting shades them,
 // so each check looks for a dominant channel rather than an exact value. --panel also requires
-// the ImGui panel (its dark background and blue headers).
+// the ImGui panel (its dark background and blue headers). --force also requires the orange
+// force arrow (src/viewer/overlay.cc kForceColor, 1.0 0.35 0.1).
 #include <stb_image.h>
 
 #include <algorithm>
@@ -28,6 +29,8 @@ struct Pixel {
 // default camera covers ~1-2 %, the floor most of the rest; 0.1 % is ~1000 pixels.
 constexpr double kMinCubeFraction = 0.001;
 constexpr double kMinFloorFraction = 0.2;
+// The force arrow is thin: 0.01 % is ~100 pixels, a few millimetres of shaft at the default view.
+constexpr double kMinArrowFraction = 0.0001;
 // The panel region is mostly background, with text, buttons and plots on it.
 constexpr double kMinPanelFraction = 0.5;
 // A blank (single-colour) frame has zero spread; a rendered scene has shading everywhere.
@@ -70,10 +73,20 @@ double LumaStdDev(const std::vector<Pixel>& pixels) {
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: view_screenshot_check IMAGE.png [--panel]\n");
+    std::fprintf(stderr, "usage: view_screenshot_check IMAGE.png [--panel] [--force]\n");
     return 2;
   }
-  const bool panel = argc > 2 && std::strcmp(argv[2], "--panel") == 0;
+  bool panel = false, force = false;
+  for (int i = 2; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--panel") == 0) {
+      panel = true;
+    } else if (std::strcmp(argv[i], "--force") == 0) {
+      force = true;
+    } else {
+      std::fprintf(stderr, "view_screenshot_check: unknown option %s\n", argv[i]);
+      return 2;
+    }
+  }
   int width = 0, height = 0, channels = 0;
   unsigned char* data = stbi_load(argv[1], &width, &height, &channels, 3);
   if (data == nullptr) {
@@ -108,6 +121,17 @@ int main(int argc, char** argv) {
        },
        kMinCubeFraction},
   };
+
+  if (force) {
+    // Orange against the red cube (0.8 0.3 0.2): both have g ≈ 0.35 r, but the arrow's blue is
+    // under half its green (0.29 shaded) and the cube's two thirds of it. The yellow pointer
+    // (0.95 0.8 0.1) has g > 0.8 r.
+    checks.push_back({"orange force arrow",
+                      [](const Pixel& p) {
+                        return p.r > 90 && 4 * p.g > p.r && 2 * p.g < p.r && 20 * p.b < 9 * p.g;
+                      },
+                      kMinArrowFraction});
+  }
 
   int failures = 0;
   const double stddev = LumaStdDev(pixels);

@@ -35,9 +35,17 @@ if(TARGET mrh_viewer)
            COMMAND ${view_test} ${mrh_bin} ${check} scenes/demo.json
                    ${CMAKE_CURRENT_BINARY_DIR}/view_panel.png 30 --panel
            WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+  # The pointer held 1 cm into the floor: a steady 10 N up from the first frames, so the arrow
+  # shows whatever the frame rate (in demo.json contact starts ~2 s in, after a frame-rate
+  # dependent number of frames).
+  add_test(NAME viewer.ScreenshotShowsTheForceArrow
+           COMMAND ${view_test} ${mrh_bin} ${check} ${fixtures}/view_press.json
+                   ${CMAKE_CURRENT_BINARY_DIR}/view_force.png 30 --force
+           WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
   # Under ASan, LeakSanitizer would report what the X, GLX and Mesa libraries keep until exit
   # (not ours): leaks are checked by the GL-free viewer_test instead.
   set_tests_properties(viewer.ScreenshotShowsFloorAndCubes viewer.ScreenshotShowsThePanel
+                       viewer.ScreenshotShowsTheForceArrow
                        PROPERTIES LABELS viewer TIMEOUT 120 SKIP_RETURN_CODE 77
                                   ENVIRONMENT "ASAN_OPTIONS=detect_leaks=0")
 else()
@@ -46,9 +54,10 @@ else()
                view ${fixtures}/tiny.json)
 endif()
 
-# Unit tests of the viewer's GL-free parts (tests/viewer/): feed, session restarts, recording,
-# plots, the inferred proxy. No display needed.
+# Unit tests of the viewer's GL-free parts (tests/viewer/): feed, haptic loop, session restarts,
+# pointer control, recording, plots, the proxy ghost. No display needed. Label `threaded`: they
+# start the haptic and physics threads, so the TSan preset runs them with the `engine` tests.
 if(TARGET mrh_viewer)
   file(GLOB viewer_test_sources CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/tests/viewer/*_test.cc)
-  mrh_test(viewer_test LABEL viewer SOURCES ${viewer_test_sources} DEPS mrh_viewer)
+  mrh_test(viewer_test LABEL threaded SOURCES ${viewer_test_sources} DEPS mrh_viewer)
 endif()

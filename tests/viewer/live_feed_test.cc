@@ -27,6 +27,18 @@ TEST(LiveFeedTest, TicksArriveOnTheViewerClock) {
   EXPECT_FALSE(feed.PopTick(&sample));
 }
 
+TEST(LiveFeedTest, TicksCarryTheMethodsProxyPose) {
+  LiveFeed feed(8);
+  engine::TickRecord tick;
+  tick.X_WP.p = Vec3(0.0, 0.0, 0.099);
+  tick.X_WQ.p = Vec3(0.0, 0.0, 0.1);
+  feed.OnTick(tick);
+  TickSample sample;
+  ASSERT_TRUE(feed.PopTick(&sample));
+  EXPECT_EQ(sample.X_WQ.p, tick.X_WQ.p);
+  EXPECT_EQ(sample.X_WP.p, tick.X_WP.p);
+}
+
 TEST(LiveFeedTest, CountsTicksDroppedWhenTheUiFallsBehind) {
   LiveFeed feed(2);
   for (int i = 0; i < 5; ++i) feed.OnTick(engine::TickRecord{});

@@ -28,6 +28,7 @@ struct TickRecord {
   std::int64_t tick = 0;
   double t = 0.0;                 ///< s
   Pose X_WP;                      ///< pointer (device tool) pose
+  Pose X_WQ;                      ///< proxy pose; equals X_WP when the method has no proxy
   Wrench displayed_W;             ///< wrench sent to the device, after the safety layer
   Wrench rendered_W;              ///< wrench the method rendered (what the physics saw)
   int contacts = 0;

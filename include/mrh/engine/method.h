@@ -34,6 +34,9 @@ struct TickOutput {
   /// Wrench rendered on the user's hand (world frame, torque about the pointer origin), before
   /// the safety layer.
   Wrench w_W;
+  /// Proxy pose (world frame). The engine sets it to the pointer pose TickInput::X_WP before
+  /// the call; a method with a proxy (proxy-6dof) overwrites it, the others leave it.
+  Pose X_WQ;
   int contacts = 0;               ///< active contacts this tick
   std::uint32_t status = 0;       ///< method status bits
 };
