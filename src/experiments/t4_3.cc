@@ -513,7 +513,8 @@ bool WriteSummaries(const std::filesystem::path& out, const std::vector<RunResul
   // was solved on its island, with no MuJoCo solver iteration, and as accurately as converged.
   bool islands = true;
   for (const RunResult& r : runs) {
-    if (r.variant == "local-dynamics") islands = islands && r.test_runs > 0 && r.test_iterations == 0;
+    if (r.variant != "local-dynamics") continue;
+    islands = islands && r.test_runs > 0 && r.test_iterations == 0;
   }
   summary["checks"]["local_dynamics_test_runs_use_no_solver_iterations"] = islands;
   bool accurate = true;

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
 // Exact constraint solve of a test-force run on the pushed body's constraint island.
-#include "world/island_solve_impl.h"
-
 #include <algorithm>
 #include <numeric>
+
+#include "world/island_solve_impl.h"
 
 namespace mrh::world::internal {
 namespace {
@@ -60,7 +60,9 @@ int IslandSolve::Find(int body) {
 bool IslandSolve::CollectIsland(const mjModel& m, const mjData& d, int body, int max_dofs) {
   parent_.resize(static_cast<std::size_t>(m.nbody));
   std::iota(parent_.begin(), parent_.end(), 0);
-  auto unite = [this](int a, int b) { parent_[static_cast<std::size_t>(Find(a))] = Find(b); };
+  auto unite = [this](int a, int b) {
+    parent_[static_cast<std::size_t>(Find(a))] = Find(b);
+  };
   for (int i = 0; i < m.nv; ++i) {
     if (m.dof_parentid[i] >= 0) unite(m.dof_bodyid[i], m.dof_bodyid[m.dof_parentid[i]]);
   }
@@ -68,7 +70,10 @@ bool IslandSolve::CollectIsland(const mjModel& m, const mjData& d, int body, int
     int first = -1;
     ForEachNonzero(m, d, r, [&](int c, mjtNum) {
       const int b = m.dof_bodyid[c];
-      if (first < 0) first = b; else unite(first, b);
+      if (first < 0)
+        first = b;
+      else
+        unite(first, b);
     });
   }
   const int root = Find(body);

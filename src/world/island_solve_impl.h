@@ -39,6 +39,7 @@ class IslandSolve {
 
   /// Dofs of the prepared island; active-set iterations of the last Prepare() or Solve().
   int num_dofs() const { return static_cast<int>(dofs_.size()); }
+
   int iterations() const { return iterations_; }
 
  private:
@@ -47,19 +48,19 @@ class IslandSolve {
 
   int Find(int body);
 
-  std::vector<int> parent_;           // union-find over bodies
-  std::vector<int> dofs_;             // island dofs (global indices), ascending
-  std::vector<int> local_of_dof_;     // global dof → island index, −1 outside
-  std::vector<int> rows_;             // island rows
-  std::vector<bool> one_sided_;       // per island row: contact/limit (else equality)
-  Eigen::MatrixXd J_;                 // island rows × island dofs
-  Eigen::VectorXd D_, aref_;          // per island row
-  Eigen::MatrixXd M_;                 // island block of the mass matrix
-  Eigen::VectorXd M_a_smooth_;        // M_II a_smooth_I
-  Eigen::VectorXd zero_;              // exact island solution without test force
+  std::vector<int> parent_;        // union-find over bodies
+  std::vector<int> dofs_;          // island dofs (global indices), ascending
+  std::vector<int> local_of_dof_;  // global dof → island index, −1 outside
+  std::vector<int> rows_;          // island rows
+  std::vector<bool> one_sided_;    // per island row: contact/limit (else equality)
+  Eigen::MatrixXd J_;              // island rows × island dofs
+  Eigen::VectorXd D_, aref_;       // per island row
+  Eigen::MatrixXd M_;              // island block of the mass matrix
+  Eigen::VectorXd M_a_smooth_;     // M_II a_smooth_I
+  Eigen::VectorXd zero_;           // exact island solution without test force
   Eigen::MatrixXd H_;
   Eigen::LLT<Eigen::MatrixXd> llt_;
-  std::vector<double> qfrc_;          // nv scratch for mj_applyFT
+  std::vector<double> qfrc_;  // nv scratch for mj_applyFT
   int body_ = -1;
   int iterations_ = 0;
 };
