@@ -104,7 +104,7 @@ struct T45Options {
   /// The impulse method is unstable on this scene (k = 1000 N/m on 0.1 kg balls at 50 ms):
   /// add it to see its cost with the balls flung off.
   std::vector<std::string> methods = {"local-dynamics"};
-  std::vector<int> neighbors = {1, 2, 4, 8, 16, 32, 64};
+  std::vector<int> neighbors = {1, 2, 4, 8, 16, 32, 64, 128};
   double duration = 1.0;  ///< s simulated per run
 };
 int RunT45(const std::filesystem::path& out, bool quiet, const T45Options& options);
