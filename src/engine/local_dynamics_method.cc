@@ -2,6 +2,7 @@
 // Physics half of local-dynamics: synchronization, global step, IR and perturbations (SPEC §4.9).
 #include "local_dynamics_method.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -42,11 +43,14 @@ LocalDynamicsMethod::LocalDynamicsMethod(const MethodContext& context,
       rendering_(context.settings->rendering),
       correction_(rendering_.perturbation ? options.correction
                                           : CorrectionModel::kVelocityResidual),
-      perturber_(context.world, options.path),
+      perturber_(context.world, options.perturber),
       radius_(context.pointer_radius),
       stiffness_(context.settings->rendering.stiffness),
       damping_(context.settings->rendering.damping) {
   builder_.emplace(*world_, pointer_body_, radius_, rendering_);
+  if (options.reference.has_value() && rendering_.perturbation) {
+    reference_.emplace(context.world, *options.reference);
+  }
   const auto capacity = static_cast<std::size_t>(world_->num_bodies());
   sent_last_.reserve(capacity);
   sent_before_.reserve(capacity);
@@ -179,6 +183,7 @@ void LocalDynamicsMethod::MeasureTargets(ir::PhysicsSnapshot* out) {
     }
     measured_group_start_.push_back(measured_groups_.size());
     perturber_.End();
+    if (reference_.has_value()) CheckAgainstReference();
   }
   for (std::size_t i = 0; i < targets_.size(); ++i) {
     const int body = out->bodies[targets_[i].motion].body;
@@ -193,6 +198,22 @@ void LocalDynamicsMethod::MeasureTargets(ir::PhysicsSnapshot* out) {
   counters_.perturbed_bodies += static_cast<std::int64_t>(targets_.size());
   counters_.last_perturbed_bodies = static_cast<int>(targets_.size());
   counters_.last.perturbation_ms = MsSince(t0);
+}
+
+// The same measurements by the reference perturber, from the same (restored) state.
+void LocalDynamicsMethod::CheckAgainstReference() {
+  reference_->Begin(target_bodies_);
+  reference_->ZeroForceRun();
+  for (std::size_t i = 0; i < targets_.size(); ++i) {
+    const world::DynamicIr ref = reference_->Measure(i, targets_[i].f1, targets_[i].p_W);
+    const double rel_A = (measured_[i].A - ref.A).norm() / ref.A.norm();
+    const double rel_b = (measured_[i].b - ref.b).norm() / (1.0 + ref.b.norm());
+    ++counters_.reference_checks;
+    counters_.reference_max_rel_A = std::max(counters_.reference_max_rel_A, rel_A);
+    counters_.reference_sum_rel_A += rel_A;
+    counters_.reference_max_rel_b = std::max(counters_.reference_max_rel_b, rel_b);
+  }
+  reference_->End();
 }
 
 // A = M⁻¹J of the body alone for a force at p_W (eq. 4.1–4.2 without what it touches), b = 0:

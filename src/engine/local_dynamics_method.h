@@ -34,8 +34,13 @@ enum class CorrectionModel {
 
 /// Options of LocalDynamicsMethod that sessions do not set (tests and experiments do).
 struct LocalDynamicsOptions {
-  world::PerturbationPath path = world::PerturbationPath::kAuto;
+  world::PerturberSettings perturber;
   CorrectionModel correction = CorrectionModel::kVelocityResidual;
+  /// Accuracy check for experiments and tests: every measurement is repeated by a second
+  /// Perturber with these settings at the same state with the same test forces, and the
+  /// difference is counted (LocalDynamicsCounters::reference_*). The method still uses the
+  /// first measurement.
+  std::optional<world::PerturberSettings> reference;
 };
 
 /// Wall-clock cost of the phases of a physics step (ms), for cost experiments (t4.3, t4.5).
@@ -61,6 +66,12 @@ struct LocalDynamicsCounters {
   /// whose joints could not take the move.
   std::int64_t group_syncs = 0;
   std::int64_t group_sync_failures = 0;
+  /// With LocalDynamicsOptions::reference: measurements compared, and the largest and summed
+  /// relative difference |A − A_ref| / |A_ref| (Frobenius norms) and |b − b_ref| / (1 + |b_ref|).
+  std::int64_t reference_checks = 0;
+  double reference_max_rel_A = 0.0;
+  double reference_sum_rel_A = 0.0;
+  double reference_max_rel_b = 0.0;
   LocalDynamicsTiming last;   ///< the latest step's phases
   LocalDynamicsTiming total;  ///< summed over all steps
 };
@@ -146,6 +157,7 @@ class LocalDynamicsMethod final : public Method {
   void GlobalStep(const ir::HapticReport& report);
   void FindTargets(const ir::HapticReport* report, const ir::PhysicsSnapshot& out);
   void MeasureTargets(ir::PhysicsSnapshot* out);
+  void CheckAgainstReference();
   void FillDynamics(ir::PhysicsSnapshot* out);
   world::DynamicIr OwnAccelerance(int body, const Vec3& p_W) const;
   const SentBody* FindSent(const std::vector<SentBody>& sent, int body) const;
@@ -157,6 +169,7 @@ class LocalDynamicsMethod final : public Method {
   CorrectionModel correction_;
   std::optional<PointIrBuilder> builder_;
   world::Perturber perturber_;
+  std::optional<world::Perturber> reference_;
   std::vector<SentBody> sent_last_;    // dynamic bodies of the latest snapshot (rendered next)
   std::vector<SentBody> sent_before_;  // ... of the one before (rendered by the report's period)
   std::vector<world::GroupResponse> group_last_;    // groups of sent_last_

@@ -21,6 +21,10 @@ namespace mrh::ir {
 struct PhysicsSnapshot;
 }
 
+namespace mrh::engine {
+class Method;
+}
+
 namespace mrh::experiments::internal {
 
 /// T4.1: single-rate, impulse and local-dynamics on the moving 60 kg cube, plus a mass × speed
@@ -38,6 +42,9 @@ int RunT41(const std::filesystem::path& out, bool quiet, const T41Options& optio
 struct MethodTimings {
   /// Called on the physics side with each snapshot PhysicsStep produced (optional).
   std::function<void(const ir::PhysicsSnapshot&)> on_snapshot;
+  /// Called on the physics side after each PhysicsStep with the wrapped method (optional), to
+  /// read its counters.
+  std::function<void(const engine::Method&)> on_step;
   std::vector<double> step_wall_ms;  ///< PhysicsStep wall time (ms)
   std::vector<double> step_cpu_ms;   ///< PhysicsStep thread CPU time (ms): immune to preemption
   std::vector<double> tick_wall_us;  ///< HapticTick wall time (µs)
@@ -56,7 +63,10 @@ std::string RegisterTimedMethod(const std::string& inner, std::shared_ptr<Method
                                 std::size_t max_ticks, std::size_t max_steps);
 
 /// T4.3: computation occupancy (physics step compute time / physics_dt) per method and cube
-/// count. Returns 0 if every run produced finite occupancies for every step.
+/// count. Returns 0 if every run produced finite occupancies for every step, every
+/// local-dynamics test-force run was solved on its constraint island (no MuJoCo solver
+/// iterations: a count, independent of timing) and the island accelerance agrees with a
+/// converged MuJoCo measurement to 1e-4 (accuracy runs at the largest cube count).
 int RunT43(const std::filesystem::path& out, bool quiet);
 
 /// What RunT43 runs. A variant is a method name, or "local-dynamics/no-perturbation"
@@ -68,6 +78,9 @@ struct T43Options {
   double physics_dt = 0.02;  ///< s, multi-rate methods (single-rate steps at haptic_dt)
   int steps = 50;               ///< physics steps per multi-rate run
   int single_rate_steps = 1000;  ///< physics steps (1 ms each) per single-rate run
+  /// Physics steps of the accuracy run at the largest cube count: local-dynamics whose every
+  /// measurement is repeated with the exact warm start (TestRunWarmStart::kSaved). 0: none.
+  int accuracy_steps = 5;
 };
 int RunT43(const std::filesystem::path& out, bool quiet, const T43Options& options);
 
@@ -91,7 +104,7 @@ struct T45Options {
   /// The impulse method is unstable on this scene (k = 1000 N/m on 0.1 kg balls at 50 ms):
   /// add it to see its cost with the balls flung off.
   std::vector<std::string> methods = {"local-dynamics"};
-  std::vector<int> neighbors = {1, 2, 4, 8, 16, 32, 64};
+  std::vector<int> neighbors = {1, 2, 4, 8, 16, 32, 64, 128};
   double duration = 1.0;  ///< s simulated per run
 };
 int RunT45(const std::filesystem::path& out, bool quiet, const T45Options& options);

@@ -18,9 +18,10 @@ namespace mrh::experiments::internal {
 namespace {
 
 // Scene (thesis sizes n/g): a fixed 0.1 m pointer sphere at the origin in zero gravity, touched
-// by N balls (r = 2 cm, 0.1 kg) spread evenly over it (Fibonacci sphere). Each ball slides on its
-// own radial joint whose spring (5 N/m, rest 10 cm inward) presses it on the pointer with about
-// 0.5 N, so every ball stays a touching neighbor for the whole run. The spring is soft on purpose:
+// by N balls (0.1 kg, r = 2 cm or less: BallRadius) spread evenly over it (Fibonacci sphere).
+// Each ball slides on its own radial joint whose spring (5 N/m, rest 10 cm inward) presses it
+// on the pointer with about 0.5 N, so every ball stays a touching neighbor for the whole run.
+// The spring is soft on purpose:
 // A and b hold it constant over a physics step, which needs ω·Δt^G = sqrt(k/m)·Δt^G well below 1
 // (here 0.35; with 50 N/m, ω·Δt^G = 1.1, local-dynamics oscillated out of contact at 50 ms).
 constexpr double kPointerRadius = 0.1;  // m
@@ -32,10 +33,23 @@ constexpr double kPhysicsDt = 0.05;     // s, Chapter 4's physics period
 // Budget of the haptic thread (the thesis' 1 ms tick).
 constexpr double kTickBudgetUs = 1000.0;
 
+// Balls closer than this many radii (centre spacing of the Fibonacci sphere) get smaller, so
+// they never touch each other (MuJoCo contacts between them would tie them into one 128-dof
+// constraint island and push some off the pointer): 2 cm up to 32 balls, 1.5 cm at 64 and
+// 1.1 cm at 128 (with 2.5 radii, 128 balls of 1.5 cm lost two from the pointer).
+constexpr double kMinSpacingRadii = 3.5;
+
+double BallRadius(int balls) {
+  const double d = kPointerRadius + kBallRadius;
+  const double spacing = std::sqrt(4.0 * M_PI * d * d / balls);
+  return std::min(kBallRadius, spacing / kMinSpacingRadii);
+}
+
 std::string SceneXml(int balls) {
   std::string bodies;
+  const double radius = BallRadius(balls);
   const double golden = M_PI * (3.0 - std::sqrt(5.0));
-  const double d = kPointerRadius + kBallRadius;
+  const double d = kPointerRadius + radius;
   for (int i = 0; i < balls; ++i) {
     // Fibonacci sphere: even directions for any count.
     const double z = balls == 1 ? 0.0 : 1.0 - 2.0 * (i + 0.5) / balls;
@@ -48,7 +62,7 @@ std::string SceneXml(int balls) {
         "springref=\"{}\"/>\n"
         "      <geom type=\"sphere\" size=\"{}\" mass=\"{}\"/>\n"
         "    </body>\n",
-        i, d * x, d * y, d * z, x, y, z, kSpring, kSpringRest, kBallRadius, kBallMass);
+        i, d * x, d * y, d * z, x, y, z, kSpring, kSpringRest, radius, kBallMass);
   }
   return fmt::format(
       "<!-- SPDX-License-Identifier: Apache-2.0 -->\n"

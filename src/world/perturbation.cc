@@ -9,8 +9,11 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <string>
 
 #include "mrh/core/assert.h"
+#include "mrh/core/error.h"
+#include "world/island_solve_impl.h"
 #include "world/world_impl.h"
 
 namespace mrh::world {
@@ -113,6 +116,28 @@ void AddContactForce(const mjModel& m, const mjData& d, int i, int body, double 
   }
 }
 
+// Sets the settings' solver tolerance and iteration limit on the model for one run (the model is
+// const otherwise) and puts the model's own back.
+class SolverOverride {
+ public:
+  SolverOverride(mjModel* m, const PerturberSettings& settings)
+      : m_(m), tolerance_(m->opt.tolerance), iterations_(m->opt.iterations) {
+    if (settings.solver_tolerance > 0.0) m->opt.tolerance = settings.solver_tolerance;
+    if (settings.solver_iterations > 0) m->opt.iterations = settings.solver_iterations;
+  }
+  ~SolverOverride() {
+    m_->opt.tolerance = tolerance_;
+    m_->opt.iterations = iterations_;
+  }
+  SolverOverride(const SolverOverride&) = delete;
+  SolverOverride& operator=(const SolverOverride&) = delete;
+
+ private:
+  mjModel* m_;
+  mjtNum tolerance_;
+  int iterations_;
+};
+
 }  // namespace
 
 std::uint64_t ContactKey(int geom_a, int geom_b) {
@@ -135,8 +160,21 @@ Mat3 TestForces(const Vec3& f1) {
   return F;
 }
 
-Perturber::Perturber(World* world, PerturbationPath path) : world_(world), path_(path) {
+Perturber::Perturber(World* world, PerturbationPath path)
+    : Perturber(world, PerturberSettings{.path = path}) {}
+
+Perturber::Perturber(World* world, const PerturberSettings& settings)
+    : world_(world), settings_(settings) {
   MRH_DEMAND(world_ != nullptr);
+  if (settings_.max_island_dofs < 0 || settings_.solver_iterations < 0 ||
+      !(settings_.solver_tolerance >= 0.0)) {
+    throw InvalidArgument("Perturber: max_island_dofs = " +
+                          std::to_string(settings_.max_island_dofs) + ", solver_iterations = " +
+                          std::to_string(settings_.solver_iterations) + ", solver_tolerance = " +
+                          std::to_string(settings_.solver_tolerance) +
+                          "; expected each >= 0 (0: the model's own solver settings)");
+  }
+  island_ = std::make_unique<internal::IslandSolve>();
   const mjModel& m = *world_->impl_->model;
   // mj_Euler integrates damping implicitly, which changes qacc after the forward pass.
   model_allows_skip_ = m.opt.integrator == mjINT_EULER;
@@ -145,6 +183,8 @@ Perturber::Perturber(World* world, PerturbationPath path) : world_(world), path_
   }
   snapshot_ = world_->MakeSnapshot();
   warmstart_.assign(static_cast<std::size_t>(m.nv), 0.0);
+  zero_solution_.assign(static_cast<std::size_t>(m.nv), 0.0);
+  zero_smooth_.assign(static_cast<std::size_t>(m.nv), 0.0);
   jacp_.assign(3 * static_cast<std::size_t>(m.nv), 0.0);
   jacr_.assign(3 * static_cast<std::size_t>(m.nv), 0.0);
   const auto nv = static_cast<std::size_t>(m.nv);
@@ -170,12 +210,13 @@ void Perturber::Begin(std::span<const int> bodies) {
   MRH_DEMAND(!open_);
   const mjModel& m = *world_->impl_->model;
   bodies_.assign(bodies.begin(), bodies.end());
-  forward_skip_ = path_ == PerturbationPath::kAuto && model_allows_skip_;
+  forward_skip_ = settings_.path == PerturbationPath::kAuto && model_allows_skip_;
   for (int body : bodies_) {
     MRH_DEMAND(body > 0 && body < m.nbody && m.body_dofnum[body] > 0);
     if (!IsFreeBody(m, body) && !IsSlideBody(m, body)) forward_skip_ = false;
   }
   world_->Save(&snapshot_);
+  saved_solver_iter_ = world_->impl_->data->solver_iter;
   dt_ = m.opt.timestep;
   start_.resize(bodies_.size());
   zero_.resize(bodies_.size());
@@ -202,13 +243,30 @@ void Perturber::SetUpForwardSkip() {
   const mjModel* m = w.model.get();
   mjData* d = w.data.get();
   std::copy_n(d->qacc_warmstart, m->nv, warmstart_.data());
-  mj_forwardSkip(m, d, mjSTAGE_NONE, 1);
+  {
+    const SolverOverride solver(w.model.get(), settings_);
+    mj_forwardSkip(m, d, mjSTAGE_NONE, 1);
+  }
+  std::copy_n(d->qacc_smooth, m->nv, zero_smooth_.data());
   w.kinematics_stale = false;
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     start_[i] = TwistAfterEuler(*m, *d, bodies_[i], 0.0, d->qacc);
     zero_[i] = TwistAfterEuler(*m, *d, bodies_[i], dt_, d->qacc);
   }
   std::copy_n(d->qacc, m->nv, zero_q_.data());
+  std::copy_n(d->qacc, m->nv, zero_solution_.data());
+}
+
+const double* Perturber::TestWarmStart() const {
+  return settings_.warm_start == TestRunWarmStart::kZeroForceSolution ? zero_solution_.data()
+                                                                      : warmstart_.data();
+}
+
+void Perturber::CountTestIterations() {
+  const int used = world_->impl_->data->solver_iter;
+  counters_.force_run_solver_iterations += used;
+  counters_.max_force_run_solver_iterations =
+      std::max(counters_.max_force_run_solver_iterations, used);
 }
 
 void Perturber::ZeroForceRun() {
@@ -217,10 +275,17 @@ void Perturber::ZeroForceRun() {
   if (forward_skip_) {
     // Begin() already did this run's forward pass; its results are still in the data.
     RecordBaseContacts();
+    counters_.zero_force_solver_iterations += world_->impl_->data->solver_iter;
     ++counters_.forward_skip_runs;
   } else {
-    world_->Step();
+    {
+      const SolverOverride solver(world_->impl_->model.get(), settings_);
+      world_->Step();
+    }
     RecordBaseContacts();  // the step's forward pass ran at the saved state
+    const mjData& d = *world_->impl_->data;
+    counters_.zero_force_solver_iterations += d.solver_iter;
+    std::copy_n(d.qacc, world_->impl_->model->nv, zero_solution_.data());
     CaptureFullStep(&zero_q_, &zero_twists_);
     for (std::size_t i = 0; i < bodies_.size(); ++i) {
       zero_[i] = zero_twists_[static_cast<std::size_t>(bodies_[i])];
@@ -240,8 +305,15 @@ Twist Perturber::ForceRun(std::size_t index, const Vec3& f_W, const Vec3& p_W) {
 Twist Perturber::Run(std::size_t index, const Vec3& f_W, const Vec3& p_W, int slot) {
   MRH_DEMAND(open_ && zero_done_ && index < bodies_.size());
   const std::int64_t t0 = NowNs();
-  const Twist result =
-      forward_skip_ ? RunForwardSkip(index, f_W, p_W, slot) : RunFullStep(index, f_W, p_W, slot);
+  Twist result;
+  if (island_ready_ && slot >= 0 && RunIsland(index, f_W, p_W, slot, &result)) {
+    // solved on the island
+  } else {
+    if (island_ready_) ++counters_.island_fallbacks;
+    const SolverOverride solver(world_->impl_->model.get(), settings_);
+    result =
+        forward_skip_ ? RunForwardSkip(index, f_W, p_W, slot) : RunFullStep(index, f_W, p_W, slot);
+  }
   ++counters_.force_runs;
   counters_.run_ns += NowNs() - t0;
   return result;
@@ -252,8 +324,8 @@ Twist Perturber::RunForwardSkip(std::size_t index, const Vec3& f_W, const Vec3& 
   const mjModel* m = w.model.get();
   mjData* d = w.data.get();
   const int body = bodies_[index];
-  // The solver's warm start must be the saved one, as in a step from the saved state.
-  std::copy_n(warmstart_.data(), m->nv, d->qacc_warmstart);
+  // The solver's warm start (TestRunWarmStart), the same as RunFullStep's.
+  std::copy_n(TestWarmStart(), m->nv, d->qacc_warmstart);
   mjtNum* xfrc = d->xfrc_applied + 6 * body;
   std::array<mjtNum, 6> saved{};
   std::copy_n(xfrc, 6, saved.data());
@@ -264,16 +336,34 @@ Twist Perturber::RunForwardSkip(std::size_t index, const Vec3& f_W, const Vec3& 
     xfrc[3 + i] += tau[i];
   }
   mj_forwardSkip(m, d, mjSTAGE_VEL, 1);
+  CountTestIterations();
   std::copy_n(saved.data(), 6, xfrc);
   if (slot >= 0) std::copy_n(d->qacc, m->nv, run_q_[static_cast<std::size_t>(slot)].data());
   ++counters_.forward_skip_runs;
   return TwistAfterEuler(*m, *d, body, dt_, d->qacc);
 }
 
+// The exact island solution (PerturberSettings::island_solve) in place of mj_forwardSkip.
+bool Perturber::RunIsland(std::size_t index, const Vec3& f_W, const Vec3& p_W, int slot,
+                          Twist* out) {
+  const World::Impl& w = *world_->impl_;
+  std::vector<double>& qacc = run_q_[static_cast<std::size_t>(slot)];
+  const bool solved =
+      island_->Solve(*w.model, w.data.get(), f_W.data(), p_W.data(), zero_q_.data(), qacc.data());
+  counters_.island_iterations += island_->iterations();
+  if (!solved) return false;
+  ++counters_.island_runs;
+  ++counters_.forward_skip_runs;
+  *out = TwistAfterEuler(*w.model, *w.data, bodies_[index], dt_, qacc.data());
+  return true;
+}
+
 Twist Perturber::RunFullStep(std::size_t index, const Vec3& f_W, const Vec3& p_W, int slot) {
   const int body = bodies_[index];
   world_->AddForceAtPoint(body, f_W, p_W);
+  std::copy_n(TestWarmStart(), world_->impl_->model->nv, world_->impl_->data->qacc_warmstart);
   world_->Step();
+  CountTestIterations();
   const Twist result = world_->body_state(body).V_WCm;
   if (slot >= 0) {
     const auto k = static_cast<std::size_t>(slot);
@@ -288,11 +378,25 @@ DynamicIr Perturber::Measure(std::size_t index, const Vec3& f1, const Vec3& p_W)
   MRH_DEMAND(open_ && zero_done_ && index < bodies_.size());
   const Mat3 F = TestForces(f1);
   const Vec6 u0 = ToVec6(zero_[index]);
+  island_ready_ = false;
+  if (forward_skip_ && settings_.island_solve) {
+    const World::Impl& w = *world_->impl_;
+    island_ready_ = island_->Prepare(*w.model, w.data.get(), bodies_[index],
+                                     settings_.max_island_dofs, zero_smooth_.data(),
+                                     zero_q_.data());
+    counters_.island_iterations += island_->iterations();
+    if (island_ready_) {
+      counters_.max_island_dofs = std::max(counters_.max_island_dofs, island_->num_dofs());
+    } else {
+      ++counters_.island_fallbacks;
+    }
+  }
   Mat63 Y;
   for (int k = 0; k < 3; ++k) {
     // eq. 4.8 (corrected, C8): y_k = (u_k − u_0)/Δt; b cancels.
     Y.col(k) = (ToVec6(Run(index, F.col(k), p_W, k)) - u0) / dt_;
   }
+  island_ready_ = false;
   const Mat3 F_inverse = F.inverse();
   DynamicIr ir;
   ir.A = Y * F_inverse;                       // eq. 4.10
@@ -354,6 +458,7 @@ void Perturber::CollectGroup(int measured, const Mat3& F_inverse) {
 void Perturber::End() {
   MRH_DEMAND(open_);
   world_->Restore(snapshot_);
+  world_->impl_->data->solver_iter = saved_solver_iter_;  // World::solver_iterations(): the step's
   open_ = false;  // the velocities stay readable until the next Begin()
 }
 

@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "experiments/experiments_impl.h"
 
 namespace mrh::experiments::internal {
@@ -61,6 +63,49 @@ int T43ExperimentTest::exit_code_ = -1;
 
 TEST_F(T43ExperimentTest, ReportsEveryRunCompleteAndFinite) {
   EXPECT_EQ(exit_code_, 0);
+}
+
+nlohmann::json ReadSummary(const std::filesystem::path& out) {
+  std::ifstream in(out / "summary.json");
+  return nlohmann::json::parse(in);
+}
+
+// The essential result as counts: the test-force runs cost no MuJoCo solver iterations (they
+// are solved on the pushed cube's island), while the global step and the zero-force run do.
+void ExpectIslandSolvedTestRuns(const nlohmann::json& summary, int cubes) {
+  const nlohmann::json& work = summary["perturbation_work"][std::to_string(cubes)];
+  ASSERT_TRUE(work.is_object()) << cubes;
+  EXPECT_EQ(work["test_runs"].get<int>(), 3 * work["steps"].get<int>()) << cubes;
+  EXPECT_EQ(work["test_run_solver_iterations"].get<int>(), 0) << cubes;
+  EXPECT_GT(work["zero_force_solver_iterations"].get<int>(), 0) << cubes;
+  EXPECT_GT(work["global_step_solver_iterations"].get<int>(), 0) << cubes;
+}
+
+TEST_F(T43ExperimentTest, TestForceRunsNeedNoSolverIterations) {
+  const nlohmann::json summary = ReadSummary(*out_);
+  ExpectIslandSolvedTestRuns(summary, 10);
+  EXPECT_TRUE(summary["checks"]["local_dynamics_test_runs_use_no_solver_iterations"].get<bool>());
+  EXPECT_TRUE(summary["checks"]["island_accelerance_within_1e-4_of_converged"].get<bool>());
+}
+
+// The t4.3 goal scene itself, local-dynamics only and a few steps: 1000 cubes, ~4000 contacts.
+TEST(T43ThousandCubesTest, TestForceRunsAreSolvedOnIslandsAndMatchConvergedMuJoCo) {
+  const std::filesystem::path out = TempDir("mrh_experiments_test_t4_3_1000_");
+  std::filesystem::remove_all(out);
+  T43Options options;
+  options.variants = {"local-dynamics"};
+  options.cubes = {1000};
+  options.steps = 4;
+  options.accuracy_steps = 2;
+  EXPECT_EQ(RunT43(out, /*quiet=*/true, options), 0);
+  const nlohmann::json summary = ReadSummary(out);
+  ExpectIslandSolvedTestRuns(summary, 1000);
+  const nlohmann::json& accuracy = summary["accuracy"];
+  // The island solve agrees with converged MuJoCo far better than MuJoCo's default stopping
+  // rule does (which the experiment reports as mujoco_vs_converged).
+  EXPECT_LE(accuracy["island_vs_converged"]["max_rel_A"].get<double>(),
+            accuracy["mujoco_vs_converged"]["max_rel_A"].get<double>());
+  std::filesystem::remove_all(out);
 }
 
 TEST_F(T43ExperimentTest, SummaryHasOneFiniteRowPerVariantAndCubeCount) {

@@ -191,6 +191,54 @@ TEST(PerturberTest, ForwardSkipMatchesFullStepsInContactWithFriction) {
   }
 }
 
+// Measures every listed body with `settings`, as MeasureAll does, and returns the counters.
+std::vector<DynamicIr> MeasureWith(World* world, const std::vector<int>& bodies, const Vec3& f,
+                                   const PerturberSettings& settings, PerturberCounters* counters) {
+  Perturber perturber(world, settings);
+  perturber.Begin(bodies);
+  perturber.ZeroForceRun();
+  std::vector<DynamicIr> out;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    out.push_back(
+        perturber.Measure(i, f, world->body_state(bodies[i]).p_WCm + Vec3(-0.03, 0.02, 0.01)));
+  }
+  perturber.End();
+  *counters = perturber.counters();
+  return out;
+}
+
+TEST(PerturberTest, IslandSolveMatchesConvergedMuJoCoAndFallsBackBeyondItsCap) {
+  // The exact island minimizer against MuJoCo's solver run to roundoff (friction, a slider, a
+  // touching row). MuJoCo's Newton at tolerance 1e-15 agrees to ~1e-12.
+  constexpr double kTol = 1e-9;
+  World world = World::LoadString(kBusy, kNoPointer);
+  world.ApplyKeyframe("moving");
+  for (int i = 0; i < 5; ++i) world.Step();
+  const std::vector<int> bodies = Bodies(world, {"resting", "leaning", "slider", "row1"});
+  const Vec3 f(-0.8, 0.3, -0.5);
+  PerturberCounters island{}, converged{}, capped{};
+  const auto a = MeasureWith(&world, bodies, f, {}, &island);
+  const auto b = MeasureWith(&world, bodies, f,
+                             {.island_solve = false,
+                              .warm_start = TestRunWarmStart::kSaved,
+                              .solver_tolerance = 1e-15,
+                              .solver_iterations = 1000},
+                             &converged);
+  // A cap of 2 dofs: only the slider's island fits; the free bodies' go to MuJoCo's solver
+  // (the model's Newton at its own tolerance, hence the looser 1e-6 below).
+  const auto c = MeasureWith(&world, bodies, f, {.max_island_dofs = 2}, &capped);
+  EXPECT_EQ(island.island_runs, 3 * static_cast<std::int64_t>(bodies.size()));
+  EXPECT_EQ(island.island_fallbacks, 0);
+  EXPECT_EQ(island.force_run_solver_iterations, 0);
+  EXPECT_GT(converged.force_run_solver_iterations, 0);
+  EXPECT_EQ(capped.island_runs, 3);  // only the slider (2 dofs) fits
+  EXPECT_EQ(capped.island_fallbacks, 3);
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    EXPECT_LE((a[i].A - b[i].A).norm(), kTol * b[i].A.norm()) << "body " << bodies[i];
+    EXPECT_LE((a[i].A - c[i].A).norm(), 1e-6 * b[i].A.norm()) << "body " << bodies[i];
+  }
+}
+
 TEST(PerturberTest, GroupHoldsTheTouchingBodyWithItsCrossAccelerance) {
   // Two 1 kg boxes touching along x (0.1 mm overlap) in zero gravity, a third far away:
   // pushing the first along +x moves the second too, and the contact conserves momentum, so

@@ -12,8 +12,8 @@
 namespace mrh::ir {
 
 /// Capacities of the exchanged structures. Overflow drops items and sets a Status bit.
-inline constexpr std::size_t kMaxNeighborBodies = 64;
-inline constexpr std::size_t kMaxPointContacts = 128;
+inline constexpr std::size_t kMaxNeighborBodies = 128;
+inline constexpr std::size_t kMaxPointContacts = 256;
 /// Pointer-geom/object-geom pairs of the geometric IR (6-DOF, SPEC §3.3.3).
 inline constexpr std::size_t kMaxGeometricPairs = 64;
 /// Contact points over all geometric pairs (an N-gon prism face gives N; T3.4 goes to 1000).

@@ -6,11 +6,16 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
 #include "mrh/core/spatial.h"
 #include "mrh/world/world.h"
+
+namespace mrh::world::internal {
+class IslandSolve;
+}
 
 namespace mrh::world {
 
@@ -25,6 +30,38 @@ enum class PerturbationPath {
   kAuto,
   /// A full World::Step and Restore per run: always exact, the reference for kAuto.
   kFullStep,
+};
+
+/// Where the constraint solver of a test-force run starts (its warm start).
+enum class TestRunWarmStart {
+  /// The zero-force run's solution. A test force changes that solution only around the pushed
+  /// body, so the solver starts next to its answer and stops after a few iterations instead of
+  /// redoing the whole world's solve. The result differs from kSaved by the solver's tolerance.
+  kZeroForceSolution,
+  /// The saved state's warm start, as a real step from that state would use: every run is
+  /// exactly the step the world would take with that force (the reference for the above).
+  kSaved,
+};
+
+/// How a Perturber runs its test-force runs.
+struct PerturberSettings {
+  PerturbationPath path = PerturbationPath::kAuto;
+  /// Measure(): when forward skipping, solve each test-force run exactly on the measured body's
+  /// constraint island (the bodies linked to it by constraint rows) instead of running MuJoCo's
+  /// solver over the whole world. A run falls back to MuJoCo where the island has more than
+  /// max_island_dofs dofs or rows other than equality, limit and frictionless or pyramidal
+  /// contact, or its active set does not settle. The result is the exact minimizer of MuJoCo's
+  /// constraint problem, which MuJoCo's iterative solver approaches within its tolerance.
+  bool island_solve = true;
+  /// Largest island solved exactly (dense 6n×6n Cholesky per run): 20 free bodies.
+  int max_island_dofs = 120;
+  /// Warm start of test-force runs done by MuJoCo's solver.
+  TestRunWarmStart warm_start = TestRunWarmStart::kZeroForceSolution;
+  /// Override of the model's solver tolerance (opt.tolerance) and iteration limit
+  /// (opt.iterations) for every run, zero-force included; 0: the model's. A tight tolerance
+  /// gives converged reference measurements.
+  double solver_tolerance = 0.0;
+  int solver_iterations = 0;
 };
 
 /// Dynamic intermediate representation of one body over one step (eq. 4.2): u̇ = A f + b, where u
@@ -49,9 +86,23 @@ struct PerturberCounters {
   std::int64_t begins = 0;             ///< Begin() calls
   std::int64_t zero_force_runs = 0;    ///< ZeroForceRun() calls
   std::int64_t force_runs = 0;         ///< ForceRun() calls (3 per Measure())
-  std::int64_t forward_skip_runs = 0;  ///< runs (of both kinds) done with mj_forwardSkip
+  /// runs (of both kinds) on the forward-skipped base: mj_forwardSkip, or the island solve
+  std::int64_t forward_skip_runs = 0;
   std::int64_t full_step_runs = 0;     ///< runs (of both kinds) done with a full step
   std::int64_t run_ns = 0;             ///< wall time inside the runs (ns), for cost measurements
+  /// MuJoCo constraint-solver iterations (mjData::solver_iter) of the zero-force runs and of the
+  /// test-force runs, summed, and the most one test-force run used: the runs' cost in units of
+  /// the global step's solve, independent of wall-clock noise.
+  std::int64_t zero_force_solver_iterations = 0;
+  std::int64_t force_run_solver_iterations = 0;
+  int max_force_run_solver_iterations = 0;
+  /// Test-force runs solved on the measured body's island (counted in forward_skip_runs too;
+  /// they use no MuJoCo solver iterations), islands MuJoCo had to solve instead, the largest
+  /// island solved (dofs) and the active-set iterations of the island solves.
+  std::int64_t island_runs = 0;
+  std::int64_t island_fallbacks = 0;
+  int max_island_dofs = 0;
+  std::int64_t island_iterations = 0;
   /// Group bodies left out of group() because forward skipping cannot read their velocity
   /// exactly (not free or slide-jointed to a static parent).
   std::int64_t group_bodies_unread = 0;
@@ -79,7 +130,10 @@ std::uint64_t ContactKey(int geom_a, int geom_b);
 class Perturber {
  public:
   /// @param world the world to perturb; must outlive the perturber.
-  explicit Perturber(World* world, PerturbationPath path = PerturbationPath::kAuto);
+  /// @throws mrh::InvalidArgument if a count or tolerance in `settings` is negative.
+  explicit Perturber(World* world, const PerturberSettings& settings = {});
+  /// The default settings with another path.
+  Perturber(World* world, PerturbationPath path);
   ~Perturber();
   Perturber(Perturber&&) noexcept;
   Perturber& operator=(Perturber&&) noexcept;
@@ -107,7 +161,8 @@ class Perturber {
   /// joint group), with their accelerances; readable until the next Measure().
   std::span<const GroupResponse> group() const { return group_; }
 
-  /// Restores the saved state exactly. @pre Begin() is open.
+  /// Restores the saved state exactly (and the solver statistics of the step before Begin()).
+  /// @pre Begin() is open.
   void End();
 
   /// COM twist of bodies[index] in the saved state (readable until the next Begin()).
@@ -134,21 +189,27 @@ class Perturber {
 
  private:
   void SetUpForwardSkip();
+  const double* TestWarmStart() const;
+  void CountTestIterations();
   void RecordBaseContacts();
   Twist Run(std::size_t index, const Vec3& f_W, const Vec3& p_W, int slot);
   Twist RunForwardSkip(std::size_t index, const Vec3& f_W, const Vec3& p_W, int slot);
   Twist RunFullStep(std::size_t index, const Vec3& f_W, const Vec3& p_W, int slot);
+  bool RunIsland(std::size_t index, const Vec3& f_W, const Vec3& p_W, int slot, Twist* out);
   void CaptureFullStep(std::vector<double>* qvel, std::vector<Twist>* twists);
   void CollectGroup(int measured, const Mat3& F_inverse);
 
   World* world_;
-  PerturbationPath path_;
+  PerturberSettings settings_;
+  int saved_solver_iter_ = 0;  // mjData::solver_iter at Begin(): the real step's
   bool model_allows_skip_ = false;  // Euler integrator and no joint damping
   Snapshot snapshot_;
   std::vector<int> bodies_;
   std::vector<Twist> start_;
   std::vector<Twist> zero_;
   std::vector<double> warmstart_;  // qacc_warmstart of the saved state
+  std::vector<double> zero_solution_;  // qacc of the zero-force run (TestRunWarmStart)
+  std::vector<double> zero_smooth_;    // qacc_smooth of the forward-skipped zero-force run
   std::vector<std::uint64_t> base_contacts_;
   std::vector<double> jacp_, jacr_;  // 3 × nv Jacobian scratch
   // Group responses: per dof, qacc (forward skipping) or qvel (full steps) of the zero-force run
@@ -158,6 +219,8 @@ class Perturber {
   std::vector<Twist> zero_twists_;
   std::array<std::vector<Twist>, 3> run_twists_;
   std::vector<GroupResponse> group_;
+  std::unique_ptr<internal::IslandSolve> island_;
+  bool island_ready_ = false;  // island_ holds the body of the current Measure()
   bool open_ = false;
   bool zero_done_ = false;
   bool forward_skip_ = false;
