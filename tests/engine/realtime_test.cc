@@ -40,9 +40,11 @@ TEST(RealtimeTest, RunsBothThreadsAndRecordsInOrder) {
 }
 
 TEST(RealtimeTest, ContactDeliversImpulseToCube) {
-  EngineSettings s = T41Settings("single-rate");
+  // The impulse method's 50 ms physics steps keep up with wall time even in sanitizer builds on
+  // a loaded machine (single-rate's 1 ms steps do not), so contact is reached in every build.
+  EngineSettings s = T41Settings("impulse");
   s.mode = Mode::kRealtime;
-  s.duration = 0.8;  // contact starts at ~0.29 s
+  s.duration = 1.0;  // contact starts at ~0.29 s
   auto engine = T41Engine(s);
   const RunStats stats = engine->Run(nullptr);
   ASSERT_FALSE(stats.impulses.empty());
