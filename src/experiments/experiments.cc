@@ -33,7 +33,7 @@ constexpr Entry kExperiments[] = {
      internal::RunT43},
     {"t4.4", "felt mass steps up as cubes join a pushed line; an edge push turns the cube",
      internal::RunT44},
-    {"t4.5", "haptic tick cost and physics occupancy vs 1-64 neighbors simulated locally",
+    {"t4.5", "haptic tick cost and physics occupancy vs 1-128 neighbors simulated locally",
      internal::RunT45},
     {"t4.latency", "haptic ticks from the user's force onset to the touched object's response",
      internal::RunLatency},
