@@ -41,7 +41,8 @@ GeometricIrBuilder::GeometricIrBuilder(const world::World& world, int pointer_bo
       rendering_(rendering),
       // Below neighbor_distance the broad phase could drop a true neighbor (an AABB gap never
       // exceeds the distance between the shapes), so the margin never goes below it.
-      inflation_(std::max(rendering.neighbor_margin, rendering.neighbor_distance)) {
+      inflation_(std::max(rendering.neighbor_margin, rendering.neighbor_distance)),
+      motions_(world) {
   const world::BodyInfo& pointer = world.body(pointer_body);
   for (const int g : pointer.geoms) {
     if (world.geom(g).shape.type == geometry::ShapeType::kPlane) {
@@ -74,8 +75,6 @@ GeometricIrBuilder::GeometricIrBuilder(const world::World& world, int pointer_bo
     p.handle = sap_.Add(geometry::Aabb{});
     object_of_handle_.push_back(-1);
   }
-  previous_X_WB_.resize(static_cast<std::size_t>(world.num_bodies()));
-  CapturePreviousPoses(world);
 }
 
 GeometricIrBuilder::Piece GeometricIrBuilder::MakePiece(const world::World& world, int geom) const {
@@ -96,9 +95,7 @@ GeometricIrBuilder::Piece GeometricIrBuilder::MakePiece(const world::World& worl
 }
 
 void GeometricIrBuilder::CapturePreviousPoses(const world::World& world) {
-  for (int b = 0; b < world.num_bodies(); ++b) {
-    previous_X_WB_[static_cast<std::size_t>(b)] = world.body_state(b).X_WB;
-  }
+  motions_.CapturePreviousPoses(world);
 }
 
 void GeometricIrBuilder::Build(const world::World& world, const Pose& X_WP,
@@ -172,7 +169,7 @@ void GeometricIrBuilder::FillPairs(const world::World& world, const Pose& X_WP,
       ++stats_.dropped_pairs;
       continue;
     }
-    const int motion = AddMotion(world, objects_[static_cast<std::size_t>(n.object)].body, out);
+    const int motion = motions_.Add(world, objects_[static_cast<std::size_t>(n.object)].body, out);
     if (motion < 0) {
       ++stats_.dropped_pairs;
       continue;
@@ -212,25 +209,5 @@ void GeometricIrBuilder::FillPair(const Neighbor& n, const Pose& X_WP, int motio
   (void)out->pairs.PushBack(pair);
 }
 
-int GeometricIrBuilder::AddMotion(const world::World& world, int body,
-                                  ir::PhysicsSnapshot* out) const {
-  for (std::size_t i = 0; i < out->bodies.size(); ++i) {
-    if (out->bodies[i].body == body) return static_cast<int>(i);
-  }
-  const world::BodyState state = world.body_state(body);
-  const world::BodyInfo& info = world.body(body);
-  ir::BodyMotion m;
-  m.body = body;
-  m.X_WB_prev = previous_X_WB_[static_cast<std::size_t>(body)];
-  m.X_WB = state.X_WB;
-  m.p_BCm = info.p_BCm;
-  m.V_WCm = state.V_WCm;
-  m.is_static = info.is_static || info.is_mocap;
-  if (!out->bodies.PushBack(m)) {
-    out->status |= ir::kStatusBodiesFull;
-    return -1;
-  }
-  return static_cast<int>(out->bodies.size() - 1);
-}
 
 }  // namespace mrh::engine::internal

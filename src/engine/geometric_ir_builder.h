@@ -12,6 +12,7 @@
 #include "mrh/geometry/distance.h"
 #include "mrh/geometry/polyhedron.h"
 #include "mrh/ir/snapshot.h"
+#include "body_motions.h"
 
 namespace mrh::world {
 class World;
@@ -93,7 +94,6 @@ class GeometricIrBuilder {
   void FindNeighbors();
   void FillPairs(const world::World& world, const Pose& X_WP, ir::PhysicsSnapshot* out);
   void FillPair(const Neighbor& n, const Pose& X_WP, int motion, ir::PhysicsSnapshot* out);
-  int AddMotion(const world::World& world, int body, ir::PhysicsSnapshot* out) const;
 
   int pointer_body_;
   RenderingSettings rendering_;
@@ -102,7 +102,7 @@ class GeometricIrBuilder {
   std::vector<Piece> objects_;
   std::vector<int> object_of_handle_;  // sweep-and-prune handle -> objects_ index, or -1
   geometry::SweepAndPrune sap_;
-  std::vector<Pose> previous_X_WB_;
+  BodyMotions motions_;
   std::vector<int> candidates_;      // scratch
   std::vector<Neighbor> neighbors_;  // scratch
   GeometricIrStats stats_;

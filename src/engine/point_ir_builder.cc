@@ -42,43 +42,20 @@ PointIrBuilder::PointIrBuilder(const world::World& world, int pointer_body, doub
     : pointer_body_(pointer_body),
       radius_(radius),
       rendering_(rendering),
-      pointer_shape_(PointerSphere(radius)) {
+      pointer_shape_(PointerSphere(radius)),
+      motions_(world) {
   for (int g = 0; g < world.num_geoms(); ++g) {
     const world::GeomInfo& info = world.geom(g);
     if (info.body == pointer_body_ || !info.collides) continue;
     candidates_.push_back(
         Candidate{g, geometry::CollisionShape(info.shape), info.shape.BoundingRadius()});
   }
-  previous_X_WB_.resize(static_cast<std::size_t>(world.num_bodies()));
-  CapturePreviousPoses(world);
 }
 
 void PointIrBuilder::CapturePreviousPoses(const world::World& world) {
-  for (int b = 0; b < world.num_bodies(); ++b) {
-    previous_X_WB_[static_cast<std::size_t>(b)] = world.body_state(b).X_WB;
-  }
+  motions_.CapturePreviousPoses(world);
 }
 
-int PointIrBuilder::AddMotion(const world::World& world, int body,
-                              ir::PhysicsSnapshot* out) const {
-  for (std::size_t i = 0; i < out->bodies.size(); ++i) {
-    if (out->bodies[i].body == body) return static_cast<int>(i);
-  }
-  const world::BodyState state = world.body_state(body);
-  const world::BodyInfo& info = world.body(body);
-  ir::BodyMotion m;
-  m.body = body;
-  m.X_WB_prev = previous_X_WB_[static_cast<std::size_t>(body)];
-  m.X_WB = state.X_WB;
-  m.p_BCm = info.p_BCm;
-  m.V_WCm = state.V_WCm;
-  m.is_static = info.is_static || info.is_mocap;
-  if (!out->bodies.PushBack(m)) {
-    out->status |= ir::kStatusBodiesFull;
-    return -1;
-  }
-  return static_cast<int>(out->bodies.size() - 1);
-}
 
 void PointIrBuilder::Build(const world::World& world, const Pose& X_WP,
                            ir::PhysicsSnapshot* out) const {
@@ -97,7 +74,7 @@ void PointIrBuilder::Build(const world::World& world, const Pose& X_WP,
       continue;
     }
     const int body = world.geom(c.geom).body;
-    const int motion = AddMotion(world, body, out);
+    const int motion = motions_.Add(world, body, out);
     if (motion < 0) continue;
     const Pose& X_WB = out->bodies[static_cast<std::size_t>(motion)].X_WB;
     ir::PointContact contact;

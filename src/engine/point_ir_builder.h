@@ -7,6 +7,7 @@
 #include "mrh/engine/settings.h"
 #include "mrh/geometry/distance.h"
 #include "mrh/ir/snapshot.h"
+#include "body_motions.h"
 
 namespace mrh::world {
 class World;
@@ -37,14 +38,13 @@ class PointIrBuilder {
     geometry::CollisionShape shape;
     double bounding_radius;
   };
-  int AddMotion(const world::World& world, int body, ir::PhysicsSnapshot* out) const;
 
   int pointer_body_;
   double radius_;
   RenderingSettings rendering_;
   geometry::CollisionShape pointer_shape_;
   std::vector<Candidate> candidates_;
-  std::vector<Pose> previous_X_WB_;
+  BodyMotions motions_;
 };
 
 }  // namespace mrh::engine::internal

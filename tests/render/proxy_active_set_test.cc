@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "mrh/core/error.h"
+#include "proxy_test_problems.h"
 #include "mrh/render/proxy_solver.h"
 #include "support/alloc_guard.h"
 
@@ -42,33 +43,8 @@ Solved SolveExact(const std::vector<ProxyRow>& rows, const Mat3& w_inv,
   return s;
 }
 
-struct Problem {
-  std::vector<ProxyRow> rows;
-  Mat3 w_inv;
-};
-
-// As in proxy_solver_test: rows built around a known feasible displacement, half of them tight.
-Problem RandomProblem(std::mt19937* rng, int m, double weight_decades_low,
-                      double weight_decades_span) {
-  std::normal_distribution<double> normal(0.0, 1.0);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  const Vec3 dr_star = 1e-3 * Vec3(normal(*rng), normal(*rng), normal(*rng));
-  const Vec3 dtheta_star = 1e-2 * Vec3(normal(*rng), normal(*rng), normal(*rng));
-  Mat3 a;
-  for (int i = 0; i < 9; ++i) a(i / 3, i % 3) = normal(*rng);
-  const double scale = std::pow(10.0, weight_decades_low + weight_decades_span * unit(*rng));
-  const Mat3 weight = scale * (a * a.transpose() + 0.1 * Mat3::Identity());
-  Problem p{{}, weight.inverse()};
-  for (int k = 0; k < m; ++k) {
-    ProxyRow row;
-    row.a = Vec3(normal(*rng), normal(*rng), normal(*rng)).normalized();
-    row.r = 0.1 * Vec3(normal(*rng), normal(*rng), normal(*rng));
-    const double slack = unit(*rng) < 0.5 ? 0.0 : 1e-3 * unit(*rng);
-    row.rhs = row.a.dot(dtheta_star.cross(row.r) + dr_star) - slack;
-    p.rows.push_back(row);
-  }
-  return p;
-}
+using testing::Problem;
+using testing::RandomProblem;
 
 // f >= 0, w = C f − rhs >= −tol, min(f, w) <= tol per row, and (Δr, Δθ) = W⁻¹Jᵀf: the KKT
 // conditions, sufficient for the optimum of the convex program, so they prove the solution.

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "mrh/core/error.h"
+#include "proxy_test_problems.h"
 
 namespace mrh::render {
 namespace {
@@ -48,33 +49,8 @@ Solved SolveFast(const std::vector<ProxyRow>& rows, const Mat3& w_inv,
   return s;
 }
 
-// A random problem with a known feasible displacement, so the LCP has a solution: rhs_k is the
-// move row k asks of x* minus a slack that is zero for about half the rows (active).
-struct Problem {
-  std::vector<ProxyRow> rows;
-  Mat3 w_inv;
-};
-
-Problem RandomProblem(std::mt19937* rng, int m) {
-  std::normal_distribution<double> normal(0.0, 1.0);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  const Vec3 dr_star = 1e-3 * Vec3(normal(*rng), normal(*rng), normal(*rng));
-  const Vec3 dtheta_star = 1e-2 * Vec3(normal(*rng), normal(*rng), normal(*rng));
-  Mat3 a;
-  for (int i = 0; i < 9; ++i) a(i / 3, i % 3) = normal(*rng);
-  const double scale = std::pow(10.0, -2.0 + 2.0 * unit(*rng));  // R_w ~ 1e-2 .. 1 m²
-  const Mat3 weight = scale * (a * a.transpose() + 0.1 * Mat3::Identity());
-  Problem p{{}, weight.inverse()};
-  for (int k = 0; k < m; ++k) {
-    ProxyRow row;
-    row.a = Vec3(normal(*rng), normal(*rng), normal(*rng)).normalized();
-    row.r = 0.1 * Vec3(normal(*rng), normal(*rng), normal(*rng));
-    const double slack = unit(*rng) < 0.5 ? 0.0 : 1e-3 * unit(*rng);
-    row.rhs = row.a.dot(dtheta_star.cross(row.r) + dr_star) - slack;
-    p.rows.push_back(row);
-  }
-  return p;
-}
+using testing::Problem;
+using testing::RandomProblem;
 
 TEST(ProxySolverTest, SingleContactMatchesTheClosedFormOfU1) {
   const Vec3 n = Vec3(0.2, 1.0, -0.1).normalized();
