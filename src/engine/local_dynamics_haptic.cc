@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "local_dynamics_method.h"
+#include "normal_carry.h"
 
 namespace mrh::engine::internal {
 
@@ -10,16 +11,7 @@ namespace mrh::engine::internal {
 // neighbor, SPEC §4.4) and gets the correction of eq. 4.18 at its first tick; a new neighbor
 // starts from the global state. Normals blend from the last rendered one (SPEC §4.6).
 void LocalDynamicsMethod::Adopt(const ir::PhysicsSnapshot& snapshot) noexcept {
-  for (std::size_t i = 0; i < snapshot.contacts.size(); ++i) {
-    const ir::PointContact& c = snapshot.contacts[i];
-    previous_n_[i] = c.n_W;
-    for (std::size_t o = 0; o < snapshot_.contacts.size(); ++o) {
-      if (snapshot_.contacts[o].geom == c.geom) {
-        previous_n_[i] = rendered_n_[o];
-        break;
-      }
-    }
-  }
+  CarryRenderedNormals(snapshot, snapshot_, rendered_n_, &previous_n_);
   const LocalBodies& old = local();
   LocalBodies& next = locals_[1 - current_];
   for (std::size_t i = 0; i < snapshot.bodies.size(); ++i) {

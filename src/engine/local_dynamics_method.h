@@ -11,6 +11,7 @@
 #include "mrh/engine/method.h"
 #include "mrh/render/local_body.h"
 #include "mrh/world/perturbation.h"
+#include "normal_carry.h"
 #include "point_ir_builder.h"
 
 namespace mrh::engine::internal {
@@ -203,8 +204,8 @@ class LocalDynamicsMethod final : public Method {
   std::size_t current_ = 0;
   std::array<bool, ir::kMaxNeighborBodies> pending_{};
   std::array<Twist, ir::kMaxNeighborBodies> pending_dV_{};
-  std::array<Vec3, ir::kMaxPointContacts> previous_n_{};
-  std::array<Vec3, ir::kMaxPointContacts> rendered_n_{};
+  ContactNormals previous_n_{};
+  ContactNormals rendered_n_{};
   std::array<Vec3, ir::kMaxNeighborBodies> tick_force_{};
   std::array<Vec3, ir::kMaxNeighborBodies> tick_torque_{};
   ir::HapticReport period_;

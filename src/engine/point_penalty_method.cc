@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // Baselines B1 and B4: 3-DOF penalty rendering with the reaction sent as an impulse.
 #include "point_penalty_method.h"
+#include "normal_carry.h"
 
 #include <algorithm>
 
@@ -46,16 +47,7 @@ void PointPenaltyMethod::PhysicsStep(const ir::HapticReport& report, ir::Physics
 void PointPenaltyMethod::Adopt(const ir::PhysicsSnapshot& snapshot) noexcept {
   // Carry each pair's last rendered normal as the start of its blend (SPEC §3.9); a new pair
   // starts at its new normal.
-  for (std::size_t i = 0; i < snapshot.contacts.size(); ++i) {
-    const ir::PointContact& c = snapshot.contacts[i];
-    previous_n_[i] = c.n_W;
-    for (std::size_t o = 0; o < snapshot_.contacts.size(); ++o) {
-      if (snapshot_.contacts[o].geom == c.geom) {
-        previous_n_[i] = rendered_n_[o];
-        break;
-      }
-    }
-  }
+  CarryRenderedNormals(snapshot, snapshot_, rendered_n_, &previous_n_);
   snapshot_ = snapshot;
   for (std::size_t i = 0; i < snapshot_.contacts.size(); ++i) rendered_n_[i] = previous_n_[i];
 }

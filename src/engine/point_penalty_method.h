@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "mrh/engine/method.h"
+#include "normal_carry.h"
 #include "point_ir_builder.h"
 
 namespace mrh::engine::internal {
@@ -44,8 +45,8 @@ class PointPenaltyMethod final : public Method {
   double stiffness_;
   double damping_;
   ir::PhysicsSnapshot snapshot_;
-  std::array<Vec3, ir::kMaxPointContacts> previous_n_{};
-  std::array<Vec3, ir::kMaxPointContacts> rendered_n_{};
+  ContactNormals previous_n_{};
+  ContactNormals rendered_n_{};
   std::array<Vec3, ir::kMaxNeighborBodies> tick_force_{};
   std::array<Vec3, ir::kMaxNeighborBodies> tick_torque_{};
   ir::HapticReport period_;
