@@ -10,11 +10,10 @@
 
 #include "commands.h"
 #include "mrh/core/error.h"
+#include "mrh/engine/geometric_ir.h"
 #include "mrh/ir/snapshot.h"
 #include "mrh/session/session.h"
 #include "mrh/world/world.h"
-// The builder is the engine's internal physics-side code; `mrh ir` runs exactly that code.
-#include "../../src/engine/geometric_ir_builder.h"
 
 namespace mrh::cli {
 namespace {
@@ -146,9 +145,8 @@ int IrCommand(const IrOptions& o) {
                     o.session.string()));
   }
   world.SetMocapPose(pointer, X_WP);
-  engine::internal::GeometricIrBuilder builder(world, pointer, s.engine.rendering);
   const auto snapshot = std::make_unique<ir::PhysicsSnapshot>();
-  builder.Build(world, X_WP, snapshot.get());
+  engine::BuildGeometricIr(world, pointer, s.engine.rendering, X_WP, snapshot.get());
 
   Json pairs = Json::array();
   for (const ir::GeometricPair& pair : snapshot->pairs) {

@@ -18,3 +18,8 @@ mrh_cli_test(IrTooFewPoseNumbersExits2 2 stderr "^mrh: error: .*--pose"
 mrh_cli_test(IrMissingPoseExits2 2 stderr "^mrh: error: .*--pose" ir ${ir_session})
 mrh_cli_test(IrMissingSessionExits2NamingIt 2 stderr "^mrh: error: .*no_such_session\\.json"
              ir no_such_session.json --pose 0 0 0.1 1 0 0 0)
+# SPEC §3.3.3 edge case: the cube turned 45° about x with its lowest edge 5 mm into the floor
+# gives exactly 2 contacts (the ends of the buried edge).
+mrh_cli_test(IrEdgeOnFloorPrintsTwoContacts 0 stdout
+             "^\\{\"pairs\":\\[\\{\"object\":\"floor\",[^]]*\\],\"plane_point\":\\[[^]]*\\],\"contacts\":\\[\\[[^]]*\\],\\[[^]]*\\]\\],\"depths\":\\[[^]]*\\][^]]*\\}\\],\"status\":\\[\\]\\}$"
+             ir ${ir_session} --pose 0 0 0.1364213562373095 0.9238795325112867 0.3826834323650898 0 0)
