@@ -4,7 +4,6 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -55,18 +54,13 @@ const ProxyRendererSettings& Validated(const ProxyRendererSettings& settings) {
   return settings;
 }
 
-// splitmix64 finalizer: spreads every input bit over the whole word.
-std::uint64_t Mix(std::uint64_t x) noexcept {
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-  return x ^ (x >> 31);
-}
-
-// Warm-start identity of a row: pair, body-fixed point (bit pattern) and row kind.
-std::uint64_t RowIdOf(std::uint64_t key, const Vec3& p_PV, bool friction) noexcept {
-  std::uint64_t h = Mix(key + (friction ? 0x9e3779b97f4a7c15ULL : 0));
-  for (int i = 0; i < 3; ++i) h = Mix(h ^ std::bit_cast<std::uint64_t>(p_PV[i]));
-  return h;
+// Warm-start identity of a row: pair, point index in the tick IR and row kind. Within one
+// snapshot the points keep their indices, so a persisting row finds its f; when a new snapshot
+// re-derives the points (qhull vertices of the new pose), rows of the same index start from the
+// old f, a start like any other (the solvers accept any start).
+std::uint64_t RowIdOf(std::uint64_t key, int point_index, bool friction) noexcept {
+  return (key * 0x9e3779b97f4a7c15ULL) ^ (static_cast<std::uint64_t>(point_index) << 1) ^
+         (friction ? 1u : 0u);
 }
 
 // World rotation vector → unit quaternion (SPEC §3.5, exp of Δθ).
@@ -248,7 +242,7 @@ void ProxyRenderer::BuildRows(const TickIr& ir, const Pose& X_WP, ProxyDiagnosti
     const ProxyRow normal{pair.n_W, point.v_W - X_WP.p, point.depth};
     const int point_index = static_cast<int>(p);
     if (!PushRow(normal, ProxyRowInfo{ProxyRowKind::kNormal, point_index, point.pair},
-                 RowIdOf(pair.key, point.p_PV, false))) {
+                 RowIdOf(pair.key, point_index, false))) {
       diag->status |= kProxyStatusRowsFull;
       continue;
     }
@@ -277,7 +271,7 @@ void ProxyRenderer::AddFrictionRow(const TickPair& pair, int pair_index, const T
   const ProxyRow row{s * (1.0 / slip), normal.r, sliding ? radius : slip};
   const ProxyRowKind kind = sliding ? ProxyRowKind::kSliding : ProxyRowKind::kSticking;
   if (!PushRow(row, ProxyRowInfo{kind, point_index, pair_index},
-               RowIdOf(pair.key, point.p_PV, true))) {
+               RowIdOf(pair.key, point_index, true))) {
     diag->status |= kProxyStatusRowsFull;
     return;
   }

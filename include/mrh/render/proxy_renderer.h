@@ -165,7 +165,9 @@ struct ProxyOutput {
 /// and the contact starts sticking (SPEC §3.7).
 ///
 /// Warm start: row k starts from the previous tick's f of row k when both are the same kind of
-/// row (normal / friction) of the same pair key and pointer point p_PV; otherwise from 0.
+/// row (normal / friction) of the same pair key and point index of the tick IR; otherwise from 0.
+/// (Between snapshots the points are new; same-index rows then start from the old f, which only
+/// affects how many steps the solve takes.)
 ///
 /// One instance per pointer; haptic thread only. Buffers are allocated at construction.
 class ProxyRenderer {
@@ -201,8 +203,8 @@ class ProxyRenderer {
     Vec3 dtheta_pair = Vec3::Zero();
   };
 
-  // Identity of a row for the warm start: a hash of (pair key, p_PV, normal/friction). A
-  // collision only changes a start value, never the solution, so 64 bits are plenty.
+  // Identity of a row for the warm start: (pair key, point index, normal/friction) mixed into
+  // one word. A collision only changes a start value, never the solution.
   using RowId = std::uint64_t;
 
   int SweepBudget() const noexcept;
