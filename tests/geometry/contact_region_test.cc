@@ -21,7 +21,9 @@ namespace {
 using testing::At;
 using testing::BoxMeshShape;
 using testing::BoxShape;
+using testing::EllipsoidShape;
 using testing::CapsuleShape;
+using testing::CylinderShape;
 using ::testing::DoubleNear;
 using ::testing::Each;
 using testing::GenericRotation;
@@ -249,6 +251,49 @@ TEST(ContactRegionTest, LyingCapsuleGivesPointsAlongItsTopRidge) {
   }
   EXPECT_LE(x_min, -half_length);
   EXPECT_GE(x_max, half_length);
+}
+
+TEST(ContactRegionTest, UprightCylinderCapUnderPointerFaceGivesTheCapPolygonAtDepthDelta) {
+  // The flat cap is exact: the region is the cap polygon, δ thick; its pointer-side face holds
+  // the contact points, one per cap vertex, all δ below the cap.
+  const double radius = 0.04;
+  const double half_height = 0.03;
+  const Shape cylinder = CylinderShape(radius, half_height);
+  const ConvexPolyhedron poly = ConvexPolyhedron::FromShape(cylinder, kSegments);
+  int cap_vertices = 0;
+  for (const Vec3& v : poly.vertices()) cap_vertices += std::abs(v.z() - half_height) < kTol;
+  ASSERT_GE(cap_vertices, 6);
+  const ContactRegion r = Analyse(Cube(), At(0, 0, half_height - kDelta + 0.1), cylinder, Pose{});
+  ASSERT_EQ(r.status, RegionStatus::kRegion);
+  EXPECT_THAT(r.n_W, IsNear(Vec3::UnitZ(), kTol));
+  EXPECT_THAT(r.points_W, SizeIs(cap_vertices));
+  EXPECT_THAT(r.depths, Each(DoubleNear(kDelta, kTol)));
+  for (const Vec3& p : r.points_W) {
+    EXPECT_NEAR(p.z(), half_height - kDelta, kTol);
+    EXPECT_LE(p.head<2>().norm(), radius + kTol);
+  }
+}
+
+TEST(ContactRegionTest, EllipsoidPoleIntoPointerFaceGivesOnePointPerPoleFace) {
+  // A flat ellipsoid's first ring of vertices lies rz(1 − cos 15°) = 0.68 mm below its pole, so
+  // the pole alone enters the pointer when the depth is less than that.
+  const double rz = 0.02;
+  const double depth = 2e-4;
+  const Shape ellipsoid = EllipsoidShape(0.05, 0.03, rz);
+  const ConvexPolyhedron poly = ConvexPolyhedron::FromShape(ellipsoid, kSegments);
+  int pole_faces = 0;
+  for (const Halfspace& h : poly.faces()) pole_faces += std::abs(h.a.z() * rz - h.b) < kTol;
+  ASSERT_GE(pole_faces, 3);
+  const ContactRegion r = Analyse(Cube(), At(0, 0, rz - depth + 0.1), ellipsoid, Pose{});
+  ASSERT_EQ(r.status, RegionStatus::kRegion);
+  // FCL's ellipsoid is genuinely curved, so the normal is libccd's EPA direction, good to the
+  // bounds documented in src/geometry/pair_distance.cc (kCurvedEpaTolerance): 1e-3 rad at worst,
+  // 6e-7 measured here; the depths inherit that tilt over the ~5 mm the points spread.
+  constexpr double kCurvedNormalTol = 1e-3;
+  constexpr double kCurvedDepthTol = 1e-7;
+  EXPECT_THAT(r.n_W, IsNear(Vec3::UnitZ(), kCurvedNormalTol));
+  EXPECT_THAT(r.points_W, SizeIs(pole_faces));
+  EXPECT_THAT(r.depths, Each(DoubleNear(depth, kCurvedDepthTol)));
 }
 
 TEST(ContactRegionTest, SpherePointerOnFloorGivesItsBottomPole) {
