@@ -28,7 +28,8 @@ double Dot(const Vec6& a, const Vec6& b) noexcept {
 
 // v -= s·q
 void SubtractScaled(Vec6* v, double s, const Vec6& q) noexcept {
-  for (int i = 0; i < 6; ++i) (*v)[static_cast<std::size_t>(i)] -= s * q[static_cast<std::size_t>(i)];
+  for (int i = 0; i < 6; ++i)
+    (*v)[static_cast<std::size_t>(i)] -= s * q[static_cast<std::size_t>(i)];
 }
 
 }  // namespace
@@ -47,8 +48,7 @@ ProxyActiveSetSolver::ProxyActiveSetSolver(std::size_t capacity) {
 ProxySolveResult ProxyActiveSetSolver::Solve(std::span<const ProxyRow> rows,
                                              const Mat3& rotation_weight_inverse,
                                              const ProxySolverSettings& settings,
-                                             std::span<double> f, Vec3* dr,
-                                             Vec3* dtheta) noexcept {
+                                             std::span<double> f, Vec3* dr, Vec3* dtheta) noexcept {
   MRH_ASSERT(rows.size() == f.size() && rows.size() <= normals_.size());
   MRH_ASSERT(settings.max_iterations >= 1);
   m_ = std::min(rows.size(), normals_.size());
@@ -169,7 +169,8 @@ void ProxyActiveSetSolver::SolveEqualityActive() noexcept {
   for (int i = 0; i < count_; ++i) {
     const auto iu = static_cast<std::size_t>(i);
     double s = rhs_[static_cast<std::size_t>(active_[iu])];
-    for (int k = 0; k < i; ++k) s -= r_[static_cast<std::size_t>(k)][iu] * w[static_cast<std::size_t>(k)];
+    for (int k = 0; k < i; ++k)
+      s -= r_[static_cast<std::size_t>(k)][iu] * w[static_cast<std::size_t>(k)];
     w[iu] = s / r_[iu][iu];
   }
   for (int i = count_ - 1; i >= 0; --i) {
@@ -229,7 +230,8 @@ bool ProxyActiveSetSolver::AddRow(int p, int* steps, int max_steps) noexcept {
     for (int i = count_ - 1; i >= 0; --i) {
       const auto iu = static_cast<std::size_t>(i);
       double s = d[iu];
-      for (int k = i + 1; k < count_; ++k) s -= r_[iu][static_cast<std::size_t>(k)] * r[static_cast<std::size_t>(k)];
+      for (int k = i + 1; k < count_; ++k)
+        s -= r_[iu][static_cast<std::size_t>(k)] * r[static_cast<std::size_t>(k)];
       r[iu] = s / r_[iu][iu];
     }
     // Partial step: the first active multiplier to reach zero.
@@ -267,7 +269,8 @@ bool ProxyActiveSetSolver::AddRow(int p, int* steps, int max_steps) noexcept {
       lambda_[slot] = lambda_p;
       ++count_;
       is_active_[static_cast<std::size_t>(p)] = 1;
-      for (int i = 0; i < count_ - 1; ++i) r_[static_cast<std::size_t>(i)][slot] = d[static_cast<std::size_t>(i)];
+      for (int i = 0; i < count_ - 1; ++i)
+        r_[static_cast<std::size_t>(i)][slot] = d[static_cast<std::size_t>(i)];
       const double rest = std::sqrt(zz);
       r_[slot][slot] = rest;
       for (std::size_t i = 0; i < 6; ++i) q_[slot][i] = z[i] / rest;

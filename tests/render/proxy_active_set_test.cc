@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "mrh/core/error.h"
-#include "proxy_test_problems.h"
 #include "mrh/render/proxy_solver.h"
+#include "proxy_test_problems.h"
 #include "support/alloc_guard.h"
 
 namespace mrh::render {
@@ -112,8 +112,8 @@ TEST(ProxyActiveSetTest, OpposedFrictionRowsGiveTheAnalyticTwistAtTheT32Weight) 
   std::vector<double> f(rows.size(), 0.0);
   Vec3 dr, dtheta;
   const ProxySolveResult r = pgs.Solve(rows, weight.inverse(), {50, 1e-10}, f, &dr, &dtheta);
-  EXPECT_FALSE(r.converged);                  // why the exact solver exists
-  EXPECT_LT(dtheta.z(), 0.01 * sigma / l);    // 50 sweeps reach under 1 % of the twist
+  EXPECT_FALSE(r.converged);                // why the exact solver exists
+  EXPECT_LT(dtheta.z(), 0.01 * sigma / l);  // 50 sweeps reach under 1 % of the twist
 }
 
 TEST(ProxyActiveSetTest, SatisfiesTheLcpConditionsOnRandomProblems) {
@@ -124,7 +124,11 @@ TEST(ProxyActiveSetTest, SatisfiesTheLcpConditionsOnRandomProblems) {
     const Problem p = RandomProblem(&rng, 1 + trial % 60, -2.0, 6.0);
     const Solved s = SolveExact(p.rows, p.w_inv, {200, 1e-14});
     ASSERT_TRUE(s.result.converged) << "trial " << trial;
-    EXPECT_LE(std::count_if(s.f.begin(), s.f.end(), [](double v) { return v > 0.0; }), 6);
+    EXPECT_LE(std::count_if(s.f.begin(), s.f.end(),
+                            [](double v) {
+                              return v > 0.0;
+                            }),
+              6);
     ExpectKkt(p, s, kLcpTol, trial);
   }
 }
@@ -234,8 +238,11 @@ TEST(ProxyActiveSetTest, SolveDoesNotAllocate) {
 }
 
 TEST(ProxyActiveSetTest, ZeroCapacityIsRejected) {
-  EXPECT_THAT([] { ProxyActiveSetSolver solver(0); },
-              ThrowsMessage<InvalidArgument>(HasSubstr("capacity = 0")));
+  EXPECT_THAT(
+      [] {
+        ProxyActiveSetSolver solver(0);
+      },
+      ThrowsMessage<InvalidArgument>(HasSubstr("capacity = 0")));
 }
 
 }  // namespace
