@@ -40,23 +40,21 @@ ProxyActiveSetSolver::ProxyActiveSetSolver(std::size_t capacity) {
         "ProxyActiveSetSolver: capacity = 0 rows; expected >= 1; pass the most constraint rows "
         "one tick can have (2 per contact point with friction)");
   }
-  normals_.resize(capacity);
-  rhs_.resize(capacity);
-  is_active_.resize(capacity);
+  capacity_ = capacity;
 }
 
 ProxySolveResult ProxyActiveSetSolver::Solve(std::span<const ProxyRow> rows,
                                              const Mat3& rotation_weight_inverse,
                                              const ProxySolverSettings& settings,
                                              std::span<double> f, Vec3* dr, Vec3* dtheta) noexcept {
-  MRH_ASSERT(rows.size() == f.size() && rows.size() <= normals_.size());
+  MRH_ASSERT(rows.size() == f.size() && rows.size() <= capacity_);
   MRH_ASSERT(settings.max_iterations >= 1);
-  m_ = std::min(rows.size(), normals_.size());
+  rows_ = rows.first(std::min(rows.size(), capacity_));
   // R_w⁻¹ = K Kᵀ; Δθ = K y_θ.
   const Eigen::LLT<Mat3> llt(rotation_weight_inverse);
   const Mat3 k_lower = llt.matrixL();
-  Precompute(rows.first(m_), k_lower);
-  SetActiveFromStart(f.first(m_));
+  k_ = {k_lower(0, 0), k_lower(1, 0), k_lower(2, 0), k_lower(1, 1), k_lower(2, 1), k_lower(2, 2)};
+  SetActiveFromStart(f.first(rows_.size()));
 
   ProxySolveResult result;
   int steps = 0;
@@ -72,32 +70,43 @@ ProxySolveResult ProxyActiveSetSolver::Solve(std::span<const ProxyRow> rows,
   // The multipliers were updated step by step; with large ones (R_w ≫ |r|² makes rotation
   // cheap in f) that drifts from y by rounding. At the solution the active rows hold with
   // equality, so solving for them afresh gives consistent λ and y, then the final violation.
-  if (result.converged && count_ > 0) {
+  // Without steps, λ and y already come from that solve (SetActiveFromStart).
+  if (result.converged && count_ > 0 && steps > 0) {
     SolveEqualityActive();
     (void)MostViolated(settings.tolerance, &violation);
   }
   result.iterations = steps;
   result.max_change = std::max(0.0, -violation);
 
-  for (std::size_t k = 0; k < m_; ++k) f[k] = 0.0;
+  for (std::size_t k = 0; k < rows_.size(); ++k) f[k] = 0.0;
   for (int i = 0; i < count_; ++i) {
     f[static_cast<std::size_t>(active_[static_cast<std::size_t>(i)])] =
         std::max(0.0, lambda_[static_cast<std::size_t>(i)]);
   }
   *dr = Vec3(y_[0], y_[1], y_[2]);
   *dtheta = k_lower * Vec3(y_[3], y_[4], y_[5]);
+  rows_ = {};
   return result;
 }
 
-void ProxyActiveSetSolver::Precompute(std::span<const ProxyRow> rows,
-                                      const Mat3& k_lower) noexcept {
-  for (std::size_t k = 0; k < rows.size(); ++k) {
-    const Vec3& a = rows[k].a;
-    const Vec3 j = k_lower.transpose() * rows[k].r.cross(a);
-    normals_[k] = {a.x(), a.y(), a.z(), j.x(), j.y(), j.z()};
-    rhs_[k] = rows[k].rhs;
-    is_active_[k] = 0;
+// Scalar code on purpose: a cross product handed to Eigen as a temporary went through the
+// stack and stalled on store forwarding.
+ProxyActiveSetSolver::Vec6 ProxyActiveSetSolver::Normal(int row) const noexcept {
+  // (a, Kᵀ c), c = r × a, with K lower triangular.
+  const ProxyRow& r = rows_[static_cast<std::size_t>(row)];
+  const double a0 = r.a.x(), a1 = r.a.y(), a2 = r.a.z();
+  const double r0 = r.r.x(), r1 = r.r.y(), r2 = r.r.z();
+  const double c0 = r1 * a2 - r2 * a1;
+  const double c1 = r2 * a0 - r0 * a2;
+  const double c2 = r0 * a1 - r1 * a0;
+  return {a0, a1, a2, k_[0] * c0 + k_[1] * c1 + k_[2] * c2, k_[3] * c1 + k_[4] * c2, k_[5] * c2};
+}
+
+bool ProxyActiveSetSolver::IsActive(std::size_t row) const noexcept {
+  for (int i = 0; i < count_; ++i) {
+    if (static_cast<std::size_t>(active_[static_cast<std::size_t>(i)]) == row) return true;
   }
+  return false;
 }
 
 // Warm start: the rows with f > 0 (independent ones, at most 6) as equalities, then drop those
@@ -107,14 +116,10 @@ void ProxyActiveSetSolver::SetActiveFromStart(std::span<double> f) noexcept {
   count_ = 0;
   y_ = {};
   for (std::size_t k = 0; k < f.size() && count_ < kDim; ++k) {
-    if (!(std::isfinite(f[k]) && f[k] > 0.0)) continue;
+    if (!(f[k] > 0.0) || !std::isfinite(f[k])) continue;  // most rows: one compare
     active_[static_cast<std::size_t>(count_)] = static_cast<int>(k);
     ++count_;
-    if (!Factorize()) {
-      --count_;  // dependent on the rows already taken
-      continue;
-    }
-    is_active_[k] = 1;
+    if (!Factorize()) --count_;  // dependent on the rows already taken
   }
   if (count_ == 0) return;
   Factorize();
@@ -142,7 +147,7 @@ void ProxyActiveSetSolver::SetActiveFromStart(std::span<double> f) noexcept {
 bool ProxyActiveSetSolver::Factorize() noexcept {
   for (int c = 0; c < count_; ++c) {
     const auto cu = static_cast<std::size_t>(c);
-    Vec6 v = normals_[static_cast<std::size_t>(active_[cu])];
+    Vec6 v = Normal(active_[cu]);
     const double length2 = Dot(v, v);
     for (int i = 0; i < kDim; ++i) r_[static_cast<std::size_t>(i)][cu] = 0.0;
     for (int pass = 0; pass < 2; ++pass) {
@@ -168,7 +173,7 @@ void ProxyActiveSetSolver::SolveEqualityActive() noexcept {
   std::array<double, kDim> w{};
   for (int i = 0; i < count_; ++i) {
     const auto iu = static_cast<std::size_t>(i);
-    double s = rhs_[static_cast<std::size_t>(active_[iu])];
+    double s = rows_[static_cast<std::size_t>(active_[iu])].rhs;
     for (int k = 0; k < i; ++k)
       s -= r_[static_cast<std::size_t>(k)][iu] * w[static_cast<std::size_t>(k)];
     w[iu] = s / r_[iu][iu];
@@ -188,28 +193,43 @@ void ProxyActiveSetSolver::SolveEqualityActive() noexcept {
   }
 }
 
-// The inactive row with the most negative n_k·y − rhs_k below −tolerance, or −1.
+// The inactive row with the most negative n_k·y − rhs_k below −tolerance, or −1. The slack is
+// evaluated as a_k·(Δr + Δθ × r_k) − rhs_k on the rows as given (n_k·y in the proxy's own
+// coordinates), so no per-row data is stored: in sustained contact the warm start is the
+// solution and this one pass over the rows is all the solver reads of them.
 int ProxyActiveSetSolver::MostViolated(double tolerance, double* violation) const noexcept {
-  int best = -1;
-  double lowest = -tolerance;
-  *violation = 0.0;
-  for (std::size_t k = 0; k < m_; ++k) {
-    if (is_active_[k] != 0) continue;
-    const double s = Dot(normals_[k], y_) - rhs_[k];
-    *violation = std::min(*violation, s);
-    if (s < lowest) {
+  const double dr0 = y_[0], dr1 = y_[1], dr2 = y_[2];
+  // Δθ = K y_θ.
+  const double w0 = k_[0] * y_[3];
+  const double w1 = k_[1] * y_[3] + k_[3] * y_[4];
+  const double w2 = k_[2] * y_[3] + k_[4] * y_[4] + k_[5] * y_[5];
+  std::size_t best = 0;
+  double lowest = std::numeric_limits<double>::infinity();
+  const std::size_t m = rows_.size();
+  const ProxyRow* const rows = rows_.data();
+  for (std::size_t k = 0; k < m; ++k) {
+    const ProxyRow& row = rows[k];
+    const double r0 = row.r.x(), r1 = row.r.y(), r2 = row.r.z();
+    // Displacement of the contact point, Δr + Δθ × r.
+    const double u0 = dr0 + (w1 * r2 - w2 * r1);
+    const double u1 = dr1 + (w2 * r0 - w0 * r2);
+    const double u2 = dr2 + (w0 * r1 - w1 * r0);
+    const double s = (row.a.x() * u0 + row.a.y() * u1) + row.a.z() * u2 - row.rhs;
+    // A new running minimum is rare, so the active-set test (<= 6 compares) costs little.
+    if (s < lowest && !IsActive(k)) {
       lowest = s;
-      best = static_cast<int>(k);
+      best = k;
     }
   }
-  return best;
+  *violation = std::min(0.0, lowest);
+  return lowest < -tolerance ? static_cast<int>(best) : -1;
 }
 
 // One Goldfarb–Idnani major iteration for row p: steps until p is active (true), or the step
 // budget runs out / the rows are infeasible (false). Each step is a full step (p becomes
 // active) or a partial one (an active row's multiplier reaches 0 and the row is dropped).
 bool ProxyActiveSetSolver::AddRow(int p, int* steps, int max_steps) noexcept {
-  const Vec6& n_p = normals_[static_cast<std::size_t>(p)];
+  const Vec6 n_p = Normal(p);
   const double length2 = Dot(n_p, n_p);
   double lambda_p = 0.0;
   while (*steps < max_steps) {
@@ -250,7 +270,7 @@ bool ProxyActiveSetSolver::AddRow(int p, int* steps, int max_steps) noexcept {
     // Full step: to where row p holds with equality.
     const double zz = Dot(z, z);
     const bool independent = zz > kRankTolerance * length2;
-    const double slack = Dot(n_p, y_) - rhs_[static_cast<std::size_t>(p)];
+    const double slack = Dot(n_p, y_) - rows_[static_cast<std::size_t>(p)].rhs;
     const double t_full =
         independent ? std::max(0.0, -slack) / zz : std::numeric_limits<double>::infinity();
     if (!independent && drop < 0) return false;  // infeasible: p contradicts the active rows
@@ -268,7 +288,6 @@ bool ProxyActiveSetSolver::AddRow(int p, int* steps, int max_steps) noexcept {
       active_[slot] = p;
       lambda_[slot] = lambda_p;
       ++count_;
-      is_active_[static_cast<std::size_t>(p)] = 1;
       for (int i = 0; i < count_ - 1; ++i)
         r_[static_cast<std::size_t>(i)][slot] = d[static_cast<std::size_t>(i)];
       const double rest = std::sqrt(zz);
@@ -282,7 +301,6 @@ bool ProxyActiveSetSolver::AddRow(int p, int* steps, int max_steps) noexcept {
 }
 
 void ProxyActiveSetSolver::DropActive(int slot) noexcept {
-  is_active_[static_cast<std::size_t>(active_[static_cast<std::size_t>(slot)])] = 0;
   for (int i = slot; i + 1 < count_; ++i) {
     active_[static_cast<std::size_t>(i)] = active_[static_cast<std::size_t>(i + 1)];
     lambda_[static_cast<std::size_t>(i)] = lambda_[static_cast<std::size_t>(i + 1)];

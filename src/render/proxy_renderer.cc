@@ -58,7 +58,7 @@ const ProxyRendererSettings& Validated(const ProxyRendererSettings& settings) {
 // snapshot the points keep their indices, so a persisting row finds its f; when a new snapshot
 // re-derives the points (qhull vertices of the new pose), rows of the same index start from the
 // old f, a start like any other (the solvers accept any start).
-std::uint64_t RowIdOf(std::uint64_t key, int point_index, bool friction) noexcept {
+std::uint64_t RowIdOf(std::uint64_t key, std::size_t point_index, bool friction) noexcept {
   return (key * 0x9e3779b97f4a7c15ULL) ^ (static_cast<std::uint64_t>(point_index) << 1) ^
          (friction ? 1u : 0u);
 }
@@ -151,8 +151,8 @@ void ProxyRenderer::Tick(const TickIr& ir, const Pose& X_WP, double dt, ProxyOut
   row_count_ = 0;
 
   CarryPreviousProxy(ir, X_WP);
-  BuildRows(ir, X_WP, &diag);
-  WarmStart(&diag);
+  // The points are checked for finite data while the rows are built (one pass over them).
+  if (!BuildRows(ir, X_WP, &diag)) return Fault(X_WP, out);
   const std::span<const ProxyRow> rows(rows_.data(), row_count_);
   const std::span<double> f(f_.data(), row_count_);
   const ProxySolverSettings budget{SweepBudget(), settings_.tolerance};
@@ -190,6 +190,7 @@ int ProxyRenderer::SweepBudget() const noexcept {
   return static_cast<int>(std::min(sweeps, static_cast<std::size_t>(settings_.max_iterations)));
 }
 
+// The pose, dt and the pairs; the points are checked by BuildRows.
 bool ProxyRenderer::InputIsFinite(const TickIr& ir, const Pose& X_WP, double dt) const noexcept {
   if (!IsFinite(X_WP) || !(X_WP.q.norm() > 0.0) || !std::isfinite(dt) || !(dt > 0.0)) {
     return false;
@@ -197,11 +198,6 @@ bool ProxyRenderer::InputIsFinite(const TickIr& ir, const Pose& X_WP, double dt)
   for (const TickPair& pair : ir.pairs) {
     if (!IsFinite(pair.X_WB) || !IsFinite(pair.p_WCm) || !IsFinite(pair.n_W) ||
         !IsFinite(pair.c_W)) {
-      return false;
-    }
-  }
-  for (const TickPoint& point : ir.points) {
-    if (!IsFinite(point.p_PV) || !IsFinite(point.v_W) || !std::isfinite(point.depth)) {
       return false;
     }
   }
@@ -230,74 +226,106 @@ void ProxyRenderer::CarryPreviousProxy(const TickIr& ir, const Pose& X_WP) noexc
   }
 }
 
-// SPEC §3.8 steps 2–4: a normal row (eq. 3.1) per penetrating point, then its friction row.
-void ProxyRenderer::BuildRows(const TickIr& ir, const Pose& X_WP, ProxyDiagnostics* diag) noexcept {
-  for (std::size_t i = 0; i < ir.pairs.size(); ++i) pair_rows_[i] = 0;
-  for (std::size_t p = 0; p < ir.points.size(); ++p) {
+// SPEC §3.8 steps 2–4: a normal row (eq. 3.1) per penetrating point, then its friction row
+// (eq. 3.9–3.10), each started from last tick's f if the same row existed (SPEC §3.5 / I7).
+// One pass over the points, which also checks them: false if any value is not finite. This is
+// the per-contact cost of a tick, so it is written as one loop over plain arrays.
+bool ProxyRenderer::BuildRows(const TickIr& ir, const Pose& X_WP, ProxyDiagnostics* diag) noexcept {
+  const std::size_t pair_count = ir.pairs.size();
+  for (std::size_t i = 0; i < pair_count; ++i) pair_rows_[i] = 0;
+  ProxyRow* const rows = rows_.data();
+  ProxyRowInfo* const info = info_.data();
+  RowId* const ids = ids_.data();
+  double* const f = f_.data();
+  const RowId* const previous_ids = previous_ids_.data();
+  const double* const previous_f = previous_f_.data();
+  const std::size_t capacity = rows_.size();
+  const std::size_t previous_count = previous_row_count_;
+  const double mu = settings_.mu;
+  const Vec3 x_p = X_WP.p;
+  std::size_t k = 0;
+  int contacts = 0, sticking = 0, sliding = 0, warm = 0;
+  bool full = false;
+  // Appends row k with its warm start: last tick's f if the row in this slot had the same id.
+  const auto push = [&](const Vec3& a, const Vec3& r, double rhs, ProxyRowKind kind, int point,
+                        int pair, RowId id) noexcept {
+    rows[k].a = a;
+    rows[k].r = r;
+    rows[k].rhs = rhs;
+    info[k] = ProxyRowInfo{kind, point, pair};
+    ids[k] = id;
+    const bool same = k < previous_count && previous_ids[k] == id;
+    f[k] = same ? previous_f[k] : 0.0;
+    warm += same ? 1 : 0;
+    ++k;
+  };
+
+  // The current pair's data, loaded when the pair index changes (points come grouped by pair).
+  int current = -1;
+  Vec3 n = Vec3::UnitZ(), c = Vec3::Zero(), p_WQ = Vec3::Zero();
+  Mat3 R_WQ = Mat3::Identity();
+  std::uint64_t pair_key = 0;
+  bool with_friction = false;
+
+  // x − x is 0 for finite x and NaN otherwise: the sum is NaN iff some value is not finite.
+  double nan_if_bad = 0.0;
+  const std::size_t point_count = ir.points.size();
+  for (std::size_t p = 0; p < point_count; ++p) {
     const TickPoint& point = ir.points[p];
-    if (!(point.depth > 0.0)) continue;
-    if (point.pair < 0 || static_cast<std::size_t>(point.pair) >= ir.pairs.size()) continue;
-    const auto i = static_cast<std::size_t>(point.pair);
-    const TickPair& pair = ir.pairs[i];
-    const ProxyRow normal{pair.n_W, point.v_W - X_WP.p, point.depth};
+    const Vec3& v = point.v_W;
+    const double depth = point.depth;
+    nan_if_bad += ((point.p_PV.x() - point.p_PV.x()) + (point.p_PV.y() - point.p_PV.y())) +
+                  ((point.p_PV.z() - point.p_PV.z()) + (v.x() - v.x())) +
+                  ((v.y() - v.y()) + (v.z() - v.z())) + (depth - depth);
+    if (!(depth > 0.0)) continue;
+    if (point.pair != current) {
+      if (point.pair < 0 || static_cast<std::size_t>(point.pair) >= pair_count) continue;
+      current = point.pair;
+      const auto i = static_cast<std::size_t>(current);
+      const TickPair& pair = ir.pairs[i];
+      n = pair.n_W;
+      c = pair.c_W;
+      R_WQ = carried_R_WQ_[i];
+      p_WQ = carried_p_WQ_[i];
+      pair_key = pair.key;
+      with_friction = mu > 0.0 && !first_tick_[i];
+    }
     const int point_index = static_cast<int>(p);
-    if (!PushRow(normal, ProxyRowInfo{ProxyRowKind::kNormal, point_index, point.pair},
-                 RowIdOf(pair.key, point_index, false))) {
-      diag->status |= kProxyStatusRowsFull;
+    const Vec3 r = v - x_p;
+    if (k == capacity) {
+      full = true;
       continue;
     }
-    ++diag->contacts;
-    ++pair_rows_[i];
-    if (settings_.mu > 0.0 && !first_tick_[i]) {
-      AddFrictionRow(pair, point.pair, point, point_index, normal, diag);
+    push(n, r, depth, ProxyRowKind::kNormal, point_index, current, RowIdOf(pair_key, p, false));
+    ++contacts;
+    ++pair_rows_[static_cast<std::size_t>(current)];
+    if (!with_friction) continue;
+
+    // Friction cone of eq. 3.9 and the tangential row of corrected eq. 3.10. With v_q the
+    // previous proxy point, v_qs its projection onto the plane and v_ps = v + δn the pointer
+    // point's: s = v_qs − v_ps = (v_q − v) − ((v_q − c)·n + δ) n.
+    const Vec3 v_q = R_WQ * point.p_PV + p_WQ;
+    const Vec3 s = (v_q - v) - ((v_q - c).dot(n) + depth) * n;
+    const double slip = s.norm();
+    if (!(slip > kMinSlip)) continue;
+    if (k == capacity) {
+      full = true;
+      continue;
     }
+    const double radius = mu * depth;  // ρ_i = μ δ_i
+    const bool slides = slip > radius;
+    push(s * (1.0 / slip), r, slides ? radius : slip,
+         slides ? ProxyRowKind::kSliding : ProxyRowKind::kSticking, point_index, current,
+         RowIdOf(pair_key, p, true));
+    ++(slides ? sliding : sticking);
   }
-}
-
-// Friction cone of eq. 3.9 and the tangential row of corrected eq. 3.10.
-void ProxyRenderer::AddFrictionRow(const TickPair& pair, int pair_index, const TickPoint& point,
-                                   int point_index, const ProxyRow& normal,
-                                   ProxyDiagnostics* diag) noexcept {
-  const Vec3& n = pair.n_W;
-  const auto i = static_cast<std::size_t>(pair_index);
-  const Vec3 v_q = carried_R_WQ_[i] * point.p_PV + carried_p_WQ_[i];
-  const Vec3 v_qs = v_q - (v_q - pair.c_W).dot(n) * n;
-  const Vec3 v_ps = point.v_W + point.depth * n;
-  const Vec3 s = v_qs - v_ps;
-  const double slip = s.norm();
-  if (!(slip > kMinSlip)) return;
-  const double radius = settings_.mu * point.depth;  // ρ_i = μ δ_i
-  const bool sliding = slip > radius;
-  const ProxyRow row{s * (1.0 / slip), normal.r, sliding ? radius : slip};
-  const ProxyRowKind kind = sliding ? ProxyRowKind::kSliding : ProxyRowKind::kSticking;
-  if (!PushRow(row, ProxyRowInfo{kind, point_index, pair_index},
-               RowIdOf(pair.key, point_index, true))) {
-    diag->status |= kProxyStatusRowsFull;
-    return;
-  }
-  ++(sliding ? diag->sliding_rows : diag->sticking_rows);
-}
-
-bool ProxyRenderer::PushRow(const ProxyRow& row, const ProxyRowInfo& info, RowId id) noexcept {
-  if (row_count_ == rows_.size()) return false;
-  rows_[row_count_] = row;
-  info_[row_count_] = info;
-  ids_[row_count_] = id;
-  ++row_count_;
-  return true;
-}
-
-// SPEC §3.5 / I7: a row that persists (same pair, point and kind in the same slot) starts from
-// last tick's f; any other starts from 0.
-void ProxyRenderer::WarmStart(ProxyDiagnostics* diag) noexcept {
-  for (std::size_t k = 0; k < row_count_; ++k) {
-    f_[k] = 0.0;
-    if (k >= previous_row_count_) continue;
-    if (ids_[k] == previous_ids_[k]) {
-      f_[k] = previous_f_[k];
-      ++diag->warm_rows;
-    }
-  }
+  row_count_ = k;
+  diag->contacts = contacts;
+  diag->sticking_rows = sticking;
+  diag->sliding_rows = sliding;
+  diag->warm_rows = warm;
+  if (full) diag->status |= kProxyStatusRowsFull;
+  return !std::isnan(nan_if_bad);
 }
 
 // SPEC §3.6 / I5, made consistent with what the user feels: pair i's rows contribute
@@ -324,8 +352,8 @@ void ProxyRenderer::ComputeReactions(const TickIr& ir, const Pose& X_WP, double 
     const TickPair& pair = ir.pairs[i];
     Wrench w_W;  // on the object, torque about its COM
     if (!pair.is_static && pair_rows_[i] > 0) {
-      const Vec3 force = settings_.k_t * dr_pair_[i] +
-                         settings_.d_t * (dr_pair_[i] - previous_dr_pair_[i]) / dt;
+      const Vec3 force =
+          settings_.k_t * dr_pair_[i] + settings_.d_t * (dr_pair_[i] - previous_dr_pair_[i]) / dt;
       const Vec3 torque = settings_.k_r * dtheta_pair_[i] +
                           settings_.d_r * (dtheta_pair_[i] - previous_dtheta_pair_[i]) / dt;
       w_W.f = -force;

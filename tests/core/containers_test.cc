@@ -20,6 +20,32 @@ TEST(FixedVectorTest, DropsItemsBeyondCapacity) {
   EXPECT_EQ(v[1], 2);
 }
 
+TEST(FixedVectorTest, CopiesCarryTheElementsInUseAndTheSize) {
+  FixedVector<int, 4> a;
+  ASSERT_TRUE(a.PushBack(7));
+  ASSERT_TRUE(a.PushBack(8));
+  const FixedVector<int, 4> copy(a);
+  ASSERT_EQ(copy.size(), 2u);
+  EXPECT_EQ(copy[0], 7);
+  EXPECT_EQ(copy[1], 8);
+
+  FixedVector<int, 4> b;
+  for (int i = 0; i < 4; ++i) ASSERT_TRUE(b.PushBack(-i));
+  b = a;  // a larger vector assigned a smaller one shrinks to it
+  ASSERT_EQ(b.size(), 2u);
+  EXPECT_EQ(b[0], 7);
+  EXPECT_EQ(b[1], 8);
+  EXPECT_TRUE(b.PushBack(9));
+  EXPECT_EQ(b[2], 9);
+
+  a.Clear();
+  b = a;
+  EXPECT_TRUE(b.empty());
+  const FixedVector<int, 4>& self = b;
+  b = self;
+  EXPECT_TRUE(b.empty());
+}
+
 TEST(TripleBufferTest, ReaderSeesNewestPublishedValue) {
   TripleBuffer<int> buffer(-1);
   EXPECT_FALSE(buffer.Update());
@@ -39,6 +65,7 @@ TEST(TripleBufferTest, ConcurrentReaderNeverSeesTornOrOlderValues) {
     long a = 0;
     long b = 0;
   };
+
   TripleBuffer<Pair> buffer;
   constexpr long kCount = 20000;
   std::thread writer([&] {

@@ -25,7 +25,7 @@ inline constexpr int kMaxProxyIterations = 100000;
 /// Status bits of one ProxyRenderer::Tick.
 enum ProxyStatusBits : std::uint32_t {
   kProxyStatusOk = 0,
-  kProxyStatusRowsFull = 1u << 0,      ///< more rows than max_rows: the excess was dropped
+  kProxyStatusRowsFull = 1u << 0,  ///< more rows than max_rows: the excess was dropped
   /// The solver stopped at max_iterations above tolerance (or, active-set, the rows were
   /// contradictory).
   kProxyStatusNotConverged = 1u << 1,
@@ -65,8 +65,8 @@ struct ProxyRendererSettings {
   /// solve reaches 1e-7 m (SPEC App. B; ~1 mN at k_t = 9000) in about 2 sweeps (T3.4 bench),
   /// while 1e-10 m mostly exhausts max_iterations.
   double tolerance = 1e-10;
-  /// PGS only. If > 0, a time budget independent of the contact count: a tick with m rows runs at most
-  /// max(1, max_row_updates / m) sweeps (and never more than max_iterations). PGS converges
+  /// PGS only. If > 0, a time budget independent of the contact count: a tick with m rows runs at
+  /// most max(1, max_row_updates / m) sweeps (and never more than max_iterations). PGS converges
   /// slowly on face/edge contacts when R_w ≫ |r|² (hundreds to thousands of sweeps), so a
   /// large max_iterations plus this budget lets small contact sets converge within the tick
   /// while large ones stay bounded. 0: max_iterations alone.
@@ -118,13 +118,13 @@ struct ProxyPairReaction {
 
 /// Counters of one tick.
 struct ProxyDiagnostics {
-  int contacts = 0;          ///< penetrating points = normal rows
-  int rows = 0;              ///< all rows solved
-  int sticking_rows = 0;     ///< friction rows in the static state
-  int sliding_rows = 0;      ///< friction rows in the kinetic state
-  int warm_rows = 0;         ///< rows started from the previous tick's f (same pair, point, kind)
-  int iterations = 0;        ///< PGS sweeps or active-set steps used
-  bool converged = true;     ///< the solver met its tolerance
+  int contacts = 0;       ///< penetrating points = normal rows
+  int rows = 0;           ///< all rows solved
+  int sticking_rows = 0;  ///< friction rows in the static state
+  int sliding_rows = 0;   ///< friction rows in the kinetic state
+  int warm_rows = 0;      ///< rows started from the previous tick's f (same pair, point, kind)
+  int iterations = 0;     ///< PGS sweeps or active-set steps used
+  bool converged = true;  ///< the solver met its tolerance
   /// PGS: the last sweep's largest change of an f_k (m); active-set: the largest remaining row
   /// violation (m).
   double max_change = 0.0;
@@ -210,11 +210,7 @@ class ProxyRenderer {
   int SweepBudget() const noexcept;
   bool InputIsFinite(const TickIr& ir, const Pose& X_WP, double dt) const noexcept;
   void CarryPreviousProxy(const TickIr& ir, const Pose& X_WP) noexcept;
-  void BuildRows(const TickIr& ir, const Pose& X_WP, ProxyDiagnostics* diag) noexcept;
-  void AddFrictionRow(const TickPair& pair, int pair_index, const TickPoint& point, int point_index,
-                      const ProxyRow& normal, ProxyDiagnostics* diag) noexcept;
-  bool PushRow(const ProxyRow& row, const ProxyRowInfo& info, RowId id) noexcept;
-  void WarmStart(ProxyDiagnostics* diag) noexcept;
+  bool BuildRows(const TickIr& ir, const Pose& X_WP, ProxyDiagnostics* diag) noexcept;
   void ComputeReactions(const TickIr& ir, const Pose& X_WP, double dt, ProxyOutput* out) noexcept;
   void Remember(const TickIr& ir, const ProxyOutput& out) noexcept;
   void Fault(const Pose& X_WP, ProxyOutput* out) noexcept;
@@ -241,8 +237,8 @@ class ProxyRenderer {
   std::array<bool, ir::kMaxGeometricPairs> first_tick_{};
   std::array<Vec3, ir::kMaxGeometricPairs> previous_dr_pair_{};
   std::array<Vec3, ir::kMaxGeometricPairs> previous_dtheta_pair_{};
-  std::array<int, ir::kMaxGeometricPairs> pair_rows_{};  // normal rows this tick
-  std::array<Vec3, ir::kMaxGeometricPairs> dr_pair_{};   // Σ_pair f_k a_k this tick
+  std::array<int, ir::kMaxGeometricPairs> pair_rows_{};     // normal rows this tick
+  std::array<Vec3, ir::kMaxGeometricPairs> dr_pair_{};      // Σ_pair f_k a_k this tick
   std::array<Vec3, ir::kMaxGeometricPairs> dtheta_pair_{};  // Σ_pair f_k R_w⁻¹(r_k × a_k)
   std::array<PairMemory, ir::kMaxGeometricPairs> memory_{};
   std::size_t memory_count_ = 0;
