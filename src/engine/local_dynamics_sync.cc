@@ -4,6 +4,7 @@
 #include "local_dynamics_method.h"
 #include "mrh/core/spatial.h"
 #include "mrh/world/world.h"
+#include "report_impulses.h"
 
 namespace mrh::engine::internal {
 
@@ -33,11 +34,7 @@ void LocalDynamicsMethod::Overwrite(const ir::HapticReport& report) {
     // period's reaction as the impulse method does, and restart the local simulation.
     ++counters_.overwrite_failures;
     sync_failed_.push_back(state.body);
-    for (const ir::BodyImpulse& impulse : report.impulses) {
-      if (impulse.body != state.body) continue;
-      world_->AddWrenchAtCom(impulse.body,
-                             Wrench{impulse.linear / physics_dt_, impulse.angular / physics_dt_});
-    }
+    ApplyReportImpulses(*world_, report, physics_dt_, state.body);
   }
 }
 
