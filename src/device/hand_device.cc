@@ -6,10 +6,10 @@
 #include <string>
 #include <utility>
 
-#include "device/rotation_impl.h"
 #include "device/text_impl.h"
 #include "device/track_impl.h"
 #include "mrh/core/error.h"
+#include "mrh/core/spatial.h"
 #include "mrh/device/simulated.h"
 
 namespace mrh::device {
@@ -107,11 +107,11 @@ void HandDevice::Step(double h, const internal::TrackSample& target) noexcept {
   X_DT_.p += h * V_DT_.v;
 
   // Orientation error as the rotation vector of q_target q^-1, expressed in D like w.
-  const Vec3 error = internal::RotationVector(target.X_DT.q * X_DT_.q.conjugate());
+  const Vec3 error = RotationVectorFromQuat(target.X_DT.q * X_DT_.q.conjugate());
   const Vec3 torque =
       hand_.rot_stiffness * error + hand_.rot_damping * (target.V_DT.w - V_DT_.w) + display_.tau;
   V_DT_.w += (h / hand_.inertia) * torque;
-  X_DT_.q = internal::QuatFromRotationVector(h * V_DT_.w) * X_DT_.q;
+  X_DT_.q = QuatFromRotationVector(h * V_DT_.w) * X_DT_.q;
   X_DT_.q.normalize();
 }
 

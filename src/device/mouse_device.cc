@@ -5,6 +5,7 @@
 
 #include "device/text_impl.h"
 #include "mrh/core/error.h"
+#include "mrh/core/spatial.h"
 #include "mrh/device/mouse.h"
 
 namespace mrh::device {
@@ -12,15 +13,6 @@ namespace {
 
 // A quaternion shorter than this cannot be normalized meaningfully (it is not a rotation).
 constexpr double kMinQuatNorm = 1e-9;
-
-// Rotation vector (rad) of the shortest rotation taking orientation a to b, world axes.
-Vec3 RotationVector(const Quat& a, const Quat& b) noexcept {
-  Quat d = b * a.conjugate();
-  if (d.w() < 0.0) d.coeffs() = -d.coeffs();
-  const double s = d.vec().norm();
-  if (s < 1e-12) return 2.0 * d.vec();  // small-angle limit of 2·atan2(s, w)·v/s
-  return (2.0 * std::atan2(s, d.w()) / s) * d.vec();
-}
 
 }  // namespace
 
@@ -105,7 +97,8 @@ DeviceState MouseDevice::Read(double t) noexcept {
     const Pose previous = X_DT_;
     X_DT_ = Interpolate(previous, target.X_DT, alpha);
     state.V_DT.v = (X_DT_.p - previous.p) / dt;
-    state.V_DT.w = RotationVector(previous.q, X_DT_.q) / dt;
+    // The shortest rotation taking the previous orientation to the new one, world axes.
+    state.V_DT.w = RotationVectorFromQuat(X_DT_.q * previous.q.conjugate()) / dt;
   }
   last_t_ = t;  // an earlier t restarts the clock (a new session reuses the device)
   has_read_ = true;

@@ -4,11 +4,11 @@
 #include <cmath>
 #include <utility>
 
-#include "device/rotation_impl.h"
 #include "device/text_impl.h"
 #include "device/track_impl.h"
 #include "mrh/core/assert.h"
 #include "mrh/core/error.h"
+#include "mrh/core/spatial.h"
 
 namespace mrh::device::internal {
 
@@ -48,7 +48,7 @@ PoseTrack::PoseTrack(std::vector<Keyframe> keyframes) : keyframes_(std::move(key
     const double dt = b.t - a.t;
     // slerp(alpha) = exp(alpha r) q_a with r the short-arc rotation vector of q_b q_a^-1, so the
     // angular velocity (in D, the frame q maps into) is constant: w = r / dt.
-    const Vec3 r = RotationVector(b.X_DT.q * a.X_DT.q.conjugate());
+    const Vec3 r = RotationVectorFromQuat(b.X_DT.q * a.X_DT.q.conjugate());
     slopes_.push_back(Twist{(b.X_DT.p - a.X_DT.p) / dt, r / dt});
   }
 }

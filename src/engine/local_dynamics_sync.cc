@@ -1,27 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
 // local-dynamics, physics half, step (0): local → global synchronization (eq. 4.16–4.17) and the
 // group extension.
-#include <Eigen/Geometry>
-
 #include "local_dynamics_method.h"
+#include "mrh/core/spatial.h"
 #include "mrh/world/world.h"
+#include "report_impulses.h"
 
 namespace mrh::engine::internal {
-namespace {
-
-// The rotation vector (world) of a unit quaternion: angle × axis, angle in [0, π].
-Vec3 RotationVector(const Quat& q) {
-  const Eigen::AngleAxisd turn(q);
-  return turn.angle() * turn.axis();
-}
-
-Quat RotationQuaternion(const Vec3& rotation) {
-  const double angle = rotation.norm();
-  if (angle == 0.0) return Quat::Identity();
-  return Quat(Eigen::AngleAxisd(angle, rotation / angle));
-}
-
-}  // namespace
 
 // (0) eq. 4.16–4.17. The report's period rendered the snapshot before the latest one, so only
 // its bodies are written: the physics side's merged report may still hold states of bodies
@@ -49,11 +34,7 @@ void LocalDynamicsMethod::Overwrite(const ir::HapticReport& report) {
     // period's reaction as the impulse method does, and restart the local simulation.
     ++counters_.overwrite_failures;
     sync_failed_.push_back(state.body);
-    for (const ir::BodyImpulse& impulse : report.impulses) {
-      if (impulse.body != state.body) continue;
-      world_->AddWrenchAtCom(impulse.body,
-                             Wrench{impulse.linear / physics_dt_, impulse.angular / physics_dt_});
-    }
+    ApplyReportImpulses(*world_, report, physics_dt_, state.body);
   }
 }
 
@@ -65,7 +46,7 @@ void LocalDynamicsMethod::SyncGroup(const SentBody& sent, const world::BodyState
   Eigen::Matrix<double, 6, 2> delta;
   delta.col(0) << local.V_WCm.v - global.V_WCm.v, local.V_WCm.w - global.V_WCm.w;
   delta.col(1) << local.X_WB * world_->body(sent.body).p_BCm - global.p_WCm,
-      RotationVector(local.X_WB.q.normalized() * global.X_WB.q.conjugate());
+      RotationVectorFromQuat(local.X_WB.q.normalized() * global.X_WB.q.conjugate());
   // The force-like amounts that explain the discrepancy through the neighbor's own response
   // (least squares: A_B is 6×3 and may be rank-deficient, e.g. with slide joints).
   const Eigen::Matrix<double, 3, 2> phi = sent.A.completeOrthogonalDecomposition().solve(delta);
@@ -77,7 +58,7 @@ void LocalDynamicsMethod::SyncGroup(const SentBody& sent, const world::BodyState
     const Eigen::Matrix<double, 6, 2> delta_j = member.A * phi;
     const world::BodyState state = world_->body_state(member.body);
     const Vec3 rotation = delta_j.col(1).tail<3>();
-    const Quat q = (RotationQuaternion(rotation) * state.X_WB.q).normalized();
+    const Quat q = (QuatFromRotationVector(rotation) * state.X_WB.q).normalized();
     const Vec3 p_WCm = state.p_WCm + delta_j.col(1).head<3>();
     const Pose X_WB{p_WCm - q * world_->body(member.body).p_BCm, q};
     const Twist V{state.V_WCm.v + delta_j.col(0).head<3>(),

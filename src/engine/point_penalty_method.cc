@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: Apache-2.0
 // Baselines B1 and B4: 3-DOF penalty rendering with the reaction sent as an impulse.
 #include "point_penalty_method.h"
-#include "normal_carry.h"
 
 #include <algorithm>
 
 #include "mrh/render/point_penalty.h"
 #include "mrh/world/world.h"
+#include "normal_carry.h"
+#include "report_impulses.h"
 
 namespace mrh::engine::internal {
 
@@ -32,10 +33,7 @@ void PointPenaltyMethod::PhysicsStart(const ir::HapticReport& initial, ir::Physi
 
 void PointPenaltyMethod::PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot* out) {
   // B4: the impulse of the last haptic period acts as a constant force over this whole step.
-  for (const ir::BodyImpulse& impulse : report.impulses) {
-    world_->AddWrenchAtCom(impulse.body,
-                           Wrench{impulse.linear / physics_dt_, impulse.angular / physics_dt_});
-  }
+  ApplyReportImpulses(*world_, report, physics_dt_);
   world_->SetMocapPose(pointer_body_, report.X_WP);
   builder_->CapturePreviousPoses(*world_);
   world_->Step();

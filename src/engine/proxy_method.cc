@@ -8,6 +8,7 @@
 
 #include "mrh/core/error.h"
 #include "mrh/world/world.h"
+#include "report_impulses.h"
 
 namespace mrh::engine::internal {
 
@@ -80,10 +81,7 @@ void ProxyMethod::PhysicsStart(const ir::HapticReport& initial, ir::PhysicsSnaps
 void ProxyMethod::PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot* out) {
   // SPEC §3.6 / I5: what the user pushed during the last period acts as a constant wrench over
   // this whole step, so the objects answer one physics step late (the chapter-3 design).
-  for (const ir::BodyImpulse& impulse : report.impulses) {
-    world_->AddWrenchAtCom(impulse.body,
-                           Wrench{impulse.linear / physics_dt_, impulse.angular / physics_dt_});
-  }
+  ApplyReportImpulses(*world_, report, physics_dt_);
   world_->SetMocapPose(pointer_body_, report.X_WP);
   builder_->CapturePreviousPoses(*world_);
   world_->Step();

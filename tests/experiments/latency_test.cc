@@ -2,55 +2,33 @@
 // t4.latency in lockstep: the touched object responds one tick after the force onset with
 // local-dynamics, one to two physics steps later with the impulse method (counted in ticks).
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "experiment_test_util.h"
 #include "experiments/experiments_impl.h"
 
 namespace mrh::experiments::internal {
 namespace {
 
-// Each test runs in its own process (ctest, maybe in parallel): one folder per process.
-std::filesystem::path TempDir(const std::string& stem) {
-  return std::filesystem::temp_directory_path() / (stem + std::to_string(getpid()));
-}
-
 constexpr int kTicksPerStep = 50;  // 50 ms physics, 1 ms haptic
 
-class LatencyExperimentTest : public ::testing::Test {
+class LatencyExperimentTest : public testing::ExperimentTest<LatencyExperimentTest> {
  protected:
   static void SetUpTestSuite() {
-    out_ = new std::filesystem::path(TempDir("mrh_experiments_test_latency_"));
-    std::filesystem::remove_all(*out_);
-    exit_code_ = RunLatency(*out_, /*quiet=*/true, options_);
-    std::ifstream in(*out_ / "summary.json");
-    summary_ = new nlohmann::json(nlohmann::json::parse(in));
-  }
-
-  static void TearDownTestSuite() {
-    std::filesystem::remove_all(*out_);
-    delete summary_;
-    delete out_;
+    RunExperiment("mrh_experiments_test_latency_", [](const std::filesystem::path& out) {
+      return RunLatency(out, /*quiet=*/true, options_);
+    });
   }
 
   static int Latency(const char* method, int phase) {
     return (*summary_)["runs"][method][std::to_string(phase)]["latency_ticks"].get<int>();
   }
 
-  static std::filesystem::path* out_;
-  static nlohmann::json* summary_;
-  static LatencyOptions options_;
-  static int exit_code_;
+  inline static LatencyOptions options_;
 };
-
-std::filesystem::path* LatencyExperimentTest::out_ = nullptr;
-nlohmann::json* LatencyExperimentTest::summary_ = nullptr;
-LatencyOptions LatencyExperimentTest::options_;
-int LatencyExperimentTest::exit_code_ = -1;
 
 TEST_F(LatencyExperimentTest, PassesItsChecks) {
   EXPECT_EQ(exit_code_, 0);

@@ -2,7 +2,6 @@
 // The T4.1 driver reproduces the thesis' essential result and writes its artefacts.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -12,17 +11,13 @@
 #include <sstream>
 #include <string>
 
+#include "experiment_test_util.h"
 #include "experiments/experiments_impl.h"
 #include "mrh/core/error.h"
 #include "mrh/experiments/experiments.h"
 
 namespace mrh::experiments {
 namespace {
-
-// Each test runs in its own process (ctest, maybe in parallel): one folder per process.
-std::filesystem::path TempDir(const std::string& stem) {
-  return std::filesystem::temp_directory_path() / (stem + std::to_string(getpid()));
-}
 
 // Analytic: an undamped bounce returns 2mv = 2 · 60 kg · 0.017 m/s (SPEC T4.1).
 constexpr double kElastic = 2.04;
@@ -36,36 +31,20 @@ constexpr double kImpulseMinRatio = 1.2;
 // A free slide-jointed cube: MuJoCo integrates Δv = F·Δt/m exactly, so A = I/m to rounding.
 constexpr double kAccelTolerance = 1e-9;
 
-class T41ExperimentTest : public ::testing::Test {
+class T41ExperimentTest : public testing::ExperimentTest<T41ExperimentTest> {
  protected:
   static void SetUpTestSuite() {
-    out_ = new std::filesystem::path(TempDir("mrh_experiments_test_t4_1_"));
-    std::filesystem::remove_all(*out_);
-    internal::T41Options options;  // all three methods; the sweep has its own test
-    options.sweep = false;
-    exit_code_ = internal::RunT41(*out_, /*quiet=*/true, options);
-    std::ifstream in(*out_ / "summary.json");
-    summary_ = new nlohmann::json(nlohmann::json::parse(in));
-  }
-
-  static void TearDownTestSuite() {
-    std::filesystem::remove_all(*out_);
-    delete summary_;
-    delete out_;
+    RunExperiment("mrh_experiments_test_t4_1_", [](const std::filesystem::path& out) {
+      internal::T41Options options;  // all three methods; the sweep has its own test
+      options.sweep = false;
+      return internal::RunT41(out, /*quiet=*/true, options);
+    });
   }
 
   static double Impulse(const char* method) {
     return (*summary_)["methods"][method]["impulse_Ns"].get<double>();
   }
-
-  static std::filesystem::path* out_;
-  static nlohmann::json* summary_;
-  static int exit_code_;
 };
-
-std::filesystem::path* T41ExperimentTest::out_ = nullptr;
-nlohmann::json* T41ExperimentTest::summary_ = nullptr;
-int T41ExperimentTest::exit_code_ = -1;
 
 TEST_F(T41ExperimentTest, PassesItsChecksAndWritesItsArtefacts) {
   EXPECT_EQ(exit_code_, 0);
@@ -99,7 +78,7 @@ TEST_F(T41ExperimentTest, FreeCubeAcceleranceIsInverseMass) {
 // Over 15–240 kg and 0.005–0.1 m/s local-dynamics stays at 2mv, and the impulse method's excess
 // shrinks as the cube gets heavier (its contact lasts more physics steps, π·sqrt(m/k)).
 TEST(T41SweepTest, KeepsLocalDynamicsElasticAndImpulseErrorFallsWithMass) {
-  const std::filesystem::path out = TempDir("mrh_experiments_test_t4_1_sweep_");
+  const std::filesystem::path out = testing::TempDir("mrh_experiments_test_t4_1_sweep_");
   std::filesystem::remove_all(out);
   ASSERT_EQ(experiments::Run("t4.1", out, /*quiet=*/true), 0);
   for (const char* file : {"sweep.csv", "sweep_vs_mass.csv", "sweep_vs_speed.csv"}) {
@@ -138,7 +117,7 @@ TEST(T41SweepTest, KeepsLocalDynamicsElasticAndImpulseErrorFallsWithMass) {
 }
 
 TEST(T41OptionsTest, RunsOnlyTheRequestedMethods) {
-  const std::filesystem::path out = TempDir("mrh_experiments_test_t4_1_subset_");
+  const std::filesystem::path out = testing::TempDir("mrh_experiments_test_t4_1_subset_");
   std::filesystem::remove_all(out);
   internal::T41Options options;
   options.methods = {"single-rate", "impulse"};

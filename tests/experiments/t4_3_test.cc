@@ -1,27 +1,21 @@
 // SPDX-License-Identifier: Apache-2.0
 // The T4.3 driver times every variant at every cube count and writes complete, finite tables.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
+#include "experiment_test_util.h"
 #include "experiments/experiments_impl.h"
 
 namespace mrh::experiments::internal {
 namespace {
-
-// Each test runs in its own process (ctest, maybe in parallel): one folder per process.
-std::filesystem::path TempDir(const std::string& stem) {
-  return std::filesystem::temp_directory_path() / (stem + std::to_string(getpid()));
-}
 
 std::vector<std::vector<std::string>> ReadCsv(const std::filesystem::path& file) {
   std::ifstream in(file);
@@ -36,38 +30,22 @@ std::vector<std::vector<std::string>> ReadCsv(const std::filesystem::path& file)
 }
 
 // Occupancy is wall-clock data: only completeness and finiteness are checked, never its size.
-class T43ExperimentTest : public ::testing::Test {
+class T43ExperimentTest : public testing::ExperimentTest<T43ExperimentTest> {
  protected:
   static void SetUpTestSuite() {
-    out_ = new std::filesystem::path(TempDir("mrh_experiments_test_t4_3_"));
-    std::filesystem::remove_all(*out_);
     options_.cubes = {1, 10};
     options_.steps = 6;
     options_.single_rate_steps = 30;
-    exit_code_ = RunT43(*out_, /*quiet=*/true, options_);
+    RunExperiment("mrh_experiments_test_t4_3_", [](const std::filesystem::path& out) {
+      return RunT43(out, /*quiet=*/true, options_);
+    });
   }
 
-  static void TearDownTestSuite() {
-    std::filesystem::remove_all(*out_);
-    delete out_;
-  }
-
-  static std::filesystem::path* out_;
-  static T43Options options_;
-  static int exit_code_;
+  inline static T43Options options_;
 };
-
-std::filesystem::path* T43ExperimentTest::out_ = nullptr;
-T43Options T43ExperimentTest::options_;
-int T43ExperimentTest::exit_code_ = -1;
 
 TEST_F(T43ExperimentTest, ReportsEveryRunCompleteAndFinite) {
   EXPECT_EQ(exit_code_, 0);
-}
-
-nlohmann::json ReadSummary(const std::filesystem::path& out) {
-  std::ifstream in(out / "summary.json");
-  return nlohmann::json::parse(in);
 }
 
 // The essential result as counts: the test-force runs cost no MuJoCo solver iterations (they
@@ -82,7 +60,7 @@ void ExpectIslandSolvedTestRuns(const nlohmann::json& summary, int cubes) {
 }
 
 TEST_F(T43ExperimentTest, TestForceRunsNeedNoSolverIterations) {
-  const nlohmann::json summary = ReadSummary(*out_);
+  const nlohmann::json& summary = *summary_;
   ExpectIslandSolvedTestRuns(summary, 10);
   EXPECT_TRUE(summary["checks"]["local_dynamics_test_runs_use_no_solver_iterations"].get<bool>());
   EXPECT_TRUE(summary["checks"]["island_accelerance_within_1e-4_of_converged"].get<bool>());
@@ -90,7 +68,7 @@ TEST_F(T43ExperimentTest, TestForceRunsNeedNoSolverIterations) {
 
 // The t4.3 goal scene itself, local-dynamics only and a few steps: 1000 cubes, ~4000 contacts.
 TEST(T43ThousandCubesTest, TestForceRunsAreSolvedOnIslandsAndMatchConvergedMuJoCo) {
-  const std::filesystem::path out = TempDir("mrh_experiments_test_t4_3_1000_");
+  const std::filesystem::path out = testing::TempDir("mrh_experiments_test_t4_3_1000_");
   std::filesystem::remove_all(out);
   T43Options options;
   options.variants = {"local-dynamics"};
@@ -98,7 +76,7 @@ TEST(T43ThousandCubesTest, TestForceRunsAreSolvedOnIslandsAndMatchConvergedMuJoC
   options.steps = 4;
   options.accuracy_steps = 2;
   EXPECT_EQ(RunT43(out, /*quiet=*/true, options), 0);
-  const nlohmann::json summary = ReadSummary(out);
+  const nlohmann::json summary = testing::ReadSummary(out);
   ExpectIslandSolvedTestRuns(summary, 1000);
   const nlohmann::json& accuracy = summary["accuracy"];
   // The island solve agrees with converged MuJoCo far better than MuJoCo's default stopping

@@ -1,22 +1,16 @@
 // SPDX-License-Identifier: Apache-2.0
 // T4.4: the accelerance includes the cubes the pushed cube touches, and an edge push turns it.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "experiment_test_util.h"
 #include "experiments/experiments_impl.h"
 
 namespace mrh::experiments::internal {
 namespace {
-
-// Each test runs in its own process (ctest, maybe in parallel): one folder per process.
-std::filesystem::path TempDir(const std::string& stem) {
-  return std::filesystem::temp_directory_path() / (stem + std::to_string(getpid()));
-}
 
 // scenes/t4_4.xml: 2 kg cubes; k cubes in the pushed group weigh k·2 kg.
 constexpr double kCubeMass = 2.0;
@@ -26,34 +20,18 @@ constexpr double kMassTolerance = 0.05;
 constexpr double kEdgeRatio = -24.0;
 constexpr double kEdgeTolerance = 0.05;
 
-class T44ExperimentTest : public ::testing::Test {
+class T44ExperimentTest : public testing::ExperimentTest<T44ExperimentTest> {
  protected:
   static void SetUpTestSuite() {
-    out_ = new std::filesystem::path(TempDir("mrh_experiments_test_t4_4_"));
-    std::filesystem::remove_all(*out_);
-    T44Options options;
-    options.variants = {"local-dynamics", "local-dynamics/no-perturbation"};
-    exit_code_ = RunT44(*out_, /*quiet=*/true, options);
-    std::ifstream in(*out_ / "summary.json");
-    summary_ = new nlohmann::json(nlohmann::json::parse(in));
-  }
-
-  static void TearDownTestSuite() {
-    std::filesystem::remove_all(*out_);
-    delete summary_;
-    delete out_;
+    RunExperiment("mrh_experiments_test_t4_4_", [](const std::filesystem::path& out) {
+      T44Options options;
+      options.variants = {"local-dynamics", "local-dynamics/no-perturbation"};
+      return RunT44(out, /*quiet=*/true, options);
+    });
   }
 
   static const nlohmann::json& Variant(const char* name) { return (*summary_)["variants"][name]; }
-
-  static std::filesystem::path* out_;
-  static nlohmann::json* summary_;
-  static int exit_code_;
 };
-
-std::filesystem::path* T44ExperimentTest::out_ = nullptr;
-nlohmann::json* T44ExperimentTest::summary_ = nullptr;
-int T44ExperimentTest::exit_code_ = -1;
 
 TEST_F(T44ExperimentTest, PassesItsChecks) {
   EXPECT_EQ(exit_code_, 0);

@@ -1,52 +1,30 @@
 // SPDX-License-Identifier: Apache-2.0
 // T4.5: local-dynamics simulates and renders every neighbor; timings are recorded, not judged.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "experiment_test_util.h"
 #include "experiments/experiments_impl.h"
 
 namespace mrh::experiments::internal {
 namespace {
 
-// Each test runs in its own process (ctest, maybe in parallel): one folder per process.
-std::filesystem::path TempDir(const std::string& stem) {
-  return std::filesystem::temp_directory_path() / (stem + std::to_string(getpid()));
-}
-
-class T45ExperimentTest : public ::testing::Test {
+class T45ExperimentTest : public testing::ExperimentTest<T45ExperimentTest> {
  protected:
   static void SetUpTestSuite() {
-    out_ = new std::filesystem::path(TempDir("mrh_experiments_test_t4_5_"));
-    std::filesystem::remove_all(*out_);
     options_.neighbors = {1, 8, 64};
     options_.duration = 0.3;
-    exit_code_ = RunT45(*out_, /*quiet=*/true, options_);
-    std::ifstream in(*out_ / "summary.json");
-    summary_ = new nlohmann::json(nlohmann::json::parse(in));
+    RunExperiment("mrh_experiments_test_t4_5_", [](const std::filesystem::path& out) {
+      return RunT45(out, /*quiet=*/true, options_);
+    });
   }
 
-  static void TearDownTestSuite() {
-    std::filesystem::remove_all(*out_);
-    delete summary_;
-    delete out_;
-  }
-
-  static std::filesystem::path* out_;
-  static nlohmann::json* summary_;
-  static T45Options options_;
-  static int exit_code_;
+  inline static T45Options options_;
 };
-
-std::filesystem::path* T45ExperimentTest::out_ = nullptr;
-nlohmann::json* T45ExperimentTest::summary_ = nullptr;
-T45Options T45ExperimentTest::options_;
-int T45ExperimentTest::exit_code_ = -1;
 
 TEST_F(T45ExperimentTest, PassesItsChecks) {
   EXPECT_EQ(exit_code_, 0);

@@ -27,39 +27,21 @@ constexpr double kExact = 1e-13;
 // LCP residual bounds on random problems (m).
 constexpr double kLcpTol = 1e-11;
 
-struct Solved {
-  std::vector<double> f;
-  Vec3 dr = Vec3::Zero();
-  Vec3 dtheta = Vec3::Zero();
-  ProxySolveResult result;
-};
-
-Solved SolveExact(const std::vector<ProxyRow>& rows, const Mat3& w_inv,
-                  ProxySolverSettings settings = {64, 1e-14}, std::vector<double> start = {}) {
-  Solved s;
-  s.f = start.empty() ? std::vector<double>(rows.size(), 0.0) : start;
-  ProxyActiveSetSolver solver(rows.size() + 1);
-  s.result = solver.Solve(rows, w_inv, settings, s.f, &s.dr, &s.dtheta);
-  return s;
-}
-
+using testing::ExpectLcpConditions;
+using testing::PrismFaceRows;
 using testing::Problem;
 using testing::RandomProblem;
+using testing::Solved;
+using testing::SolveExact;
+using testing::SolveFast;
 
 // f >= 0, w = C f − rhs >= −tol, min(f, w) <= tol per row, and (Δr, Δθ) = W⁻¹Jᵀf: the KKT
 // conditions, sufficient for the optimum of the convex program, so they prove the solution.
 void ExpectKkt(const Problem& p, const Solved& s, double tol, int trial) {
-  const Eigen::MatrixXd c = ProxyMatrix(p.rows, p.w_inv);
+  ExpectLcpConditions(p, s, tol, trial);
   Vec3 dr = Vec3::Zero();
   Vec3 dtheta = Vec3::Zero();
   for (std::size_t k = 0; k < p.rows.size(); ++k) {
-    double w = -p.rows[k].rhs;
-    for (std::size_t l = 0; l < p.rows.size(); ++l) {
-      w += c(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(l)) * s.f[l];
-    }
-    EXPECT_GE(s.f[k], 0.0) << "trial " << trial << " row " << k;
-    EXPECT_GE(w, -tol) << "trial " << trial << " row " << k;
-    EXPECT_LE(std::min(s.f[k], std::abs(w)), tol) << "trial " << trial << " row " << k;
     dr += s.f[k] * p.rows[k].a;
     dtheta += s.f[k] * (p.w_inv * p.rows[k].r.cross(p.rows[k].a));
   }
@@ -108,12 +90,9 @@ TEST(ProxyActiveSetTest, OpposedFrictionRowsGiveTheAnalyticTwistAtTheT32Weight) 
   EXPECT_NEAR(s.dtheta.z(), sigma / l, 1e-12);
   EXPECT_NEAR(s.f[0] + s.f[1], sigma * 8420.0 / (l * l), 1e-6);
 
-  ProxySolver pgs(rows.size());
-  std::vector<double> f(rows.size(), 0.0);
-  Vec3 dr, dtheta;
-  const ProxySolveResult r = pgs.Solve(rows, weight.inverse(), {50, 1e-10}, f, &dr, &dtheta);
-  EXPECT_FALSE(r.converged);                // why the exact solver exists
-  EXPECT_LT(dtheta.z(), 0.01 * sigma / l);  // 50 sweeps reach under 1 % of the twist
+  const Solved pgs = SolveFast(rows, weight.inverse(), {50, 1e-10});
+  EXPECT_FALSE(pgs.result.converged);           // why the exact solver exists
+  EXPECT_LT(pgs.dtheta.z(), 0.01 * sigma / l);  // 50 sweeps reach under 1 % of the twist
 }
 
 TEST(ProxyActiveSetTest, SatisfiesTheLcpConditionsOnRandomProblems) {
@@ -140,14 +119,11 @@ TEST(ProxyActiveSetTest, EqualsConvergedPgsDisplacementOnWellConditionedProblems
   for (int trial = 0; trial < 100; ++trial) {
     const Problem p = RandomProblem(&rng, 1 + trial % 12, -2.0, 0.5);
     const Solved exact = SolveExact(p.rows, p.w_inv);
-    ProxySolver pgs(p.rows.size());
-    std::vector<double> f(p.rows.size(), 0.0);
-    Vec3 dr, dtheta;
-    const ProxySolveResult r = pgs.Solve(p.rows, p.w_inv, {100000, 1e-16}, f, &dr, &dtheta);
-    if (!r.converged) continue;  // a rare slow case; the KKT test covers correctness
+    const Solved pgs = SolveFast(p.rows, p.w_inv, {100000, 1e-16});
+    if (!pgs.result.converged) continue;  // a rare slow case; the KKT test covers correctness
     ++compared;
-    EXPECT_LT((exact.dr - dr).norm(), 1e-11) << "trial " << trial;
-    EXPECT_LT((exact.dtheta - dtheta).norm(), 1e-10) << "trial " << trial;
+    EXPECT_LT((exact.dr - pgs.dr).norm(), 1e-11) << "trial " << trial;
+    EXPECT_LT((exact.dtheta - pgs.dtheta).norm(), 1e-10) << "trial " << trial;
   }
   EXPECT_GE(compared, 90);
 }
@@ -205,16 +181,7 @@ TEST(ProxyActiveSetTest, NoRowsGiveZeroDisplacementAndConverged) {
 
 TEST(ProxyActiveSetTest, ThousandPointFaceWithFrictionConvergesInFewSteps) {
   // T3.4's shape: a 1000-gon prism base pressed into a floor, dragged and twisted.
-  std::vector<ProxyRow> rows;
-  const int n = 1000;
-  for (int i = 0; i < n; ++i) {
-    const double angle = 2.0 * 3.141592653589793 * i / n;
-    const Vec3 r(0.05 * std::cos(angle), 0.05 * std::sin(angle), -0.05);
-    const double depth = 1e-3 * (1.0 + 0.2 * std::cos(angle));
-    rows.push_back(ProxyRow{Vec3::UnitZ(), r, depth});
-    const Vec3 slip = Vec3(-1e-4, 0, 0) - 1e-3 * Vec3::UnitZ().cross(r);
-    rows.push_back(ProxyRow{slip.normalized(), r, std::min(slip.norm(), 0.5 * depth)});
-  }
+  const std::vector<ProxyRow> rows = PrismFaceRows(1000);
   const Mat3 w_inv = (Vec3(8420.0, 1670.0, 8420.0).asDiagonal().toDenseMatrix()).inverse();
   const Problem p{rows, w_inv};
   const Solved s = SolveExact(rows, w_inv, {64, 1e-12});

@@ -33,24 +33,12 @@ ProxySolverSettings Converge() {
   return ProxySolverSettings{100000, kConvergence};
 }
 
-struct Solved {
-  std::vector<double> f;
-  Vec3 dr = Vec3::Zero();
-  Vec3 dtheta = Vec3::Zero();
-  ProxySolveResult result;
-};
-
-Solved SolveFast(const std::vector<ProxyRow>& rows, const Mat3& w_inv,
-                 const ProxySolverSettings& settings, std::vector<double> start = {}) {
-  Solved s;
-  s.f = start.empty() ? std::vector<double>(rows.size(), 0.0) : start;
-  ProxySolver solver(rows.size() + 1);
-  s.result = solver.Solve(rows, w_inv, settings, s.f, &s.dr, &s.dtheta);
-  return s;
-}
-
+using testing::ExpectLcpConditions;
+using testing::PrismFaceRows;
 using testing::Problem;
 using testing::RandomProblem;
+using testing::Solved;
+using testing::SolveFast;
 
 TEST(ProxySolverTest, SingleContactMatchesTheClosedFormOfU1) {
   const Vec3 n = Vec3(0.2, 1.0, -0.1).normalized();
@@ -103,16 +91,7 @@ TEST(ProxySolverTest, ConvergedSolutionSatisfiesTheLcpConditionsOnRandomProblems
     const Problem p = RandomProblem(&rng, 1 + trial % 6);
     const Solved s = SolveFast(p.rows, p.w_inv, Converge());
     ASSERT_TRUE(s.result.converged) << "trial " << trial;
-    const Eigen::MatrixXd c = ProxyMatrix(p.rows, p.w_inv);
-    for (std::size_t k = 0; k < p.rows.size(); ++k) {
-      double w = -p.rows[k].rhs;  // w = C f − rhs (eq. 3.4)
-      for (std::size_t l = 0; l < p.rows.size(); ++l) {
-        w += c(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(l)) * s.f[l];
-      }
-      EXPECT_GE(s.f[k], 0.0) << "trial " << trial << " row " << k;
-      EXPECT_GE(w, -kLcpTol) << "trial " << trial << " row " << k;
-      EXPECT_LE(std::min(s.f[k], std::abs(w)), kLcpTol) << "trial " << trial << " row " << k;
-    }
+    ExpectLcpConditions(p, s, kLcpTol, trial);
   }
 }
 
@@ -140,16 +119,7 @@ TEST(ProxySolverTest, LinearSweepEqualsDenseIterationOnRandomProblems) {
 TEST(ProxySolverTest, LinearSweepEqualsDenseIterationOnAFourHundredRowFrictionContact) {
   // A 200-gon face pressed into a floor and dragged along x and twisted: normal rows along z
   // and friction rows along the slip of each point (T3.4's shape, m = 400 rows).
-  std::vector<ProxyRow> rows;
-  const int n = 200;  // rows = 2n
-  for (int i = 0; i < n; ++i) {
-    const double angle = 2.0 * 3.141592653589793 * i / n;
-    const Vec3 r(0.05 * std::cos(angle), 0.05 * std::sin(angle), -0.05);
-    const double depth = 1e-3 * (1.0 + 0.2 * std::cos(angle));
-    rows.push_back(ProxyRow{Vec3::UnitZ(), r, depth});
-    const Vec3 slip = Vec3(-1e-4, 0, 0) - 1e-3 * Vec3::UnitZ().cross(r);
-    rows.push_back(ProxyRow{slip.normalized(), r, std::min(slip.norm(), 0.5 * depth)});
-  }
+  const std::vector<ProxyRow> rows = PrismFaceRows(200);
   const Mat3 w_inv = (Vec3(1.0, 2.0, 3.0).asDiagonal() * 1e-2).toDenseMatrix().inverse();
   const ProxySolverSettings settings{20, 0.0};
   const Solved fast = SolveFast(rows, w_inv, settings);

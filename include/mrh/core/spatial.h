@@ -54,6 +54,42 @@ inline Pose Interpolate(const Pose& a, const Pose& b, double alpha) {
   return Pose{a.p + alpha * (b.p - a.p), a.q.slerp(alpha, b.q)};
 }
 
+namespace internal {
+// Below this rotation angle (rad) the exp and log maps use their first-order series forms,
+// which are exact to double precision there: the next terms are O(angle²) relative, < 1e-16.
+inline constexpr double kSmallRotationAngle = 1e-8;
+}  // namespace internal
+
+/// The unit quaternion of the rotation vector theta (axis × angle, rad): the exponential map of
+/// SO(3), exp(θ) = (cos(|θ|/2), sin(|θ|/2) θ/|θ|). θ is expressed in the frame the quaternion
+/// rotates into (a world rotation vector gives q_W, applied as exp(θ) * q). Any |θ| is accepted;
+/// angles beyond π wrap around. Below internal::kSmallRotationAngle it returns (1, θ/2)
+/// normalized (no division by a vanishing angle); the zero vector gives the identity exactly.
+/// @pre theta is finite. RT-safe.
+inline Quat QuatFromRotationVector(const Vec3& theta) noexcept {
+  const double angle = theta.norm();
+  if (angle < internal::kSmallRotationAngle) {
+    return Quat(1.0, 0.5 * theta.x(), 0.5 * theta.y(), 0.5 * theta.z()).normalized();
+  }
+  return Quat(Eigen::AngleAxisd(angle, theta / angle));
+}
+
+/// The rotation vector (axis × angle, rad, angle in [0, π]) of the unit quaternion q: the
+/// logarithmic map of SO(3), the inverse of QuatFromRotationVector. q and −q are the same
+/// rotation; the short arc is taken. Below a half-angle sine of internal::kSmallRotationAngle
+/// it returns 2 q.vec() (the limit of 2 atan2(s, w) q.vec()/s).
+/// @pre q is finite and of unit norm. RT-safe.
+inline Vec3 RotationVectorFromQuat(const Quat& q) noexcept {
+  // w >= 0 selects the representative with angle <= π.
+  const double sign = q.w() < 0.0 ? -1.0 : 1.0;
+  const Vec3 v = sign * q.vec();
+  const double w = sign * q.w();
+  const double s = v.norm();
+  if (s < internal::kSmallRotationAngle) return 2.0 * v;
+  const double angle = 2.0 * std::atan2(s, w);
+  return v * (angle / s);
+}
+
 /// True when every component is finite. RT-safe.
 inline bool IsFinite(const Vec3& v) {
   return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z());
@@ -64,10 +100,16 @@ inline bool IsFinite(const Quat& q) {
          std::isfinite(q.z());
 }
 
-inline bool IsFinite(const Pose& X) { return IsFinite(X.p) && IsFinite(X.q); }
+inline bool IsFinite(const Pose& X) {
+  return IsFinite(X.p) && IsFinite(X.q);
+}
 
-inline bool IsFinite(const Wrench& w) { return IsFinite(w.f) && IsFinite(w.tau); }
+inline bool IsFinite(const Wrench& w) {
+  return IsFinite(w.f) && IsFinite(w.tau);
+}
 
-inline bool IsFinite(const Twist& t) { return IsFinite(t.v) && IsFinite(t.w); }
+inline bool IsFinite(const Twist& t) {
+  return IsFinite(t.v) && IsFinite(t.w);
+}
 
 }  // namespace mrh
