@@ -17,8 +17,6 @@ namespace {
 // A tangential offset |s| below this is rounding of metre-scale poses (~1e-16 m), not motion:
 // no friction row (SPEC §3.7, "|s| about 0").
 constexpr double kMinSlip = 1e-12;
-// Below this rotation angle exp(Δθ) uses (1, Δθ/2) normalized, exact to O(angle³) (rad).
-constexpr double kSmallAngle = 1e-8;
 // R_w counts as symmetric when |R − Rᵀ| is within this fraction of its largest entry.
 constexpr double kSymmetryTolerance = 1e-12;
 
@@ -61,15 +59,6 @@ const ProxyRendererSettings& Validated(const ProxyRendererSettings& settings) {
 std::uint64_t RowIdOf(std::uint64_t key, std::size_t point_index, bool friction) noexcept {
   return (key * 0x9e3779b97f4a7c15ULL) ^ (static_cast<std::uint64_t>(point_index) << 1) ^
          (friction ? 1u : 0u);
-}
-
-// World rotation vector → unit quaternion (SPEC §3.5, exp of Δθ).
-Quat ExpRotation(const Vec3& theta) noexcept {
-  const double angle = theta.norm();
-  if (angle < kSmallAngle) {
-    return Quat(1.0, 0.5 * theta.x(), 0.5 * theta.y(), 0.5 * theta.z()).normalized();
-  }
-  return Quat(Eigen::AngleAxisd(angle, theta / angle));
 }
 
 }  // namespace
@@ -171,7 +160,7 @@ void ProxyRenderer::Tick(const TickIr& ir, const Pose& X_WP, double dt, ProxyOut
   out->w_W.tau =
       settings_.k_r * out->dtheta + settings_.d_r * (out->dtheta - previous_dtheta_) / dt;
   const Quat q_WP = X_WP.q.normalized();
-  out->X_WQ = Pose{X_WP.p + out->dr, (ExpRotation(out->dtheta) * q_WP).normalized()};
+  out->X_WQ = Pose{X_WP.p + out->dr, (QuatFromRotationVector(out->dtheta) * q_WP).normalized()};
   if (!IsFinite(out->w_W) || !IsFinite(out->X_WQ)) return Fault(X_WP, out);
 
   out->rows = std::span<const ProxyRow>(rows_.data(), row_count_);
