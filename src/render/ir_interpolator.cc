@@ -55,6 +55,8 @@ void IrInterpolator::Evaluate(double alpha, const Pose& X_WP, TickIr* out) noexc
   out->points.Clear();
   if (!IsFinite(X_WP)) return;
   const double a = std::isnan(alpha) ? 1.0 : std::clamp(alpha, 0.0, 1.0);
+  // One matrix for all points (X_WP * p with the quaternion costs twice the flops per point).
+  const Mat3 R_WP = X_WP.q.toRotationMatrix();
   for (std::size_t i = 0; i < snapshot_.pairs.size(); ++i) {
     const ir::GeometricPair& pair = snapshot_.pairs[i];
     if (pair.motion < 0 || static_cast<std::size_t>(pair.motion) >= snapshot_.bodies.size()) {
@@ -76,13 +78,15 @@ void IrInterpolator::Evaluate(double alpha, const Pose& X_WP, TickIr* out) noexc
     rendered_n_[i] = tick.n_W;
     const int index = static_cast<int>(out->pairs.size());
     // Points are fixed on the pointer: re-posed with this tick's pointer pose, never blended.
+    // depth = n·(c − v) = n·c − n·v.
+    const double n_dot_c = tick.n_W.dot(tick.c_W);
     for (int k = pair.first_point; k < pair.first_point + pair.num_points; ++k) {
       if (k < 0 || static_cast<std::size_t>(k) >= snapshot_.points.size()) break;
       const ir::PairPoint& point = snapshot_.points[static_cast<std::size_t>(k)];
       TickPoint p;
       p.p_PV = point.p_PV;
-      p.v_W = X_WP * point.p_PV;
-      p.depth = tick.n_W.dot(tick.c_W - p.v_W);
+      p.v_W = R_WP * point.p_PV + X_WP.p;
+      p.depth = n_dot_c - tick.n_W.dot(p.v_W);
       p.pair = index;
       if (!out->points.PushBack(p)) break;
     }

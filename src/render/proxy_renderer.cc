@@ -256,16 +256,17 @@ bool ProxyRenderer::BuildRows(const TickIr& ir, const Pose& X_WP, ProxyDiagnosti
   std::uint64_t pair_key = 0;
   bool with_friction = false;
 
-  // x − x is 0 for finite x and NaN otherwise: the sum is NaN iff some value is not finite.
+  // A sum of values is finite unless one of them is not (or it overflows, at ~1e308 m), and
+  // x − x is 0 for finite x and NaN otherwise: nan_if_bad is NaN iff some value is not finite.
   double nan_if_bad = 0.0;
   const std::size_t point_count = ir.points.size();
   for (std::size_t p = 0; p < point_count; ++p) {
     const TickPoint& point = ir.points[p];
     const Vec3& v = point.v_W;
     const double depth = point.depth;
-    nan_if_bad += ((point.p_PV.x() - point.p_PV.x()) + (point.p_PV.y() - point.p_PV.y())) +
-                  ((point.p_PV.z() - point.p_PV.z()) + (v.x() - v.x())) +
-                  ((v.y() - v.y()) + (v.z() - v.z())) + (depth - depth);
+    const double sum =
+        ((point.p_PV.x() + point.p_PV.y()) + (point.p_PV.z() + v.x())) + ((v.y() + v.z()) + depth);
+    nan_if_bad += sum - sum;
     if (!(depth > 0.0)) continue;
     if (point.pair != current) {
       if (point.pair < 0 || static_cast<std::size_t>(point.pair) >= pair_count) continue;
@@ -331,11 +332,20 @@ void ProxyRenderer::ComputeReactions(const TickIr& ir, const Pose& X_WP, double 
     dr_pair_[i].setZero();
     dtheta_pair_[i].setZero();
   }
-  for (std::size_t k = 0; k < row_count_; ++k) {
-    if (f_[k] == 0.0) continue;  // most rows: the active-set solution has <= 6 non-zero f
+  const auto add = [&](std::size_t k) noexcept {
     const auto i = static_cast<std::size_t>(info_[k].pair);
     dr_pair_[i] += f_[k] * rows_[k].a;
     dtheta_pair_[i] += f_[k] * (rotation_weight_inverse_ * rows_[k].r.cross(rows_[k].a));
+  };
+  if (settings_.solver == ProxySolverKind::kActiveSet) {
+    // Only the <= 6 active rows can have f != 0.
+    for (const int k : active_set_.active_rows()) {
+      if (f_[static_cast<std::size_t>(k)] != 0.0) add(static_cast<std::size_t>(k));
+    }
+  } else {
+    for (std::size_t k = 0; k < row_count_; ++k) {
+      if (f_[k] != 0.0) add(k);
+    }
   }
   for (std::size_t i = 0; i < ir.pairs.size(); ++i) {
     const TickPair& pair = ir.pairs[i];

@@ -486,6 +486,33 @@ TEST(ProxyRendererTest, NonFiniteInputGivesZeroWrenchAndTheBadInputBit) {
   EXPECT_EQ(rig.out->w_W.f.norm() + rig.out->w_W.tau.norm(), 0.0);
 }
 
+// The points are checked while the rows are built: every field of every point counts, also of
+// points that do not penetrate (and so get no row).
+TEST(ProxyRendererTest, AnyNonFinitePointValueIsBadInputEvenWithoutARowForThePoint) {
+  for (const double bad :
+       {static_cast<double>(NAN), static_cast<double>(INFINITY), -static_cast<double>(INFINITY)}) {
+    for (int field = 0; field < 7; ++field) {
+      for (const bool penetrating : {true, false}) {
+        Rig rig(Friction());  // friction: p_PV is used too
+        const std::vector<PairSpec> floor{Floor(BottomFace())};
+        Fill(floor, Pressed(), rig.ir.get());
+        rig.renderer.Tick(*rig.ir, Pressed(), kDt, rig.out.get());
+        ASSERT_EQ(rig.out->diagnostics.status, kProxyStatusOk);
+        TickPoint& point = rig.ir->points[rig.ir->points.size() - 1];
+        if (!penetrating) point.depth = -1e-3;
+        double* const values[7] = {&point.p_PV.x(), &point.p_PV.y(), &point.p_PV.z(),
+                                   &point.v_W.x(),  &point.v_W.y(),  &point.v_W.z(),
+                                   &point.depth};
+        *values[field] = bad;
+        rig.renderer.Tick(*rig.ir, Pressed(), kDt, rig.out.get());
+        EXPECT_EQ(rig.out->diagnostics.status, kProxyStatusBadInput)
+            << "value " << bad << " field " << field << " penetrating " << penetrating;
+        EXPECT_EQ(rig.out->w_W.f.norm() + rig.out->w_W.tau.norm(), 0.0);
+      }
+    }
+  }
+}
+
 TEST(ProxyRendererTest, IterationCapGivesFiniteOutputAndTheNotConvergedBit) {
   ProxyRendererSettings settings = T31();
   settings.max_iterations = 1;

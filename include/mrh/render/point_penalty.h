@@ -8,17 +8,17 @@ namespace mrh::render {
 
 /// One plane contact as the haptic thread evaluates it (world frame).
 struct PlaneContactState {
-  Vec3 p_WO = Vec3::Zero();   ///< plane point on the object (m)
-  Vec3 n_W = Vec3::UnitZ();   ///< unit normal, object → pointer
-  Vec3 v_WO = Vec3::Zero();   ///< velocity of the object's material point at p_WO (m/s)
-  Vec3 p_WC = Vec3::Zero();   ///< pointer contact point (for a sphere: centre − radius·n) (m)
-  Vec3 v_WC = Vec3::Zero();   ///< pointer velocity at that point (m/s)
+  Vec3 p_WO = Vec3::Zero();  ///< plane point on the object (m)
+  Vec3 n_W = Vec3::UnitZ();  ///< unit normal, object → pointer
+  Vec3 v_WO = Vec3::Zero();  ///< velocity of the object's material point at p_WO (m/s)
+  Vec3 p_WC = Vec3::Zero();  ///< pointer contact point (for a sphere: centre − radius·n) (m)
+  Vec3 v_WC = Vec3::Zero();  ///< pointer velocity at that point (m/s)
 };
 
 /// Result of RenderPointPenalty.
 struct PointPenaltyResult {
-  double depth = 0.0;         ///< δ = n·(p_WO − p_WC) (m); > 0 when penetrating
-  double magnitude = 0.0;     ///< max(0, kδ + dδ̇) (N); 0 when not penetrating
+  double depth = 0.0;      ///< δ = n·(p_WO − p_WC) (m); > 0 when penetrating
+  double magnitude = 0.0;  ///< max(0, kδ + dδ̇) (N); 0 when not penetrating
   /// Force displayed on the pointer, f_d = magnitude·n (N). The object receives −f_d (eq. 4.12).
   Vec3 f_W = Vec3::Zero();
 };

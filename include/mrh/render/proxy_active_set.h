@@ -64,6 +64,12 @@ class ProxyActiveSetSolver {
 
   std::size_t capacity() const noexcept { return capacity_; }
 
+  /// The rows of the last Solve's active set: the only ones whose f may be non-zero (at most 6,
+  /// indices into its rows). Valid until the next Solve.
+  std::span<const int> active_rows() const noexcept {
+    return {active_.data(), static_cast<std::size_t>(count_)};
+  }
+
  private:
   using Vec6 = std::array<double, 6>;
   static constexpr int kDim = 6;
