@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -35,6 +36,8 @@ constexpr double kBudget = 1e-3;
 // 0.1 m prism (the solver's own 1e-10 m is smaller); 1e-8 m of depth, times k_t (N).
 constexpr double kPointAccuracy = 1e-8;
 
+// scenes/t3_4.xml (floor, mocap pointer, physics) with its prism mesh's vertex list replaced by
+// the N-gon's: a bottom and a top vertex per corner.
 std::string PrismScene(int sides) {
   std::string vertices;
   for (int i = 0; i < sides; ++i) {
@@ -44,13 +47,10 @@ std::string PrismScene(int sides) {
           fmt::format("{:.12f} {:.12f} {} ", kRadius * std::cos(a), kRadius * std::sin(a), z);
     }
   }
-  return fmt::format(
-      R"(<mujoco model="t3_4_prism_{0}"><option timestep="{1}"/>
-<asset><mesh name="prism" vertex="{2}"/></asset>
-<worldbody><geom name="floor" type="plane" size="5 5 0.1"/>
-<body name="pointer" mocap="true" pos="0 0 0.2"><geom name="pointer" type="mesh" mesh="prism"
- contype="0" conaffinity="0"/></body></worldbody></mujoco>)",
-      sides, kPhysicsDt, vertices);
+  const std::filesystem::path file = ScenesDir() / "t3_4.xml";
+  return ReplaceAttribute(ReadText(file), "mesh", "prism", "vertex", vertices, file,
+                          "the T3.4 driver replaces that vertex list with each N-gon's, keep the "
+                          "prism mesh with an explicit vertex=\"...\" list in the scene");
 }
 
 // The T3.1 gains, R_w from the prism's unit-mass inertia × 500 (the T3.1 multiplier), the
@@ -97,7 +97,8 @@ double Percentile(std::vector<double> v, double p) {
 // a period's first tick also starts with the caches the physics step left. The first period
 // (contact onset, cold start) is not counted.
 Result RunPrism(int sides, bool friction, double duration) {
-  world::World world = world::World::LoadString(PrismScene(sides), {}, "t3.4 prism");
+  world::World world = world::World::LoadString(PrismScene(sides), {},
+                                                fmt::format("scenes/t3_4.xml ({}-gon)", sides));
   world.set_timestep(kPhysicsDt);
   const engine::EngineSettings settings = PrismSettings(friction);
   const engine::MethodContext context{&world, &settings, world.pointer_body(), kRadius};

@@ -3,11 +3,10 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <optional>
-#include <sstream>
+#include <string_view>
 #include <tuple>
 #include <vector>
 
@@ -93,17 +92,6 @@ struct MethodResult {
   double thesis = 0.0;
 };
 
-std::string Replace(std::string text, const std::string& from, const std::string& to) {
-  const auto at = text.find(from);
-  if (at == std::string::npos) {
-    throw RuntimeError(
-        fmt::format("scenes/t4_1.xml: '{}' not found; the T4.1 driver edits it to "
-                    "sweep mass and speed, keep it in the scene",
-                    from));
-  }
-  return text.replace(at, from.size(), to);
-}
-
 // The T4.1 session for one method and case. Off-centre cases get a generated copy of the scene
 // (mass and keyframe speed replaced) and a duration covering approach, contact and margin.
 session::Session CaseSession(const std::string& method, const Case& c,
@@ -111,11 +99,12 @@ session::Session CaseSession(const std::string& method, const Case& c,
   session::Session s = session::LoadSession(ScenesDir() / "t4_1_impulse.json");
   s.engine.method = method;
   if (c.mass == kMass && c.speed == kSpeed) return s;
-  std::ifstream in(ScenesDir() / "t4_1.xml");
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string xml = Replace(text.str(), "mass=\"60\"", fmt::format("mass=\"{}\"", c.mass));
-  xml = Replace(xml, "qvel=\"0.017 0 0\"", fmt::format("qvel=\"{} 0 0\"", c.speed));
+  const std::filesystem::path file = ScenesDir() / "t4_1.xml";
+  constexpr std::string_view kWhy =
+      "the T4.1 driver edits it to sweep mass and speed, keep it in the scene";
+  std::string xml =
+      ReplaceOnce(ReadText(file), "mass=\"60\"", fmt::format("mass=\"{}\"", c.mass), file, kWhy);
+  xml = ReplaceOnce(xml, "qvel=\"0.017 0 0\"", fmt::format("qvel=\"{} 0 0\"", c.speed), file, kWhy);
   std::filesystem::create_directories(dir);
   s.scene = dir / fmt::format("t4_1_m{}_v{}.xml", c.mass, c.speed);
   WriteText(s.scene, xml);
