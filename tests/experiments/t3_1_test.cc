@@ -6,6 +6,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "experiment_test_util.h"
 #include "mrh/experiments/experiments.h"
 
 namespace mrh::experiments {
@@ -28,8 +29,7 @@ nlohmann::json RunAndRead(const std::filesystem::path& out) {
 }
 
 TEST(T31ExperimentTest, EdgeRollFaceMatchesTheAnalyticProxy) {
-  const std::filesystem::path out =
-      std::filesystem::temp_directory_path() / "mrh_experiments_test_t3_1";
+  const std::filesystem::path out = testing::TempDir("mrh_experiments_test_t3_1_");
   const nlohmann::json s = RunAndRead(out);
   for (const auto& [name, pass] : s["checks"].items()) EXPECT_TRUE(pass.get<bool>()) << name;
   // Just before the face lands one edge carries the load at lever h: |τ| = k_r δ h/(R_w + h²).

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "experiment_test_util.h"
 #include "mrh/experiments/experiments.h"
 
 namespace mrh::experiments {
@@ -14,8 +15,7 @@ namespace {
 constexpr double kMu = 0.5;
 
 TEST(T32ExperimentTest, KineticFrictionIsMuTimesNormalAndStaticStaysBelow) {
-  const std::filesystem::path out =
-      std::filesystem::temp_directory_path() / "mrh_experiments_test_t3_2";
+  const std::filesystem::path out = testing::TempDir("mrh_experiments_test_t3_2_");
   std::filesystem::remove_all(out);
   ASSERT_EQ(experiments::Run("t3.2", out, /*quiet=*/true), 0);
   for (const char* file : {"t3_2.csv", "t3_2_direction.csv", "t3_2.gp", "summary.json"}) {

@@ -22,8 +22,7 @@ namespace mrh::experiments {
 namespace {
 
 TEST(T34ExperimentTest, PrismBaseGivesOneContactPerSideAndAFrictionRowEach) {
-  const std::filesystem::path out =
-      std::filesystem::temp_directory_path() / "mrh_experiments_test_t3_4";
+  const std::filesystem::path out = testing::TempDir("mrh_experiments_test_t3_4_");
   std::filesystem::remove_all(out);
   internal::T34Options options;
   options.sides = {5, 100, 1000};

@@ -7,14 +7,14 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "experiment_test_util.h"
 #include "mrh/experiments/experiments.h"
 
 namespace mrh::experiments {
 namespace {
 
 TEST(T35ExperimentTest, RotationWeightTradesPenetrationForTorque) {
-  const std::filesystem::path out =
-      std::filesystem::temp_directory_path() / "mrh_experiments_test_t3_5";
+  const std::filesystem::path out = testing::TempDir("mrh_experiments_test_t3_5_");
   std::filesystem::remove_all(out);
   ASSERT_EQ(experiments::Run("t3.5", out, /*quiet=*/true), 0);
   std::ifstream in(out / "summary.json");
@@ -29,8 +29,8 @@ TEST(T35ExperimentTest, RotationWeightTradesPenetrationForTorque) {
   const nlohmann::json& large = points.back();
   const double expected = small["one_edge_peak_torque_analytic_Nm"].get<double>() /
                           large["one_edge_peak_torque_analytic_Nm"].get<double>();
-  const double measured =
-      small["one_edge_peak_torque_Nm"].get<double>() / large["one_edge_peak_torque_Nm"].get<double>();
+  const double measured = small["one_edge_peak_torque_Nm"].get<double>() /
+                          large["one_edge_peak_torque_Nm"].get<double>();
   EXPECT_GT(expected, 1000.0);  // R_w spans 1e4 while h² = 0.01 m²: the torque falls ~4000×
   EXPECT_NEAR(measured, expected, 0.02 * expected);
   EXPECT_GT(small["free_vertex_penetration_m"].get<double>(),
