@@ -4,9 +4,7 @@
 
 #include <array>
 #include <cstddef>
-#include <cstdint>
 #include <span>
-#include <vector>
 
 #include "mrh/core/spatial.h"
 #include "mrh/render/proxy_solver.h"
