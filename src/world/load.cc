@@ -5,6 +5,8 @@
 #include <array>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <mutex>
 #include <sstream>
 #include <string>
@@ -40,12 +42,28 @@ void SilenceMujocoWarnings() {
   std::call_once(once, [] { mju_user_warning = [](const char*) {}; });
 }
 
-internal::ModelPtr LoadOrThrow(const char* file, const mjVFS* vfs, const std::string& origin) {
+// `text` is the scene's MJCF, for the buffer sizes it sets itself (internal::SizeBuffers).
+internal::ModelPtr LoadOrThrow(const char* file, const mjVFS* vfs, const std::string& origin,
+                               const std::string& text) {
   SilenceMujocoWarnings();
   std::array<char, 1024> error{};
   internal::ModelPtr model(mj_loadXML(file, vfs, error.data(), static_cast<int>(error.size())));
+  const internal::ExplicitSizes sizes = internal::FindExplicitSizes(text);
+  if (!model && sizes.njmax && std::strstr(error.data(), "could not create mjData") != nullptr) {
+    // MuJoCo's compiler allocates data with the scene's own sizes (model_size.cc's limit).
+    throw SceneError(origin + ": MuJoCo 2.2.2 could not allocate its data for the scene's <size "
+                     "njmax>: its dense constraint arrays (njmax x dofs, njmax x njmax) must stay "
+                     "under 2.1 GB; lower njmax or remove it (mrhaptics then sizes it from the "
+                     "scene)");
+  }
   if (!model) throw SceneError(origin + ": " + OneLine(error.data()));
+  internal::SizeBuffers(model.get(), sizes, origin);
   return model;
+}
+
+std::string ReadScene(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
 std::string PointerFix(const std::string& name) {
@@ -101,7 +119,7 @@ World World::LoadFile(const std::filesystem::path& path, const LoadOptions& opti
                      "); check the path or run from the directory it is relative to");
   }
   auto impl = std::make_unique<Impl>();
-  internal::InitializeState(LoadOrThrow(origin.c_str(), nullptr, origin), origin, options,
+  internal::InitializeState(LoadOrThrow(origin.c_str(), nullptr, origin, ReadScene(path)), origin, options,
                             impl.get());
   return World(std::move(impl));
 }
@@ -131,7 +149,7 @@ World World::LoadString(const std::string& xml, const LoadOptions& options,
   const int file = mj_findFileVFS(vfs.get(), kName);
   std::memcpy(vfs->filedata[file], xml.data(), xml.size());
   auto impl = std::make_unique<Impl>();
-  internal::InitializeState(LoadOrThrow(kName, vfs.get(), origin), origin, options, impl.get());
+  internal::InitializeState(LoadOrThrow(kName, vfs.get(), origin, xml), origin, options, impl.get());
   return World(std::move(impl));
 }
 
@@ -143,7 +161,12 @@ void InitializeState(ModelPtr model, const std::string& origin, const LoadOption
   DescribeModel(*model, origin, &impl->bodies, &impl->geoms);
   impl->pointer_body = SetUpPointer(model.get(), origin, options.pointer_body, &impl->geoms);
   impl->data.reset(mj_makeData(model.get()));
-  if (!impl->data) throw SceneError(origin + ": MuJoCo could not allocate the scene's data");
+  if (!impl->data) {
+    throw SceneError(origin + ": MuJoCo could not allocate the scene's data (njmax " +
+                     std::to_string(model->njmax) + ", nconmax " + std::to_string(model->nconmax) +
+                     ", nstack " + std::to_string(model->nstack) +
+                     "); lower <size> or remove it (mrhaptics sizes the buffers from the scene)");
+  }
   impl->model = std::move(model);
   impl->snapshot_size = SnapshotSize(*impl->model);
   // Everything derived from qpos (poses, contacts) is valid right after loading.

@@ -5,6 +5,7 @@
 #include <mujoco/mujoco.h>
 
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -63,6 +64,29 @@ struct WorldState {
     kinematics_stale = false;
   }
 };
+
+/// Which of MuJoCo's buffer sizes the scene's MJCF text sets itself (<size njmax nconmax
+/// nstack>; comments skipped, <include>d files not read).
+struct ExplicitSizes {
+  bool njmax = false, nconmax = false, nstack = false;
+};
+ExplicitSizes FindExplicitSizes(const std::string& mjcf);
+
+/// MuJoCo 2.2.2 buffer sizes for `m` (model_size.cc): contacts and constraint rows its moving
+/// geoms need resting among neighbours with the scene's largest condim and its cone, the
+/// stack its solver needs, and the most rows MuJoCo 2.2.2 can allocate with m.nv dofs.
+struct BufferPlan {
+  std::int64_t nconmax = 0, njmax = 0, nstack = 0;
+  std::int64_t resting_rows = 0;  ///< rows of the floor contacts alone
+  std::int64_t max_rows = 0;      ///< njmax limit of MuJoCo 2.2.2's int-sized data buffer
+  std::int64_t buffer_bytes = 0;  ///< constraint and contact arrays at njmax, nconmax
+};
+BufferPlan PlanBuffers(const mjModel& m);
+
+/// Sets m's nconmax, njmax and nstack from PlanBuffers, except those the scene sets itself.
+/// @throws mrh::SceneError naming `origin` if the rows its resting contacts need exceed what
+/// MuJoCo 2.2.2 can allocate.
+void SizeBuffers(mjModel* m, const ExplicitSizes& explicit_sizes, const std::string& origin);
 
 /// Loads `model` into `state`: describes bodies and geoms, sets up the pointer, makes the data
 /// and computes everything derived from the initial state.
