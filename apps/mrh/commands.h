@@ -39,6 +39,7 @@ struct ExperimentOptions {
   std::filesystem::path out;  ///< empty: out/<name>
   bool list = false;
   bool quiet = false;
+  bool full = false;  ///< the experiment's big sweep
 };
 
 /// `mrh ir` (ir_command.cc).

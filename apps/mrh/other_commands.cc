@@ -88,6 +88,9 @@ CLI::App* AddExperimentCommand(CLI::App& app, ExperimentOptions* o) {
       ->type_name("DIR");
   experiment->add_flag("--list", o->list, "List the experiments and exit");
   experiment->add_flag("--quiet,-q", o->quiet, "Suppress progress output");
+  experiment->add_flag("--full", o->full,
+                       "Run the big sweep (slow; e.g. t4.3 up to 1000 cubes) instead of the fast "
+                       "default");
   experiment->footer(kExperimentFooter);
   return experiment;
 }
@@ -118,7 +121,7 @@ int ExperimentCommand(const ExperimentOptions& o) {
         "experiment: no NAME given; expected an experiment name (see `mrh experiment --list`)");
   }
   const fs::path out = o.out.empty() ? fs::path("out") / o.name : o.out;
-  return experiments::Run(o.name, fs::absolute(out).lexically_normal(), o.quiet);
+  return experiments::Run(o.name, fs::absolute(out).lexically_normal(), o.quiet, o.full);
 }
 
 }  // namespace mrh::cli

@@ -14,6 +14,7 @@ struct Entry {
   const char* name;
   const char* summary;
   int (*run)(const std::filesystem::path&, bool);
+  int (*run_full)(const std::filesystem::path&, bool) = nullptr;  ///< --full; null: as run
 };
 
 constexpr Entry kExperiments[] = {
@@ -29,8 +30,10 @@ constexpr Entry kExperiments[] = {
     {"t4.1",
      "impulse delivered to a moving 60 kg cube per method, mass/speed sweep (fig. 4.13, tab. 4.3)",
      internal::RunT41},
-    {"t4.3", "computation occupancy per physics step with 1-1000 cubes (figs. 4.17-4.20)",
-     internal::RunT43},
+    {"t4.3",
+     "computation occupancy per physics step, 1-100 cubes with/without friction (figs. "
+     "4.17-4.20); --full: 1-1000 frictionless, 1-500 with friction",
+     internal::RunT43, internal::RunT43Full},
     {"t4.4", "felt mass steps up as cubes join a pushed line; an edge push turns the cube",
      internal::RunT44},
     {"t4.5", "haptic tick cost and physics occupancy vs 1-128 neighbors simulated locally",
@@ -42,8 +45,12 @@ constexpr Entry kExperiments[] = {
 }  // namespace
 
 int Run(const std::string& name, const std::filesystem::path& out, bool quiet) {
+  return Run(name, out, quiet, /*full=*/false);
+}
+
+int Run(const std::string& name, const std::filesystem::path& out, bool quiet, bool full) {
   for (const Entry& e : kExperiments) {
-    if (name == e.name) return e.run(out, quiet);
+    if (name == e.name) return full && e.run_full != nullptr ? e.run_full(out, quiet) : e.run(out, quiet);
   }
   std::string known;
   for (const Entry& e : kExperiments) known += (known.empty() ? "" : ", ") + std::string(e.name);

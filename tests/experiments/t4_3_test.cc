@@ -34,6 +34,7 @@ class T43ExperimentTest : public testing::ExperimentTest<T43ExperimentTest> {
  protected:
   static void SetUpTestSuite() {
     options_.cubes = {1, 10};
+    options_.friction_cubes = {10};
     options_.steps = 6;
     options_.single_rate_steps = 30;
     RunExperiment("mrh_experiments_test_t4_3_", [](const std::filesystem::path& out) {
@@ -50,8 +51,8 @@ TEST_F(T43ExperimentTest, ReportsEveryRunCompleteAndFinite) {
 
 // The essential result as counts: the test-force runs cost no MuJoCo solver iterations (they
 // are solved on the pushed cube's island), while the global step and the zero-force run do.
-void ExpectIslandSolvedTestRuns(const nlohmann::json& summary, int cubes) {
-  const nlohmann::json& work = summary["perturbation_work"][std::to_string(cubes)];
+void ExpectIslandSolvedTestRuns(const nlohmann::json& summary, const std::string& cubes) {
+  const nlohmann::json& work = summary["perturbation_work"][cubes];
   ASSERT_TRUE(work.is_object()) << cubes;
   EXPECT_EQ(work["test_runs"].get<int>(), 3 * work["steps"].get<int>()) << cubes;
   EXPECT_EQ(work["test_run_solver_iterations"].get<int>(), 0) << cubes;
@@ -61,7 +62,8 @@ void ExpectIslandSolvedTestRuns(const nlohmann::json& summary, int cubes) {
 
 TEST_F(T43ExperimentTest, TestForceRunsNeedNoSolverIterations) {
   const nlohmann::json& summary = *summary_;
-  ExpectIslandSolvedTestRuns(summary, 10);
+  ExpectIslandSolvedTestRuns(summary, "10");
+  ExpectIslandSolvedTestRuns(summary, "10_friction");
   EXPECT_TRUE(summary["checks"]["local_dynamics_test_runs_use_no_solver_iterations"].get<bool>());
   EXPECT_TRUE(summary["checks"]["island_accelerance_within_1e-4_of_converged"].get<bool>());
 }
@@ -73,11 +75,12 @@ TEST(T43ThousandCubesTest, TestForceRunsAreSolvedOnIslandsAndMatchConvergedMuJoC
   T43Options options;
   options.variants = {"local-dynamics"};
   options.cubes = {1000};
+  options.friction_cubes = {};
   options.steps = 4;
   options.accuracy_steps = 2;
   EXPECT_EQ(RunT43(out, /*quiet=*/true, options), 0);
   const nlohmann::json summary = testing::ReadSummary(out);
-  ExpectIslandSolvedTestRuns(summary, 1000);
+  ExpectIslandSolvedTestRuns(summary, "1000");
   const nlohmann::json& accuracy = summary["accuracy"];
   // The island solve agrees with converged MuJoCo far better than MuJoCo's default stopping
   // rule does (which the experiment reports as mujoco_vs_converged).
@@ -88,17 +91,18 @@ TEST(T43ThousandCubesTest, TestForceRunsAreSolvedOnIslandsAndMatchConvergedMuJoC
 
 TEST_F(T43ExperimentTest, SummaryHasOneFiniteRowPerVariantAndCubeCount) {
   const auto rows = ReadCsv(*out_ / "occupancy_summary.csv");
-  ASSERT_EQ(rows.size(), 1 + options_.variants.size() * options_.cubes.size());
+  const std::size_t sets = options_.cubes.size() + options_.friction_cubes.size();
+  ASSERT_EQ(rows.size(), 1 + options_.variants.size() * sets);
   std::set<std::pair<std::string, std::string>> seen;
   for (std::size_t i = 1; i < rows.size(); ++i) {
     ASSERT_EQ(rows[i].size(), rows[0].size()) << i;
-    seen.emplace(rows[i][0], rows[i][1]);
+    seen.emplace(rows[i][0], rows[i][1] + "/" + rows[i].back());
     for (std::size_t c = 2; c < rows[i].size(); ++c) {
       const double v = std::stod(rows[i][c]);
       EXPECT_TRUE(std::isfinite(v) && v >= 0.0) << rows[0][c] << " of " << rows[i][0];
     }
   }
-  EXPECT_EQ(seen.size(), options_.variants.size() * options_.cubes.size());
+  EXPECT_EQ(seen.size(), options_.variants.size() * sets);
 }
 
 TEST_F(T43ExperimentTest, TimeSeriesHaveOneRowPerPhysicsStep) {

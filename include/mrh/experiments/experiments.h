@@ -16,6 +16,10 @@ namespace mrh::experiments {
 /// mrh::RuntimeError on I/O failure. Not RT-safe.
 int Run(const std::string& name, const std::filesystem::path& out, bool quiet);
 
+/// As Run; `full` runs the experiment's big sweep where it has one (e.g. t4.3: 1000 cubes, 500
+/// with friction), otherwise the default run.
+int Run(const std::string& name, const std::filesystem::path& out, bool quiet, bool full);
+
 /// Registered experiments as (name, one-line summary), sorted by name.
 std::vector<std::pair<std::string, std::string>> List();
 
