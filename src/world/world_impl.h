@@ -45,6 +45,7 @@ struct WorldState {
   internal::ModelPtr model;
   internal::DataPtr data;
   std::string origin;  // the scene's name in error messages
+  std::vector<std::string> load_warnings;  // World::LoadWarnings()
   std::vector<BodyInfo> bodies;
   std::vector<GeomInfo> geoms;
   int pointer_body = -1;
@@ -62,6 +63,19 @@ struct WorldState {
     mj_comVel(model.get(), data.get());
     kinematics_stale = false;
   }
+};
+
+/// While alive, MuJoCo errors raised on this thread name `scene` (see load.cc). RT-safe (one
+/// thread_local pointer store). `scene` must outlive the scope.
+class MujocoScope {
+ public:
+  explicit MujocoScope(const std::string& scene);
+  ~MujocoScope();
+  MujocoScope(const MujocoScope&) = delete;
+  MujocoScope& operator=(const MujocoScope&) = delete;
+
+ private:
+  const std::string* previous_;
 };
 
 /// Loads `model` into `state`: describes bodies and geoms, sets up the pointer, makes the data
