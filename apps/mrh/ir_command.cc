@@ -10,6 +10,7 @@
 
 #include "commands.h"
 #include "mrh/core/error.h"
+#include "mrh/core/validate.h"
 #include "mrh/engine/geometric_ir.h"
 #include "mrh/ir/snapshot.h"
 #include "mrh/session/session.h"
@@ -36,10 +37,6 @@ Examples:
   mrh ir session.json --pose 0.1 0 0.2 1 0 0 0 --set rendering.neighbor_distance=0.1
 )";
 
-// A quaternion typed with 7 significant digits is within ~1e-7 of unit length; a larger error
-// is a typo or a non-rotation, not rounding, so it is refused rather than silently normalized.
-constexpr double kUnitQuaternionTolerance = 1e-6;
-
 Pose ParsePose(const std::vector<double>& v) {
   if (v.size() != 7) {
     throw InvalidArgument(fmt::format(
@@ -53,15 +50,11 @@ Pose ParsePose(const std::vector<double>& v) {
                       x));
     }
   }
-  const Quat q(v[3], v[4], v[5], v[6]);
-  const double norm = q.norm();
-  if (std::abs(norm - 1.0) > kUnitQuaternionTolerance) {
-    throw InvalidArgument(
-        fmt::format("--pose: quaternion qw qx qy qz = {} {} {} {} has norm {:.9g}; expected a unit "
-                    "quaternion (norm 1 within {:g}): divide it by its norm",
-                    v[3], v[4], v[5], v[6], norm, kUnitQuaternionTolerance));
-  }
-  return Pose{Vec3(v[0], v[1], v[2]), q.normalized()};
+  // The rules of session poses (mrh/core/validate.h): any nonzero quaternion, normalised.
+  const Pose X{Vec3(v[0], v[1], v[2]), Quat(v[3], v[4], v[5], v[6])};
+  const Problem problem = PoseProblem(X.p, X.q);
+  if (problem) throw InvalidArgument("--pose: " + problem.Text());
+  return Pose{X.p, X.q.normalized()};
 }
 
 std::string BodyName(const world::World& world, int body) {

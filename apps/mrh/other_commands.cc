@@ -36,16 +36,6 @@ constexpr const char* kExperimentFooter = R"(Examples:
   mrh experiment NAME --out out/NAME
 )";
 
-// A --set value must look like key=value with a non-empty key; the session module checks that the
-// key exists and the value fits.
-std::string CheckKeyValue(std::string& text) {
-  const std::size_t eq = text.find('=');
-  if (eq == std::string::npos || eq == 0) {
-    return fmt::format("expected KEY=VALUE (e.g. rendering.stiffness=2000), got '{}'", text);
-  }
-  return {};
-}
-
 void PrintTable(const std::vector<std::pair<std::string, std::string>>& rows) {
   std::size_t width = 0;
   for (const auto& row : rows) width = std::max(width, row.first.size());
@@ -59,8 +49,7 @@ void AddSetOption(CLI::App& command, std::vector<std::string>* sets) {
       .add_option("--set", *sets,
                   "Override a session key (repeatable); VALUE is JSON, else a string")
       ->type_name("KEY=VALUE")
-      ->allow_extra_args(false)
-      ->check(CLI::Validator(CheckKeyValue, ""));
+      ->allow_extra_args(false);
 }
 
 CLI::App* AddValidateCommand(CLI::App& app, ValidateOptions* o) {
@@ -101,6 +90,9 @@ int ValidateCommand(const ValidateOptions& o) {
   const session::Session s = session::LoadSession(o.session, o.sets);
   const std::unique_ptr<engine::Engine> engine = session::MakeEngine(s);
   const int bodies = engine->world().num_bodies() - 1;  // without the world body
+  for (const std::string& warning : engine->world().LoadWarnings()) {
+    fmt::print(stderr, "mrh: warning: {}\n", warning);
+  }
   fmt::print("ok: {} (method {}, scene {}, {} bodies)\n", o.session.string(), s.engine.method,
              s.scene.lexically_proximate(fs::current_path()).string(), bodies);
   return kExitOk;

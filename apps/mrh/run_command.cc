@@ -136,12 +136,11 @@ int RunCommand(const RunOptions& o) {
                                         engine::ModeName(stats.mode));
   const bool plotted = report::PlotReport(out, title, &why);
   if (!plotted) fmt::print(stderr, "mrh: warning: no report.png: {}\n", why);
-  if (!o.quiet) {
-    for (const std::string& warning : stats.warnings) {
-      fmt::print(stderr, "mrh: warning: {}\n", warning);
-    }
-    PrintSummary(stats);
+  // Warnings mean wrong physics or timing: printed once, at the end, even with --quiet.
+  for (const std::string& warning : stats.warnings) {
+    fmt::print(stderr, "mrh: warning: {}\n", warning);
   }
+  if (!o.quiet) PrintSummary(stats);
   if (plotted) fmt::print("report: {}\n", (out / "report.png").string());
   fmt::print("summary: {}\n", (out / "summary.json").string());
   return kExitOk;

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "device/csv_impl.h"
-#include "device/text_impl.h"
+#include "mrh/core/validate.h"
 #include "mrh/core/error.h"
 
 namespace mrh::device::internal {
@@ -64,11 +64,9 @@ class PoseCsvReader {
       ++line_;
       if (Trim(line).empty()) continue;
       keyframes.push_back(ParseRow(line));
-      if (keyframes.size() > 1 && !(keyframes.back().t > keyframes[keyframes.size() - 2].t)) {
-        Fail("t = " + FormatNumber(keyframes.back().t) + " s is not after the previous row's t = " +
-             FormatNumber(keyframes[keyframes.size() - 2].t) +
-             " s; expected strictly increasing times");
-      }
+      const double previous = keyframes.size() > 1 ? keyframes[keyframes.size() - 2].t : NAN;
+      const Problem problem = KeyframeTimeProblem(keyframes.back().t, previous);
+      if (problem) Fail("column '" + std::string(columns_[0]) + "': " + problem.Text());
     }
     if (keyframes.empty()) Fail("no data rows; expected at least one row after the header");
     return keyframes;
@@ -124,13 +122,12 @@ class PoseCsvReader {
     k.t = v[0];
     k.X_DT.p = Vec3(v[1], v[2], v[3]);
     k.X_DT.q = Quat(v[4], v[5], v[6], v[7]);
-    const double norm = k.X_DT.q.norm();
-    if (norm == 0.0) {
-      Fail("quaternion (" + JoinColumns(std::span(columns_).subspan(4)) +
-           ") = (0, 0, 0, 0) has zero norm; expected a rotation, e.g. " + std::string(columns_[4]) +
-           " = 1 for identity");
+    // The same rules as the session's poses and keyframes (mrh/core/validate.h).
+    const Problem problem = PoseProblem(k.X_DT.p, k.X_DT.q);
+    if (problem) {
+      Fail("columns " + JoinColumns(std::span(columns_).subspan(1)) + ": " + problem.Text());
     }
-    k.X_DT.q.coeffs() /= norm;
+    k.X_DT.q.normalize();
     return k;
   }
 

@@ -3,6 +3,7 @@
 #include <utility>
 
 #include "mrh/core/error.h"
+#include "mrh/core/validate.h"
 #include "mrh/device/simulated.h"
 
 namespace mrh::device {
@@ -32,11 +33,8 @@ class FixedDevice final : public Device {
 }  // namespace
 
 std::unique_ptr<Device> MakeFixedDevice(const Pose& X_DT, const Specifications& specs) {
-  if (!IsFinite(X_DT) || X_DT.q.norm() == 0.0) {
-    throw InvalidArgument(
-        "fixed device: pose is not finite or its quaternion has zero norm; expected a finite "
-        "position and a rotation, e.g. qw = 1 for identity");
-  }
+  const Problem problem = PoseProblem(X_DT.p, X_DT.q);
+  if (problem) throw InvalidArgument("fixed device: pose: " + problem.Text());
   Pose X = X_DT;
   X.q.normalize();
   return std::make_unique<FixedDevice>(X, specs);

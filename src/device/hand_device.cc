@@ -6,7 +6,7 @@
 #include <string>
 #include <utility>
 
-#include "device/text_impl.h"
+#include "mrh/core/validate.h"
 #include "device/track_impl.h"
 #include "mrh/core/error.h"
 #include "mrh/core/spatial.h"
@@ -25,11 +25,19 @@ constexpr double kMaxSteps = 1000.0;
 // Absorbs rounding in span / kMaxStep so a 1 ms tick is one step, not two.
 constexpr double kStepCountSlack = 1e-9;
 
-void RequirePositive(double value, const char* key, const char* unit) {
-  if (!std::isfinite(value) || value <= 0.0) {
-    throw InvalidArgument(std::string(key) + " = " + internal::FormatNumber(value) + " " + unit +
-                          "; expected a finite value > 0");
-  }
+// Documented ranges (docs/session-format.md, "Ranges"). The rate limits keep the 1 ms
+// semi-implicit Euler step stable and accurate: omega * h <= 1 and (d / m) * h <= 1.
+constexpr double kMaxStiffnessPerMass = 1.0 / (kMaxStep * kMaxStep);  // 1/s^2
+constexpr double kMaxDampingPerMass = 1.0 / kMaxStep;                  // 1/s
+
+// `gain` / `mass` (a spring or damper over its mass or inertia) must be at most `limit`.
+void RequireRate(double gain, double mass, double limit, const char* gain_key,
+                 const char* mass_key) {
+  if (gain / mass <= limit) return;
+  throw InvalidArgument(std::string(gain_key) + " = " + FormatNumber(gain) + " with " + mass_key +
+                        " = " + FormatNumber(mass) + " makes the simulated hand unstable at its " +
+                        "1 ms step; expected " + gain_key + " / " + mass_key +
+                        " <= " + FormatNumber(limit) + " (a lower gain or a larger mass)");
 }
 
 class HandDevice final : public Device {
@@ -118,12 +126,18 @@ void HandDevice::Step(double h, const internal::TrackSample& target) noexcept {
 }  // namespace
 
 void HandSettings::Validate() const {
-  RequirePositive(mass, "device.hand.mass", "kg");
-  RequirePositive(stiffness, "device.hand.stiffness", "N/m");
-  RequirePositive(damping, "device.hand.damping", "N*s/m");
-  RequirePositive(inertia, "device.hand.inertia", "kg*m^2");
-  RequirePositive(rot_stiffness, "device.hand.rot_stiffness", "N*m/rad");
-  RequirePositive(rot_damping, "device.hand.rot_damping", "N*m*s/rad");
+  RequireInRange(mass, 1e-3, 1e3, "device.hand.mass", "kg");
+  RequirePositive(stiffness, "device.hand.stiffness", "N/m", 1e6);
+  RequirePositive(damping, "device.hand.damping", "N*s/m", 1e5);
+  RequireInRange(inertia, 1e-7, 1e2, "device.hand.inertia", "kg*m^2");
+  RequirePositive(rot_stiffness, "device.hand.rot_stiffness", "N*m/rad", 1e4);
+  RequirePositive(rot_damping, "device.hand.rot_damping", "N*m*s/rad", 1e3);
+  RequireRate(stiffness, mass, kMaxStiffnessPerMass, "device.hand.stiffness", "device.hand.mass");
+  RequireRate(damping, mass, kMaxDampingPerMass, "device.hand.damping", "device.hand.mass");
+  RequireRate(rot_stiffness, inertia, kMaxStiffnessPerMass, "device.hand.rot_stiffness",
+              "device.hand.inertia");
+  RequireRate(rot_damping, inertia, kMaxDampingPerMass, "device.hand.rot_damping",
+              "device.hand.inertia");
 }
 
 std::unique_ptr<Device> MakeHandDevice(std::vector<Keyframe> target, const HandSettings& hand,

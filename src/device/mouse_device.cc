@@ -3,7 +3,7 @@
 #include <cmath>
 #include <string>
 
-#include "device/text_impl.h"
+#include "mrh/core/validate.h"
 #include "mrh/core/error.h"
 #include "mrh/core/spatial.h"
 #include "mrh/device/mouse.h"
@@ -18,7 +18,7 @@ constexpr double kMinQuatNorm = 1e-9;
 
 void MouseDeviceSettings::Validate() const {
   if (!std::isfinite(smoothing) || smoothing <= 0.0) {
-    throw InvalidArgument("mouse device: smoothing = " + internal::FormatNumber(smoothing) +
+    throw InvalidArgument("mouse device: smoothing = " + FormatNumber(smoothing) +
                           " s; expected a finite time constant > 0, e.g. 0.02");
   }
 }

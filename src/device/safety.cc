@@ -4,20 +4,21 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
-#include "device/text_impl.h"
 #include "mrh/core/error.h"
+#include "mrh/core/validate.h"
 
 namespace mrh::device {
 namespace {
 
-void RequireNonNegative(double value, const char* key, const char* unit) {
-  if (!std::isfinite(value) || value < 0.0) {
-    throw InvalidArgument(std::string(key) + " = " + internal::FormatNumber(value) + " " + unit +
-                          "; expected a finite value >= 0");
-  }
-}
+// Documented ranges (docs/session-format.md, "Ranges").
+constexpr double kMaxRampTime = 60.0;           // s
+constexpr double kMaxWatchdogTimeout = 3600.0;  // s
+constexpr double kMaxWatchdogFade = 60.0;       // s
+constexpr double kMaxForce = 1e4;               // N
+constexpr double kMaxTorque = 1e3;              // N*m
 
 // Clamps x to [0, 1]; NaN maps to 0, the safe side for a gain.
 double ClampGain(double x) noexcept {
@@ -29,8 +30,13 @@ double ClampGain(double x) noexcept {
 // zero vector, losing the direction). Returns true if v was clamped.
 bool ClampLength(Vec3& v, double limit) noexcept {
   const double length = v.stableNorm();
-  if (length <= limit) return false;
+  if (length <= limit && v.norm() <= limit) return false;
   v *= limit / length;
+  // Rounding can leave |v| an ulp or two above the limit (20.000000000000007 for 20 N): shrink
+  // by a few ulps until neither norm exceeds it.
+  constexpr double kShrink = 1.0 - 4.0 * std::numeric_limits<double>::epsilon();
+  for (int i = 0; i < 8 && (v.norm() > limit || v.stableNorm() > limit); ++i) v *= kShrink;
+  if (v.norm() > limit) v.setZero();  // unreachable for a finite limit; never exceed it
   return true;
 }
 
@@ -67,9 +73,9 @@ std::uint32_t ClampWrench(const Specifications& specs, Wrench& w) noexcept {
 }  // namespace
 
 void SafetySettings::Validate() const {
-  RequireNonNegative(ramp_time, "safety.ramp_time", "s");
-  RequireNonNegative(watchdog_timeout, "safety.watchdog_timeout", "s");
-  RequireNonNegative(watchdog_fade, "safety.watchdog_fade", "s");
+  RequireNonNegative(ramp_time, "safety.ramp_time", "s", kMaxRampTime);
+  RequireNonNegative(watchdog_timeout, "safety.watchdog_timeout", "s", kMaxWatchdogTimeout);
+  RequireNonNegative(watchdog_fade, "safety.watchdog_fade", "s", kMaxWatchdogFade);
 }
 
 // The const-reference parameters are the public signature; one copy at setup is free.
@@ -77,8 +83,8 @@ void SafetySettings::Validate() const {
 SafetyFilter::SafetyFilter(const Specifications& specs, const SafetySettings& settings)
     : specs_(specs), settings_(settings) {
   settings_.Validate();
-  RequireNonNegative(specs_.max_force, "device.specs.max_force", "N");
-  RequireNonNegative(specs_.max_torque, "device.specs.max_torque", "N*m");
+  RequireNonNegative(specs_.max_force, "device.limits.max_force", "N", kMaxForce);
+  RequireNonNegative(specs_.max_torque, "device.limits.max_torque", "N*m", kMaxTorque);
 }
 
 Wrench SafetyFilter::Apply(const Wrench& rendered, double t, double physics_age, bool device_ok,

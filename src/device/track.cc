@@ -4,11 +4,11 @@
 #include <cmath>
 #include <utility>
 
-#include "device/text_impl.h"
 #include "device/track_impl.h"
 #include "mrh/core/assert.h"
 #include "mrh/core/error.h"
 #include "mrh/core/spatial.h"
+#include "mrh/core/validate.h"
 
 namespace mrh::device::internal {
 
@@ -19,23 +19,10 @@ void ValidateKeyframes(std::vector<Keyframe>& keyframes, const std::string& what
   for (std::size_t i = 0; i < keyframes.size(); ++i) {
     Keyframe& k = keyframes[i];
     const std::string where = what + " " + std::to_string(i);
-    if (!std::isfinite(k.t) || !IsFinite(k.X_DT)) {
-      throw InvalidArgument(where +
-                            ": t, position or quaternion is not finite; expected finite "
-                            "numbers");
-    }
-    const double norm = k.X_DT.q.norm();
-    if (norm == 0.0) {
-      throw InvalidArgument(where +
-                            ": quaternion (0, 0, 0, 0) has zero norm; expected a "
-                            "rotation, e.g. qw = 1 for identity");
-    }
-    k.X_DT.q.coeffs() /= norm;
-    if (i > 0 && !(k.t > keyframes[i - 1].t)) {
-      throw InvalidArgument(where + ": t = " + FormatNumber(k.t) + " s is not after keyframe " +
-                            std::to_string(i - 1) + " (t = " + FormatNumber(keyframes[i - 1].t) +
-                            " s); expected strictly increasing times");
-    }
+    Problem problem = KeyframeTimeProblem(k.t, i > 0 ? keyframes[i - 1].t : NAN);
+    if (!problem) problem = PoseProblem(k.X_DT.p, k.X_DT.q);
+    if (problem) throw InvalidArgument(where + ": " + problem.Text());
+    k.X_DT.q.normalize();
   }
 }
 

@@ -12,6 +12,15 @@
 #include "mrh/world/world.h"
 
 namespace mrh::engine {
+double PointerRadiusFor3Dof(const MethodContext& context) {
+  if (context.pointer_radius > 0.0) return context.pointer_radius;
+  const std::string& body = context.settings->pointer.body;
+  throw SceneError(fmt::format(
+      "{}: pointer.body = '{}' has no sphere geom and pointer.radius is not set, which method "
+      "'{}' (3-DOF) needs; set pointer.radius (m) in the session or add a sphere geom to the body",
+      context.world->origin(), body, context.settings->method));
+}
+
 namespace internal {
 namespace {
 
@@ -27,10 +36,7 @@ double PointerRadius(const world::World& world, int pointer_body, const EngineSe
     const world::GeomInfo& geom = world.geom(g);
     if (geom.shape.type == geometry::ShapeType::kSphere) return geom.shape.size.x();
   }
-  throw SceneError(fmt::format(
-      "pointer body '{}' has no sphere geom and pointer.radius is not set; add a sphere geom "
-      "to the body or set pointer.radius (m) in the session",
-      s.pointer.body));
+  return 0.0;  // only 3-DOF methods need one (PointerRadiusFor3Dof)
 }
 
 }  // namespace

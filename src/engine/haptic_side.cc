@@ -98,6 +98,7 @@ void HapticSide::EndPeriod(double t) noexcept {
 }
 
 void HapticSide::Count(const Wrench& displayed, std::uint32_t bits) noexcept {
+  counters_.last_displayed = displayed;
   counters_.max_force = std::max(counters_.max_force, displayed.f.norm());
   counters_.max_torque = std::max(counters_.max_torque, displayed.tau.norm());
   if (bits & device::kSafetyNonFiniteWrench) ++counters_.nonfinite_wrench;
@@ -110,6 +111,8 @@ void HapticSide::Count(const Wrench& displayed, std::uint32_t bits) noexcept {
 void HapticSide::Stop() noexcept {
   safety_.Stop();
   device_->SetWrench(Wrench{});
+  counters_.last_displayed = Wrench{};
+  counters_.stopped = true;
 }
 
 }  // namespace mrh::engine::internal

@@ -25,6 +25,8 @@ struct HapticCounters {
   std::int64_t nonfinite_wrench = 0, nonfinite_device = 0;
   std::int64_t force_clamped = 0, torque_clamped = 0, watchdog_ticks = 0;
   std::int64_t dropped_tick_records = 0, dropped_reports = 0;
+  Wrench last_displayed;  ///< world frame; zero once Stop() commanded the final zero wrench
+  bool stopped = false;   ///< Stop() sent the final zero wrench to the device
 };
 
 /// Everything one haptic tick touches. All buffers are sized in the constructor; Tick() is

@@ -44,7 +44,7 @@ LocalDynamicsMethod::LocalDynamicsMethod(const MethodContext& context,
       correction_(rendering_.perturbation ? options.correction
                                           : CorrectionModel::kVelocityResidual),
       perturber_(context.world, options.perturber),
-      radius_(context.pointer_radius),
+      radius_(PointerRadiusFor3Dof(context)),
       stiffness_(context.settings->rendering.stiffness),
       damping_(context.settings->rendering.damping) {
   builder_.emplace(*world_, pointer_body_, radius_, rendering_);
@@ -158,6 +158,8 @@ void LocalDynamicsMethod::FindTargets(const ir::HapticReport* report,
         }
       }
     }
+    // A degenerate contact normal (or an absurd force) measures nothing: skip the target.
+    if (!(t.f1.allFinite() && t.f1.norm() > 0.0)) continue;
     targets_.push_back(t);
   }
 }

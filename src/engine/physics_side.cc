@@ -105,6 +105,7 @@ void PhysicsSide::Finish(RunStats* stats) {
   stats->step_ms_p99 = Percentile(step_ms_, 99.0);
   stats->step_ms_max = step_ms_.empty() ? 0.0 : *std::max_element(step_ms_.begin(), step_ms_.end());
   stats->ir_status = ir_status_;
+  for (const std::string& line : state_->world.LoadWarnings()) stats->warnings.push_back(line);
   for (std::string& line : state_->world.SimulatorWarnings()) {
     stats->warnings.push_back(std::move(line));
   }
@@ -123,6 +124,8 @@ void FillHapticStats(const HapticCounters& c, RunStats* stats) {
   stats->force_clamped = c.force_clamped;
   stats->torque_clamped = c.torque_clamped;
   stats->watchdog_ticks = c.watchdog_ticks;
+  stats->final_wrench = c.last_displayed;
+  stats->stopped = c.stopped;
   stats->dropped_tick_records = c.dropped_tick_records;
   stats->dropped_reports = c.dropped_reports;
 }

@@ -16,7 +16,7 @@ PointPenaltyMethod::PointPenaltyMethod(const MethodContext& context, bool single
       pointer_body_(context.pointer_body),
       physics_dt_(context.settings->physics_dt),
       single_rate_(single_rate),
-      radius_(context.pointer_radius),
+      radius_(PointerRadiusFor3Dof(context)),
       stiffness_(context.settings->rendering.stiffness),
       damping_(context.settings->rendering.damping) {
   builder_.emplace(*world_, pointer_body_, radius_, context.settings->rendering);

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <exception>
 #include <string>
 #include <thread>
 
@@ -74,7 +75,16 @@ RunStats RunRealtime(EngineState& s, Recorder* recorder, const Engine::ProgressF
   std::atomic<bool> done{false};
   std::atomic<bool> fifo_ok{false};
   const std::int64_t wall0 = NowNs();
-  std::thread physics_thread([&] { physics.RunThread(done); });
+  // A MuJoCo error on the physics thread (a RuntimeError) ends the physics side; the watchdog
+  // fades the force to zero, and the error is rethrown here once both threads are done.
+  std::exception_ptr physics_error;
+  std::thread physics_thread([&] {
+    try {
+      physics.RunThread(done);
+    } catch (...) {
+      physics_error = std::current_exception();
+    }
+  });
   std::thread haptic_thread([&] { HapticLoop(s, &timing, &done, &fifo_ok); });
   while (!done.load(std::memory_order_acquire)) {
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
@@ -85,6 +95,7 @@ RunStats RunRealtime(EngineState& s, Recorder* recorder, const Engine::ProgressF
   haptic_thread.join();
   physics_thread.join();
   if (locked) UnlockAllMemory();
+  if (physics_error) std::rethrow_exception(physics_error);
 
   if (s.settings.realtime_priority && !fifo_ok.load()) {
     stats.warnings.push_back("SCHED_FIFO refused for the haptic thread; running at normal priority");

@@ -1,12 +1,15 @@
 // SPDX-License-Identifier: Apache-2.0
-// Validation of the engine settings (the boundary where session values are checked).
+// Validation of the engine settings (the boundary where session values are checked). The ranges
+// are documented in docs/session-format.md ("Ranges"); keep both in step.
 #include "mrh/engine/settings.h"
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "mrh/core/error.h"
+#include "mrh/core/validate.h"
 
 namespace mrh::engine {
 namespace {
@@ -14,51 +17,80 @@ namespace {
 // physics_dt must be a whole number of haptic ticks; this tolerance absorbs decimal input such as
 // 0.05 / 0.001 = 49.99999999999999.
 constexpr double kRatioTolerance = 1e-6;
-
-void RequirePositive(double value, const char* key, const char* unit) {
-  if (!std::isfinite(value) || value <= 0.0) {
-    throw InvalidArgument(
-        fmt::format("{} = {} {}; expected a finite value > 0", key, value, unit));
-  }
-}
-
-void RequireNonNegative(double value, const char* key, const char* unit) {
-  if (!std::isfinite(value) || value < 0.0) {
-    throw InvalidArgument(
-        fmt::format("{} = {} {}; expected a finite value >= 0", key, value, unit));
-  }
-}
-
-void RequireAtLeast(int value, int minimum, const char* key) {
-  if (value < minimum) {
-    throw InvalidArgument(
-        fmt::format("{} = {}; expected an integer >= {}", key, value, minimum));
-  }
-}
+// Bounds of what the engine can run (docs/session-format.md, "Ranges").
+constexpr double kMinHapticDt = 1e-5;          // s: 100 kHz
+constexpr double kMaxHapticDt = 0.1;           // s: haptic rendering needs ~1 ms
+constexpr double kMaxPhysicsDt = 1.0;          // s
+constexpr double kMaxTicksPerStep = 1e6;
+constexpr double kMaxDuration = 3600.0;        // s
+constexpr double kMaxTicks = 1e7;              // duration / haptic_dt
+constexpr double kMaxPointerRadius = 1.0;      // m
+constexpr double kMaxStiffness = 1e6;          // N/m
+constexpr double kMaxDamping = 1e4;            // N*s/m
+constexpr double kMaxDistance = 10.0;          // m
+constexpr double kMaxRotStiffness = 1e4;       // N*m/rad
+constexpr double kMaxRotDamping = 1e3;         // N*m*s/rad
+constexpr double kMaxFriction = 10.0;
+constexpr double kMaxIterations = 1e6;
+constexpr int kMaxCurvedSegments = 1024;
 
 void ValidateProxy(const RenderingSettings& r) {
-  RequireNonNegative(r.rot_stiffness, "rendering.rot_stiffness", "N*m/rad");
-  RequireNonNegative(r.rot_damping, "rendering.rot_damping", "N*m*s/rad");
-  RequirePositive(r.rotation_weight_scale, "rendering.rotation_weight_scale", "");
+  RequireNonNegative(r.rot_stiffness, "rendering.rot_stiffness", "N*m/rad", kMaxRotStiffness);
+  RequireNonNegative(r.rot_damping, "rendering.rot_damping", "N*m*s/rad", kMaxRotDamping);
+  RequireInRange(r.rotation_weight_scale, 1e-6, 1e6, "rendering.rotation_weight_scale", "");
   if (r.rotation_weight) {
     for (int i = 0; i < 3; ++i) {
-      if (!std::isfinite((*r.rotation_weight)[i]) || (*r.rotation_weight)[i] <= 0.0) {
-        throw InvalidArgument(fmt::format(
-            "rendering.rotation_weight = [{}, {}, {}] m^2; expected three finite values > 0 "
-            "(the diagonal of R_w)",
-            r.rotation_weight->x(), r.rotation_weight->y(), r.rotation_weight->z()));
-      }
+      const double w = (*r.rotation_weight)[i];
+      if (std::isfinite(w) && w >= 1e-12 && w <= 1e3) continue;
+      throw InvalidArgument(fmt::format(
+          "rendering.rotation_weight = {} m^2; expected three finite values in [1e-12, 1000] "
+          "m^2 (the diagonal of R_w)",
+          FormatNumbers(r.rotation_weight->data(), 3)));
     }
   }
-  RequireNonNegative(r.friction, "rendering.friction", "");
+  RequireNonNegative(r.friction, "rendering.friction", "", kMaxFriction);
   if (r.proxy_solver != "active-set" && r.proxy_solver != "pgs") {
     throw InvalidArgument(fmt::format(
         "rendering.proxy_solver = \"{}\"; expected \"active-set\" (exact, default) or \"pgs\" "
         "(the thesis' projected Gauss-Seidel)",
         r.proxy_solver));
   }
-  RequireAtLeast(r.max_iterations, 1, "rendering.max_iterations");
-  RequirePositive(r.solver_tolerance, "rendering.solver_tolerance", "m");
+  RequireIntInRange(r.max_iterations, 1, static_cast<long long>(kMaxIterations),
+                    "rendering.max_iterations");
+  RequireInRange(r.solver_tolerance, 1e-18, 1.0, "rendering.solver_tolerance", "m");
+}
+
+void ValidateRendering(const RenderingSettings& r) {
+  RequireNonNegative(r.stiffness, "rendering.stiffness", "N/m", kMaxStiffness);
+  RequireNonNegative(r.damping, "rendering.damping", "N*s/m", kMaxDamping);
+  RequireNonNegative(r.neighbor_distance, "rendering.neighbor_distance", "m", kMaxDistance);
+  RequireNonNegative(r.neighbor_margin, "rendering.neighbor_margin", "m", kMaxDistance);
+  RequireIntInRange(r.curved_segments, 6, kMaxCurvedSegments, "rendering.curved_segments");
+  ValidateProxy(r);
+  RequireInRange(r.perturbation_force, 1e-3, 1e3, "rendering.perturbation_force", "N");
+}
+
+// Rates: haptic_dt, physics_dt as a whole number of ticks, and a run of at least one tick.
+void ValidateTimes(const EngineSettings& s) {
+  RequireInRange(s.haptic_dt, kMinHapticDt, kMaxHapticDt, "haptic_dt", "s");
+  RequirePositive(s.physics_dt, "physics_dt", "s", kMaxPhysicsDt);
+  const double ratio = s.physics_dt / s.haptic_dt;
+  if (ratio < 1.0 - kRatioTolerance || std::abs(ratio - std::round(ratio)) > kRatioTolerance ||
+      ratio > kMaxTicksPerStep) {
+    throw InvalidArgument(fmt::format(
+        "physics_dt = {} s is not a whole multiple (1 to {}) of haptic_dt = {} s; "
+        "choose e.g. physics_dt = {} s",
+        FormatNumber(s.physics_dt), FormatNumber(kMaxTicksPerStep), FormatNumber(s.haptic_dt),
+        FormatNumber(s.haptic_dt * std::clamp(std::round(ratio), 1.0, kMaxTicksPerStep))));
+  }
+  RequireInRange(s.duration, s.haptic_dt, kMaxDuration, "duration", "s");
+  if (s.duration / s.haptic_dt > kMaxTicks) {
+    throw InvalidArgument(fmt::format(
+        "duration = {} s is {} ticks of haptic_dt = {} s; expected at most {} ticks "
+        "(a shorter duration or a longer haptic_dt)",
+        FormatNumber(s.duration), FormatNumber(std::round(s.duration / s.haptic_dt)),
+        FormatNumber(s.haptic_dt), FormatNumber(kMaxTicks)));
+  }
 }
 
 }  // namespace
@@ -72,32 +104,13 @@ int EngineSettings::ticks_per_step() const {
 }
 
 void EngineSettings::Validate() const {
-  RequirePositive(haptic_dt, "haptic_dt", "s");
-  RequirePositive(physics_dt, "physics_dt", "s");
-  RequirePositive(duration, "duration", "s");
-  const double ratio = physics_dt / haptic_dt;
-  if (ratio < 1.0 - kRatioTolerance || std::abs(ratio - std::round(ratio)) > kRatioTolerance) {
-    throw InvalidArgument(fmt::format(
-        "physics_dt = {} s is not a whole multiple (>= 1) of haptic_dt = {} s; "
-        "choose e.g. physics_dt = {} s",
-        physics_dt, haptic_dt, haptic_dt * std::max(1.0, std::round(ratio))));
-  }
-  if (haptic_dt > 0.1) {
-    throw InvalidArgument(fmt::format(
-        "haptic_dt = {} s; expected <= 0.1 s (haptic rendering needs ~1 ms)", haptic_dt));
-  }
+  ValidateTimes(*this);
   if (method.empty()) throw InvalidArgument("method is empty; expected a method name");
-  RequireNonNegative(pointer.radius, "pointer.radius", "m");
+  RequireNonNegative(pointer.radius, "pointer.radius", "m", kMaxPointerRadius);
   if (pointer.body.empty()) {
     throw InvalidArgument("pointer.body is empty; expected the name of the scene's mocap body");
   }
-  RequireNonNegative(rendering.stiffness, "rendering.stiffness", "N/m");
-  RequireNonNegative(rendering.damping, "rendering.damping", "N*s/m");
-  RequireNonNegative(rendering.neighbor_distance, "rendering.neighbor_distance", "m");
-  RequireNonNegative(rendering.neighbor_margin, "rendering.neighbor_margin", "m");
-  RequireAtLeast(rendering.curved_segments, 6, "rendering.curved_segments");
-  ValidateProxy(rendering);
-  RequirePositive(rendering.perturbation_force, "rendering.perturbation_force", "N");
+  ValidateRendering(rendering);
   safety.Validate();
 }
 

@@ -3,10 +3,10 @@
 #include "geometry/shape_validation.h"
 
 #include <cmath>
-#include <sstream>
 #include <string>
 
 #include "mrh/core/error.h"
+#include "mrh/core/validate.h"
 
 namespace mrh::geometry::internal {
 namespace {
@@ -16,9 +16,7 @@ bool Positive(double x) {
 }
 
 std::string Num(double x) {
-  std::ostringstream out;
-  out << x;
-  return out.str();
+  return FormatNumber(x);
 }
 
 std::string Format(const Vec3& v) {

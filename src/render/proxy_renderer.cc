@@ -5,11 +5,11 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 #include <string>
 #include <utility>
 
 #include "mrh/core/error.h"
+#include "mrh/core/validate.h"
 
 namespace mrh::render {
 namespace {
@@ -21,15 +21,11 @@ constexpr double kMinSlip = 1e-12;
 constexpr double kSymmetryTolerance = 1e-12;
 
 std::string Text(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
+  return FormatNumber(value);
 }
 
 void RequireNonNegative(double value, const char* field, const char* unit) {
-  if (std::isfinite(value) && value >= 0.0) return;
-  throw InvalidArgument(std::string("ProxyRendererSettings.") + field + " = " + Text(value) + " " +
-                        unit + "; expected finite and >= 0; set a non-negative value");
+  mrh::RequireNonNegative(value, std::string("ProxyRendererSettings.") + field, unit);
 }
 
 bool IsSymmetricPositiveDefinite(const Mat3& m) {
@@ -41,10 +37,11 @@ bool IsSymmetricPositiveDefinite(const Mat3& m) {
 }
 
 std::string Text(const Mat3& m) {
-  std::ostringstream out;
-  out << "[" << m(0, 0) << " " << m(0, 1) << " " << m(0, 2) << "; " << m(1, 0) << " " << m(1, 1)
-      << " " << m(1, 2) << "; " << m(2, 0) << " " << m(2, 1) << " " << m(2, 2) << "]";
-  return out.str();
+  std::string text = "[";
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) text += (c > 0 ? " " : r > 0 ? "; " : "") + Text(m(r, c));
+  }
+  return text + "]";
 }
 
 const ProxyRendererSettings& Validated(const ProxyRendererSettings& settings) {
@@ -155,10 +152,14 @@ void ProxyRenderer::Tick(const TickIr& ir, const Pose& X_WP, double dt, ProxyOut
   diag.max_change = solved.max_change;
   if (!solved.converged) diag.status |= kProxyStatusNotConverged;
 
-  // eq. 3.7–3.8: springs on the proxy offset, dampers on its finite difference.
-  out->w_W.f = settings_.k_t * out->dr + settings_.d_t * (out->dr - previous_dr_) / dt;
-  out->w_W.tau =
-      settings_.k_r * out->dtheta + settings_.d_r * (out->dtheta - previous_dtheta_) / dt;
+  // eq. 3.7–3.8: springs on the proxy offset, dampers on its finite difference. The first tick
+  // after a start or reset has no previous offset: its difference would be the whole offset
+  // (a pointer that starts inside an object would feel d·dr/dt on top of k·dr), so the dampers
+  // start at rest.
+  const Vec3& dr_before = has_previous_ ? previous_dr_ : out->dr;
+  const Vec3& dtheta_before = has_previous_ ? previous_dtheta_ : out->dtheta;
+  out->w_W.f = settings_.k_t * out->dr + settings_.d_t * (out->dr - dr_before) / dt;
+  out->w_W.tau = settings_.k_r * out->dtheta + settings_.d_r * (out->dtheta - dtheta_before) / dt;
   const Quat q_WP = X_WP.q.normalized();
   out->X_WQ = Pose{X_WP.p + out->dr, (QuatFromRotationVector(out->dtheta) * q_WP).normalized()};
   if (!IsFinite(out->w_W) || !IsFinite(out->X_WQ)) return Fault(X_WP, out);

@@ -64,6 +64,9 @@ json ToJson(const engine::RunStats& s, const std::string& session, const std::st
       {"max_force", s.max_force},
       {"max_torque", s.max_torque},
       {"faults", Faults(s)},
+      {"final_wrench",
+       {{"force", ToJson(s.final_wrench.f)}, {"torque", ToJson(s.final_wrench.tau)},
+        {"stopped", s.stopped}}},
       {"realtime_priority", s.realtime_priority},
       {"impulses", Impulses(s)},
       {"warnings", s.warnings}};

@@ -1,10 +1,42 @@
 // SPDX-License-Identifier: Apache-2.0
 // Session → world and engine. Kept apart from the parser so parsing links without them.
+#include <string>
+#include <string_view>
+
+#include "mrh/core/error.h"
 #include "mrh/engine/engine.h"
 #include "mrh/session/session.h"
 #include "mrh/world/world.h"
 
 namespace mrh::session {
+namespace {
+
+bool StartsWithPath(std::string_view message, const std::filesystem::path& path) {
+  const std::string text = path.string();
+  return !text.empty() && message.starts_with(text) && message.size() > text.size() &&
+         message[text.size()] == ':';
+}
+
+// Errors of the device and the engine name a session key or a scene item; every error starts
+// with the file to edit: the session's, unless it already names a scene or data file.
+template <typename Build>
+auto WithFile(const Session& session, Build&& build) {
+  try {
+    return build();
+  } catch (const Error& e) {
+    const std::string_view message = e.what();
+    for (const auto* path : {&session.file, &session.scene, &session.device.trajectory,
+                             &session.device.replay}) {
+      if (StartsWithPath(message, *path)) throw;
+    }
+    const std::string text = session.file.string() + ": " + std::string(message);
+    if (dynamic_cast<const SceneError*>(&e) != nullptr) throw SceneError(text);
+    if (dynamic_cast<const InvalidArgument*>(&e) != nullptr) throw InvalidArgument(text);
+    throw RuntimeError(text);
+  }
+}
+
+}  // namespace
 
 // The timestep is left to the engine: it sets physics_dt, or haptic_dt for single-rate methods.
 world::World LoadWorld(const Session& session) {
@@ -16,8 +48,14 @@ world::World LoadWorld(const Session& session) {
 }
 
 std::unique_ptr<engine::Engine> MakeEngine(const Session& session) {
-  return std::make_unique<engine::Engine>(LoadWorld(session), MakeDevice(session),
-                                          session.device.calibration, session.engine);
+  world::World world = LoadWorld(session);
+  std::unique_ptr<device::Device> device = WithFile(session, [&] {
+    return MakeDevice(session);
+  });
+  return WithFile(session, [&] {
+    return std::make_unique<engine::Engine>(std::move(world), std::move(device),
+                                            session.device.calibration, session.engine);
+  });
 }
 
 }  // namespace mrh::session

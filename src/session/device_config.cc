@@ -5,15 +5,18 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <string_view>
 #include <vector>
+
+#include "mrh/core/validate.h"
 
 namespace mrh::session::internal {
 namespace {
 
-// Hand-written quaternions have components of order 1; a norm this small is a typo (such as
-// all zeros), not a rotation, and normalizing it would pick an arbitrary axis.
-constexpr double kMinQuaternionNorm = 1e-6;
+// Upper bounds of device.limits (docs/session-format.md, "Ranges"), in kLimitFields order.
+constexpr std::array<double, 3> kMaxLimits{1e4, 1e3, 1e7};
 
 constexpr std::string_view kPoseLayout = "[x, y, z, qw, qx, qy, qz] (m, quaternion)";
 constexpr std::string_view kKeyframeLayout = "[t, x, y, z, qw, qx, qy, qz] (s, m, quaternion)";
@@ -61,9 +64,17 @@ void RejectForeignKeys(const Node& device, const DeviceType& type) {
   }
 }
 
+// Device poses follow the rules of every device data source (mrh/core/validate.h).
+Pose CheckedPose(const Node& node, const double* v) {
+  const Vec3 p(v[0], v[1], v[2]);
+  const Problem problem = PoseProblem(p, Quat(v[3], v[4], v[5], v[6]));
+  if (problem) node.Fail(problem.what, problem.expected);
+  return Pose{p, ParseQuaternion(node, v[3], v[4], v[5], v[6])};
+}
+
 Pose ParsePose(const Node& node) {
   const std::vector<double> v = node.Numbers(7, kPoseLayout);
-  return Pose{Vec3(v[0], v[1], v[2]), ParseQuaternion(node, v[3], v[4], v[5], v[6])};
+  return CheckedPose(node, v.data());
 }
 
 std::vector<device::Keyframe> ParseKeyframes(const Node& node) {
@@ -73,13 +84,10 @@ std::vector<device::Keyframe> ParseKeyframes(const Node& node) {
   std::vector<device::Keyframe> keyframes;
   for (const Node& element : elements) {
     const std::vector<double> v = element.Numbers(8, kKeyframeLayout);
-    if (!keyframes.empty() && v[0] <= keyframes.back().t) {
-      element.Fail(fmt::format("t = {} s is not after the previous keyframe's t = {} s", v[0],
-                               keyframes.back().t),
-                   "strictly increasing times");
-    }
-    keyframes.push_back(device::Keyframe{
-        v[0], Pose{Vec3(v[1], v[2], v[3]), ParseQuaternion(element, v[4], v[5], v[6], v[7])}});
+    const Problem problem =
+        KeyframeTimeProblem(v[0], keyframes.empty() ? NAN : keyframes.back().t);
+    if (problem) element.Fail(problem.what, problem.expected);
+    keyframes.push_back(device::Keyframe{v[0], CheckedPose(element, v.data() + 1)});
   }
   return keyframes;
 }
@@ -103,10 +111,14 @@ void ParseLimits(const Node& device, device::Specifications* specs) {
   ReadBlock(device, "limits", kLimitFields, specs);
   const std::optional<Node> limits = device.Find("limits");
   if (!limits) return;
-  for (const auto& field : kLimitFields) {
+  for (std::size_t i = 0; i < kLimitFields.size(); ++i) {
+    const auto& field = kLimitFields[i];
     const std::optional<Node> node = limits->Find(field.key);
     const double value = specs->*std::get<double device::Specifications::*>(field.member);
-    if (node && !(value > 0.0)) node->Fail(fmt::format("{} {}", value, field.unit), "a number > 0");
+    if (node && !(value > 0.0 && value <= kMaxLimits[i])) {
+      node->Fail(fmt::format("{} {}", FormatNumber(value), field.unit),
+                 fmt::format("a number > 0 and <= {} {}", FormatNumber(kMaxLimits[i]), field.unit));
+    }
   }
 }
 
@@ -116,6 +128,8 @@ device::Calibration ParseCalibration(const Node& node) {
   if (const auto position = node.Find("position")) {
     const std::vector<double> p = position->Numbers(3, "[x, y, z] (m)");
     calibration.X_WD.p = Vec3(p[0], p[1], p[2]);
+    const Problem problem = PoseProblem(calibration.X_WD.p, Quat::Identity());
+    if (problem) position->Fail(problem.what, problem.expected);
   }
   if (const auto orientation = node.Find("orientation")) {
     const std::vector<double> q = orientation->Numbers(4, "[qw, qx, qy, qz]");
@@ -123,8 +137,8 @@ device::Calibration ParseCalibration(const Node& node) {
   }
   if (const auto scale = node.Find("scale")) {
     calibration.scale = scale->Number("");
-    if (calibration.scale <= 0.0) {
-      scale->Fail(fmt::format("{}", calibration.scale), "a number > 0 (world m per device m)");
+    if (!(calibration.scale >= 1e-3 && calibration.scale <= 1e3)) {
+      scale->Fail(FormatNumber(calibration.scale), "a number in [0.001, 1000] (world m per device m)");
     }
   }
   return calibration;
@@ -134,13 +148,9 @@ device::Calibration ParseCalibration(const Node& node) {
 
 Quat ParseQuaternion(const Node& node, double qw, double qx, double qy, double qz) {
   Quat q(qw, qx, qy, qz);
-  const double norm = q.norm();
-  if (!(norm >= kMinQuaternionNorm)) {
-    node.Fail(
-        fmt::format("quaternion (qw, qx, qy, qz) = ({}, {}, {}, {}) has zero norm", qw, qx, qy, qz),
-        "a nonzero quaternion, e.g. 1, 0, 0, 0 for no rotation");
-  }
-  q.coeffs() /= norm;
+  const Problem problem = PoseProblem(Vec3::Zero(), q);
+  if (problem) node.Fail(problem.what, problem.expected);
+  q.normalize();
   return q;
 }
 

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "mrh/core/error.h"
+#include "mrh/core/validate.h"
 
 namespace mrh::session::internal {
 namespace {
@@ -38,9 +39,11 @@ std::size_t EditDistance(std::string_view a, std::string_view b) {
   return row[b.size()];
 }
 
+}  // namespace
+
 // The allowed key closest to a misspelt one, if it is close enough to be a likely typo.
-std::optional<std::string_view> ClosestKey(std::string_view key,
-                                           const std::vector<std::string_view>& allowed) {
+std::optional<std::string_view> ClosestName(std::string_view key,
+                                            const std::vector<std::string_view>& allowed) {
   std::optional<std::string_view> best;
   std::size_t best_distance = std::max<std::size_t>(2, key.size() / 3) + 1;
   for (const std::string_view candidate : allowed) {
@@ -52,8 +55,6 @@ std::optional<std::string_view> ClosestKey(std::string_view key,
   }
   return best;
 }
-
-}  // namespace
 
 Context::Context(std::string origin, fs::path base_dir)
     : origin_(std::move(origin)), base_dir_(std::move(base_dir)) {}
@@ -90,6 +91,8 @@ std::string Describe(const nlohmann::json& value) {
       return fmt::format("an array of {} element{}", value.size(), value.size() == 1 ? "" : "s");
     case nlohmann::json::value_t::object:
       return "an object";
+    case nlohmann::json::value_t::number_float:
+      return fmt::format("a number ({})", FormatNumber(value.get<double>()));
     default:
       return fmt::format("a number ({})", value.dump());
   }
@@ -109,7 +112,7 @@ void Node::ExpectObject(const std::vector<std::string_view>& allowed, std::strin
   }
   for (const auto& [key, unused] : value_->items()) {
     if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
-    const auto closest = ClosestKey(key, allowed);
+    const auto closest = ClosestName(key, allowed);
     const std::string hint = closest ? fmt::format(" (did you mean \"{}\"?)", *closest) : "";
     const std::string child = path_.empty() ? key : path_ + "." + key;
     context_->Fail(child, "unknown key", fmt::format("one of: {}{}", keys, hint));

@@ -84,6 +84,10 @@ class Node {
   std::string path_;
 };
 
+/// The name in `allowed` closest to `name`, if close enough to be a likely typo.
+std::optional<std::string_view> ClosestName(std::string_view name,
+                                            const std::vector<std::string_view>& allowed);
+
 /// Short description of a JSON value for "found ..." messages, e.g. `a string ("abc")`.
 std::string Describe(const nlohmann::json& value);
 

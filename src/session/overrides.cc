@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <cstdlib>
 #include <string_view>
 
 #include "mrh/core/error.h"
@@ -36,14 +37,24 @@ std::vector<std::string> SplitKey(const Context& context, std::string_view text,
 // Plain words (impulse, scenes/a.xml) are not JSON; taking them as strings saves shell quoting.
 nlohmann::json ParseValue(std::string_view value) {
   nlohmann::json parsed = nlohmann::json::parse(value, nullptr, /*allow_exceptions=*/false);
-  if (parsed.is_discarded()) return std::string(value);  // not {...}: that would be an array
+  if (parsed.is_discarded()) {
+    // A number too large for a double (1e309) is a number to the user, not a string.
+    const std::string text(value);
+    char* end = nullptr;
+    const double number = std::strtod(text.c_str(), &end);
+    const bool numeric = text.find_first_not_of("0123456789+-.eE") == std::string::npos &&
+                         text.find_first_of("0123456789") != std::string::npos;
+    if (numeric && end == text.c_str() + text.size()) return number;
+    return text;  // not {...}: that would be an array
+  }
   return parsed;
 }
 
 void ApplyOne(const std::string& text, nlohmann::json* document, Context* context) {
   const std::size_t equals = text.find('=');
   if (equals == std::string::npos) {
-    FailOverride(*context, text, "missing '='", "key=value, e.g. --set rendering.stiffness=2000");
+    FailOverride(*context, text, "missing '='",
+                 "KEY=VALUE, e.g. --set rendering.stiffness=2000");
   }
   const std::string_view key = std::string_view(text).substr(0, equals);
   const std::vector<std::string> parts = SplitKey(*context, text, key);

@@ -4,12 +4,15 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <fstream>
 #include <sstream>
 #include <system_error>
 
 #include "mrh/core/error.h"
+#include "mrh/core/validate.h"
+#include "mrh/engine/method.h"
 #include "session/device_config.h"
 #include "session/json_node.h"
 #include "session/json_text.h"
@@ -29,6 +32,22 @@ std::vector<std::string_view> TopLevelKeys() {
   for (const auto& field : internal::kEngineFields) keys.push_back(field.key);
   keys.insert(keys.end(), internal::kTopLevelBlocks.begin(), internal::kTopLevelBlocks.end());
   return keys;
+}
+
+// Documented bound of the session's and the scene's gravity (docs/session-format.md, "Ranges").
+constexpr double kMaxGravity = 1e3;
+
+// The method must be registered; the message lists them and the closest one.
+void CheckMethod(const Node& node) {
+  const std::string name = node.String();
+  std::vector<std::string> names;
+  for (const auto& [method, summary] : engine::ListMethods()) names.push_back(method);
+  if (std::find(names.begin(), names.end(), name) != names.end()) return;
+  const std::vector<std::string_view> views(names.begin(), names.end());
+  const auto closest = internal::ClosestName(name, views);
+  node.Fail(fmt::format("unknown method \"{}\"", name),
+            fmt::format("one of: {}{} (see `mrh methods`)", fmt::join(names, ", "),
+                        closest ? fmt::format(" (did you mean \"{}\"?)", *closest) : ""));
 }
 
 engine::Mode ParseMode(const Node& node) {
@@ -62,11 +81,16 @@ Session ParseDocument(const nlohmann::json& document, const Context& context) {
   session.scene =
       root.Require("scene", "the MJCF scene's path (string)").ExistingFile("the MJCF scene file");
   internal::ReadFields(root, internal::kEngineFields, &session.engine);
+  if (const auto method = root.Find("method")) CheckMethod(*method);
   if (const auto mode = root.Find("mode")) session.engine.mode = ParseMode(*mode);
   if (const auto keyframe = root.Find("keyframe")) session.keyframe = keyframe->String();
   if (const auto gravity = root.Find("gravity")) {
     const std::vector<double> g = gravity->Numbers(3, "[gx, gy, gz] (m/s^2)");
     session.gravity = Vec3(g[0], g[1], g[2]);
+    if (!(session.gravity->cwiseAbs().maxCoeff() <= kMaxGravity)) {
+      gravity->Fail(FormatNumbers(g.data(), 3) + " m/s^2",
+                    "components in [-1000, 1000] m/s^2 (100 g)");
+    }
   }
   internal::ReadBlock(root, "pointer", internal::kPointerFields, &session.engine.pointer);
   ReadRendering(root, &session.engine.rendering);

@@ -3,16 +3,19 @@
 #include <mujoco/mujoco.h>
 
 #include <array>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <mutex>
 #include <sstream>
 #include <string>
 #include <system_error>
 
 #include "mrh/core/error.h"
+#include "mrh/core/validate.h"
 #include "world/world_impl.h"
 
 namespace mrh::world {
@@ -34,20 +37,135 @@ std::string OneLine(const char* message) {
   return out.empty() ? std::string("MuJoCo could not load the scene (no message)") : out;
 }
 
+// The scene whose MuJoCo call is running on this thread (internal::MujocoScope), for errors.
+thread_local const std::string* current_scene = nullptr;
+
+// MuJoCo's default error handler prints, appends to MUJOCO_LOG.TXT and exits the process. This
+// one throws instead, naming the scene: a catchable mrh::RuntimeError (exit code 1), or a
+// SceneError while the scene loads (exit code 2).
+[[noreturn]] void ThrowMujocoError(const char* message) {
+  const std::string scene = current_scene != nullptr ? *current_scene : "(unknown scene)";
+  throw RuntimeError(scene + ": MuJoCo error: " + OneLine(message) +
+                     "; the simulation cannot continue (check the scene's sizes and solver "
+                     "settings)");
+}
+
 // MuJoCo's default warning handler prints to stdout and appends to MUJOCO_LOG.TXT in the working
 // directory. Every warning it raises while stepping is also counted in mjData::warning, which
-// World::SimulatorWarnings() reports, so the handler only has to stay quiet.
-void SilenceMujocoWarnings() {
+// World::SimulatorWarnings() reports once at the end of a run (and summary.json lists), so the
+// handler only has to stay quiet.
+void InstallMujocoHandlers() {
   static std::once_flag once;
-  std::call_once(once, [] { mju_user_warning = [](const char*) {}; });
+  std::call_once(once, [] {
+    mju_user_warning = [](const char*) {};
+    mju_user_error = [](const char* message) { ThrowMujocoError(message); };
+  });
+}
+
+// Bounds of the scene as MuJoCo read it (docs/session-format.md, "Ranges").
+constexpr double kMaxGravity = 1e3;   // m/s^2, per component
+constexpr double kMaxExtent = 1e4;    // m: positions, sizes, mesh vertices
+constexpr double kMaxMass = 1e6;      // kg
+
+std::string Name(const mjModel& m, mjtObj type, int id, const char* kind) {
+  const char* name = mj_id2name(&m, type, id);
+  return name != nullptr && name[0] != '\0' ? std::string(kind) + " '" + name + "'"
+                                           : std::string(kind) + " #" + std::to_string(id);
+}
+
+// Throws unless the `count` numbers at `v` are finite and within [-limit, limit].
+void CheckNumbers(const mjtNum* v, int count, double limit, const std::string& origin,
+                  const std::string& what, const char* unit) {
+  for (int i = 0; i < count; ++i) {
+    if (std::isfinite(v[i]) && std::abs(v[i]) <= limit) continue;
+    throw SceneError(origin + ": " + what + " = " + FormatNumbers(v, count) + " " + unit +
+                     "; expected finite values within +-" + FormatNumber(limit) + " " + unit +
+                     " (fix the scene)");
+  }
+}
+
+// NaN, inf or astronomically large numbers in the scene break the collision and rendering code
+// (FCL asserts, the perturbation measurements divide by them); refuse them at load.
+void CheckSceneNumbers(const mjModel& m, const std::string& origin) {
+  CheckNumbers(m.opt.gravity, 3, kMaxGravity, origin, "<option gravity>", "m/s^2");
+  for (int b = 0; b < m.nbody; ++b) {
+    const std::string body = Name(m, mjOBJ_BODY, b, "body");
+    CheckNumbers(m.body_pos + 3 * b, 3, kMaxExtent, origin, body + " pos", "m");
+    CheckNumbers(m.body_quat + 4 * b, 4, kMaxExtent, origin, body + " quat", "");
+    CheckNumbers(m.body_mass + b, 1, kMaxMass, origin, body + " mass", "kg");
+    CheckNumbers(m.body_inertia + 3 * b, 3, kMaxMass * kMaxExtent, origin, body + " inertia",
+                 "kg*m^2");
+  }
+  for (int g = 0; g < m.ngeom; ++g) {
+    const std::string geom = Name(m, mjOBJ_GEOM, g, "geom");
+    CheckNumbers(m.geom_size + 3 * g, 3, kMaxExtent, origin, geom + " size", "m");
+    CheckNumbers(m.geom_pos + 3 * g, 3, kMaxExtent, origin, geom + " pos", "m");
+  }
+  for (int v = 0; v < m.nmeshvert; ++v) {
+    const mjtNum p[3] = {m.mesh_vert[3 * v], m.mesh_vert[3 * v + 1], m.mesh_vert[3 * v + 2]};
+    CheckNumbers(p, 3, kMaxExtent, origin, "mesh vertex #" + std::to_string(v), "m");
+  }
+}
+
+// A mesh is concave when one of its faces has vertices on both sides of its plane (a face of a
+// convex mesh has them all on one side). Collision and rendering use the convex hull.
+bool IsConcave(const mjModel& m, int mesh) {
+  const int first = m.mesh_vertadr[mesh];
+  const int count = m.mesh_vertnum[mesh];
+  auto vertex = [&](int i) {
+    const float* v = m.mesh_vert + 3 * (first + i);
+    return Vec3(v[0], v[1], v[2]);
+  };
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+  Vec3 hi = -lo;
+  for (int i = 0; i < count; ++i) {
+    lo = lo.cwiseMin(vertex(i));
+    hi = hi.cwiseMax(vertex(i));
+  }
+  const double tolerance = 1e-6 * (hi - lo).norm();
+  for (int f = m.mesh_faceadr[mesh]; f < m.mesh_faceadr[mesh] + m.mesh_facenum[mesh]; ++f) {
+    const int* face = m.mesh_face + 3 * f;
+    if (face[0] >= count || face[1] >= count || face[2] >= count) continue;
+    const Vec3 a = vertex(face[0]);
+    const Vec3 n = (vertex(face[1]) - a).cross(vertex(face[2]) - a);
+    if (!(n.norm() > 0.0)) continue;
+    const Vec3 u = n.normalized();
+    bool above = false;
+    bool below = false;
+    for (int i = 0; i < count; ++i) {
+      const double d = u.dot(vertex(i) - a);
+      above = above || d > tolerance;
+      below = below || d < -tolerance;
+    }
+    if (above && below) return true;
+  }
+  return false;
+}
+
+// Warnings about the scene that mean the physics differs from what the MJCF says.
+std::vector<std::string> SceneWarnings(const mjModel& m, const std::string& origin) {
+  std::vector<std::string> warnings;
+  for (int mesh = 0; mesh < m.nmesh; ++mesh) {
+    if (!IsConcave(m, mesh)) continue;
+    warnings.push_back(origin + ": " + Name(m, mjOBJ_MESH, mesh, "mesh") +
+                       " is concave and is replaced by its convex hull for collision and "
+                       "haptic rendering; split it into convex meshes if its hollows matter");
+  }
+  return warnings;
 }
 
 // `text` is the scene's MJCF, for the buffer sizes it sets itself (internal::SizeBuffers).
 internal::ModelPtr LoadOrThrow(const char* file, const mjVFS* vfs, const std::string& origin,
                                const std::string& text) {
-  SilenceMujocoWarnings();
+  InstallMujocoHandlers();
   std::array<char, 1024> error{};
-  internal::ModelPtr model(mj_loadXML(file, vfs, error.data(), static_cast<int>(error.size())));
+  internal::ModelPtr model;
+  try {
+    const internal::MujocoScope scope(origin);
+    model.reset(mj_loadXML(file, vfs, error.data(), static_cast<int>(error.size())));
+  } catch (const RuntimeError& e) {
+    throw SceneError(e.what());
+  }
   const internal::ExplicitSizes sizes = internal::FindExplicitSizes(text);
   if (!model && sizes.njmax && std::strstr(error.data(), "could not create mjData") != nullptr) {
     // MuJoCo's compiler allocates data with the scene's own sizes (model_size.cc's limit).
@@ -68,8 +186,8 @@ std::string ReadScene(const std::filesystem::path& path) {
 
 std::string PointerFix(const std::string& name) {
   return "add <body name=\"" + name +
-         "\" mocap=\"true\"> with a sphere geom as a child of <worldbody>, or name the pointer in "
-         "LoadOptions::pointer_body";
+         "\" mocap=\"true\"> as a child of <worldbody>, or set pointer.body in the session to the "
+         "scene's mocap body";
 }
 
 // The pointer must be a mocap body. Its geoms stop colliding inside MuJoCo: the haptic rendering
@@ -155,9 +273,32 @@ World World::LoadString(const std::string& xml, const LoadOptions& options,
 
 namespace internal {
 
+MujocoScope::MujocoScope(const std::string& scene) : previous_(current_scene) {
+  current_scene = &scene;
+}
+
+MujocoScope::~MujocoScope() {
+  current_scene = previous_;
+}
+
+}  // namespace internal
+
+const std::string& World::origin() const {
+  return impl_->origin;
+}
+
+const std::vector<std::string>& World::LoadWarnings() const {
+  return impl_->load_warnings;
+}
+
+namespace internal {
+
 void InitializeState(ModelPtr model, const std::string& origin, const LoadOptions& options,
                      WorldState* impl) {
   impl->origin = origin;
+  const MujocoScope scope(impl->origin);
+  CheckSceneNumbers(*model, origin);
+  impl->load_warnings = SceneWarnings(*model, origin);
   DescribeModel(*model, origin, &impl->bodies, &impl->geoms);
   impl->pointer_body = SetUpPointer(model.get(), origin, options.pointer_body, &impl->geoms);
   impl->data.reset(mj_makeData(model.get()));

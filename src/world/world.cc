@@ -96,6 +96,7 @@ void World::ApplyKeyframe(const std::string& name) {
 }
 
 void World::Step() {
+  const internal::MujocoScope scope(impl_->origin);
   mjData* d = impl_->data.get();
   mj_step(impl_->model.get(), d);
   // The wrenches were for this step only.

@@ -46,6 +46,7 @@ struct WorldState {
   internal::ModelPtr model;
   internal::DataPtr data;
   std::string origin;  // the scene's name in error messages
+  std::vector<std::string> load_warnings;  // World::LoadWarnings()
   std::vector<BodyInfo> bodies;
   std::vector<GeomInfo> geoms;
   int pointer_body = -1;
@@ -87,6 +88,19 @@ BufferPlan PlanBuffers(const mjModel& m);
 /// @throws mrh::SceneError naming `origin` if the rows its resting contacts need exceed what
 /// MuJoCo 2.2.2 can allocate.
 void SizeBuffers(mjModel* m, const ExplicitSizes& explicit_sizes, const std::string& origin);
+
+/// While alive, MuJoCo errors raised on this thread name `scene` (see load.cc). RT-safe (one
+/// thread_local pointer store). `scene` must outlive the scope.
+class MujocoScope {
+ public:
+  explicit MujocoScope(const std::string& scene);
+  ~MujocoScope();
+  MujocoScope(const MujocoScope&) = delete;
+  MujocoScope& operator=(const MujocoScope&) = delete;
+
+ private:
+  const std::string* previous_;
+};
 
 /// Loads `model` into `state`: describes bodies and geoms, sets up the pointer, makes the data
 /// and computes everything derived from the initial state.

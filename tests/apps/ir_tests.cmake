@@ -10,9 +10,12 @@ mrh_cli_test(IrFaceOnFloorPrintsFourContacts 0 stdout
              ir ${ir_session} --pose 0 0 0.095 1 0 0 0)
 mrh_cli_test(IrFarFromEverythingPrintsNoPairs 0 stdout "^\\{\"pairs\":\\[\\],\"status\":\\[\\]\\}$"
              ir ${ir_session} --pose 0 0 0.3 1 0 0 0)
-mrh_cli_test(IrNonUnitQuaternionExits2 2 stderr
-             "^mrh: error: --pose: quaternion .* has norm 2. expected a unit quaternion"
-             ir ${ir_session} --pose 0 0 0.1 2 0 0 0)
+# --pose follows the session's rule (issue 18): any nonzero quaternion, normalised.
+mrh_cli_test(IrNonUnitQuaternionIsNormalised 0 stdout "^\\{\"pairs\":"
+             ir ${ir_session} --pose 0 0 0.3 0.99999 0 0 0)
+mrh_cli_test(IrZeroQuaternionExits2 2 stderr
+             "^mrh: error: --pose: quaternion .* has \\(almost\\) zero norm; expected a rotation"
+             ir ${ir_session} --pose 0 0 0.1 0 0 0 0)
 mrh_cli_test(IrTooFewPoseNumbersExits2 2 stderr "^mrh: error: .*--pose"
              ir ${ir_session} --pose 0 0 0.1)
 mrh_cli_test(IrMissingPoseExits2 2 stderr "^mrh: error: .*--pose" ir ${ir_session})

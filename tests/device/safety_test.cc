@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <random>
 
 #include "mrh/core/error.h"
 
@@ -55,6 +56,28 @@ TEST(SafetyFilterTest, ClampKeepsForceDirectionAndLimitsMagnitude) {
   EXPECT_NEAR(out.f.x(), 12.0, kForceTol);
   EXPECT_NEAR(out.f.y(), 16.0, kForceTol);
   EXPECT_NEAR(out.f.z(), 0.0, kForceTol);
+}
+
+// Issue 18: scaling by limit / |f| can round to 20.000000000000007 N; the clamp re-checks.
+TEST(SafetyFilterTest, ClampNeverExceedsTheLimitByRounding) {
+  Specifications specs;
+  specs.max_force = 20.0;
+  specs.max_torque = 0.3;
+  SafetyFilter filter(specs, PlainSettings());
+  std::mt19937_64 rng(18);
+  std::uniform_real_distribution<double> component(-1.0, 1.0);
+  std::uniform_real_distribution<double> exponent(1.31, 12.0);  // |f| from ~20.4 N to 1e12 N
+  int over = 0;
+  for (int i = 0; i < 100000; ++i) {
+    Vec3 f(component(rng), component(rng), component(rng));
+    if (!(f.norm() > 1e-3)) continue;
+    f *= std::pow(10.0, exponent(rng)) / f.norm();
+    std::uint32_t bits = 0;
+    const Wrench out = filter.Apply(Wrench{f, 0.01 * f}, 1.0, 0.0, true, &bits);
+    if (out.f.norm() > specs.max_force || out.tau.norm() > specs.max_torque) ++over;
+    ASSERT_TRUE(bits & kSafetyForceClamped);
+  }
+  EXPECT_EQ(over, 0);
 }
 
 TEST(SafetyFilterTest, ClampKeepsTorqueDirectionAndLimitsMagnitude) {

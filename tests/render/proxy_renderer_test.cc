@@ -385,6 +385,18 @@ TEST(ProxyRendererTest, DampersActOnTheChangeOfTheProxyOffset) {
   EXPECT_GT(out.dr.z(), dr1.z());
 }
 
+// Issue 18: a pointer that starts inside an object has no previous offset; its dampers start at
+// rest instead of seeing the whole offset appear in one tick (15 N against a steady 5 N).
+TEST(ProxyRendererTest, FirstTickAfterStartRendersTheSpringOnly) {
+  ProxyRendererSettings settings = T31();
+  settings.d_t = 10.0;
+  settings.d_r = 2.0;
+  Rig rig(settings);
+  const ProxyOutput& out = rig.Tick({Floor({Vec3(0, 0, -kHalf)})}, Pressed());
+  EXPECT_LT((out.w_W.f - kKt * kDepth * Vec3::UnitZ()).norm(), kForceTol);
+  EXPECT_LT(out.w_W.tau.norm(), kForceTol);
+}
+
 TEST(ProxyRendererTest, PersistingContactsWarmStartAndConvergeInOneSweep) {
   ProxyRendererSettings settings = Friction(3.33 * Mat3::Identity());
   settings.solver = ProxySolverKind::kPgs;

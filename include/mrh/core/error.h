@@ -7,10 +7,32 @@
 
 namespace mrh {
 
+/// `text` made printable on one line: line breaks become spaces, NUL and other control
+/// characters "\xNN", so a value such as "a\0b" cannot cut or split the message.
+inline std::string PrintableMessage(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  for (const char c : text) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '\n' || c == '\r' || c == '\t') {
+      out += ' ';
+    } else if (u < 0x20 || u == 0x7f) {
+      static constexpr char kHex[] = "0123456789abcdef";
+      out += "\\x";
+      out += kHex[u >> 4];
+      out += kHex[u & 0xf];
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
 /// Base of every error mrhaptics throws. The message is one line: where, what, expected, fix.
 class Error : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  explicit Error(const std::string& message) : std::runtime_error(PrintableMessage(message)) {}
+  explicit Error(const char* message) : Error(std::string(message)) {}
 };
 
 /// Bad settings, session keys, CLI values or device data. The CLI maps it to exit code 2.

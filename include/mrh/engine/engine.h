@@ -86,6 +86,10 @@ struct RunStats {
   std::int64_t force_clamped = 0, torque_clamped = 0, watchdog_ticks = 0;
   std::int64_t dropped_tick_records = 0, dropped_reports = 0;
   std::uint32_t ir_status = 0;               ///< ir::StatusBits seen
+  /// The last wrench sent to the device (world frame, N and N·m): zero when the run ended with
+  /// the stop (`stopped`), which commands zero whatever was rendered last.
+  Wrench final_wrench;
+  bool stopped = false;
   bool realtime_priority = false;            ///< SCHED_FIFO + mlockall granted
   std::vector<BodyImpulseTotal> impulses;
   std::vector<std::string> warnings;

@@ -46,8 +46,13 @@ struct MethodContext {
   world::World* world = nullptr;  ///< owned by the engine; used only by the physics half
   const EngineSettings* settings = nullptr;
   int pointer_body = -1;
-  double pointer_radius = 0.0;    ///< m (3-DOF methods)
+  double pointer_radius = 0.0;    ///< m (3-DOF methods); 0 when neither session nor scene gives it
 };
+
+/// The pointer radius a 3-DOF method needs (m, > 0). Only 3-DOF methods ask for it, so a 6-DOF
+/// method runs with a pointer that has no sphere geom and no pointer.radius.
+/// @throws mrh::SceneError naming pointer.body and pointer.radius when there is none.
+double PointerRadiusFor3Dof(const MethodContext& context);
 
 /// A haptic rendering method (single-rate, impulse, local-dynamics, proxy-6dof, ...).
 /// The physics half (PhysicsStep) runs on the physics thread and may use the world; the haptic

@@ -81,6 +81,11 @@ class World {
   ~World();
 
   int num_bodies() const;
+  /// The scene's name in error messages (its path, or the origin given to LoadString).
+  const std::string& origin() const;
+  /// Warnings found when the scene was loaded that mean the physics differs from the MJCF's
+  /// text (a concave mesh replaced by its convex hull), one line each, naming the scene.
+  const std::vector<std::string>& LoadWarnings() const;
   int num_geoms() const;
   const BodyInfo& body(int id) const;
   const GeomInfo& geom(int id) const;
