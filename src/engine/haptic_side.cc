@@ -65,6 +65,7 @@ void HapticSide::Tick(double t) noexcept {
 
   std::uint32_t bits = 0;
   const Wrench displayed = safety_.Apply(out.w_W, t, t - last_adopt_t_, device_ok_, &bits);
+  device_->SetSafetyBits(bits);
   device_->SetWrench(calibration_.ToDevice(displayed));
   Count(displayed, bits);
 

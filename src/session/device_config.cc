@@ -10,7 +10,9 @@
 #include <string_view>
 #include <vector>
 
+#include "mrh/core/error.h"
 #include "mrh/core/validate.h"
+#include "mrh/device/models.h"
 
 namespace mrh::session::internal {
 namespace {
@@ -107,10 +109,43 @@ void ParseTarget(const Node& device, std::string_view type, DeviceConfig* config
   if (trajectory) config->trajectory = trajectory->ExistingFile("a keyframe CSV file");
 }
 
-void ParseLimits(const Node& device, device::Specifications* specs) {
-  ReadBlock(device, "limits", kLimitFields, specs);
+// The model's data sheet first, then the explicit limits over it.
+void ParseModel(const Node& device, DeviceConfig* config) {
+  const std::optional<Node> node = device.Find("model");
+  if (!node) return;
+  const std::string name = node->String();
+  const device::DeviceModel* model = device::FindDeviceModel(name);
+  if (model == nullptr) {
+    node->Fail(fmt::format("unknown device model \"{}\"", name),
+               "one of " + device::DeviceModelNames());
+  }
+  config->model = name;
+  config->specs = device::ModelSpecifications(*model);
+  config->stiffness_limit_stated = true;
+}
+
+void ParseLimitSpecials(const Node& limits, device::Specifications* specs) {
+  if (const auto radius = limits.Find("workspace_radius")) {
+    const double r = radius->Number("m");
+    if (!(r > 0.0)) radius->Fail(fmt::format("{} m", r), "a number > 0");
+    specs->workspace_min = Vec3::Constant(-r);
+    specs->workspace_max = Vec3::Constant(r);
+  }
+  if (const auto dof = limits.Find("output_dof")) {
+    const int n = dof->Integer();
+    if (n != 3 && n != 6) dof->Fail(fmt::format("{}", n), "3 (force only) or 6 (force and torque)");
+    specs->has_torque = n == 6;
+  }
+}
+
+void ParseLimits(const Node& device, DeviceConfig* config) {
   const std::optional<Node> limits = device.Find("limits");
   if (!limits) return;
+  std::vector<std::string_view> keys = KeysOf(kLimitFields);
+  keys.insert(keys.end(), kLimitSpecialKeys.begin(), kLimitSpecialKeys.end());
+  limits->ExpectObject(keys, "an object");
+  device::Specifications* specs = &config->specs;
+  ReadFields(*limits, kLimitFields, specs);
   for (std::size_t i = 0; i < kLimitFields.size(); ++i) {
     const auto& field = kLimitFields[i];
     const std::optional<Node> node = limits->Find(field.key);
@@ -119,6 +154,51 @@ void ParseLimits(const Node& device, device::Specifications* specs) {
       node->Fail(fmt::format("{} {}", FormatNumber(value), field.unit),
                  fmt::format("a number > 0 and <= {} {}", FormatNumber(kMaxLimits[i]), field.unit));
     }
+  }
+  ParseLimitSpecials(*limits, specs);
+  if (limits->Find("max_stiffness")) config->stiffness_limit_stated = true;
+}
+
+// A soname ("libdhd.so") is left to the dynamic loader's search; a path (with a '/') resolves
+// against the session's folder and must exist.
+std::string ParseLibrary(const Node& device, const std::string& fallback) {
+  const std::optional<Node> node = device.Find("library");
+  if (!node) return fallback;
+  const std::string text = node->String();
+  if (text.empty()) node->Fail("found an empty string", "a library path or soname");
+  if (text.find('/') == std::string::npos) return text;
+  return node->ExistingFile("the vendor's shared library").string();
+}
+
+void ParseUdp(const Node& device, device::UdpSettings* udp) {
+  if (const auto bind = device.Find("bind")) {
+    udp->bind = bind->String();
+    try {
+      device::CheckUdpBind(udp->bind);
+    } catch (const InvalidArgument&) {
+      bind->Fail(fmt::format("\"{}\" is not host:port", udp->bind),
+                 "\"host:port\" with an IPv4 host and a port 0..65535, e.g. \"127.0.0.1:47800\"");
+    }
+  }
+  if (const auto timeout = device.Find("timeout")) {
+    udp->timeout = timeout->Number("s");
+    if (!(udp->timeout > 0.0)) timeout->Fail(fmt::format("{} s", udp->timeout), "a number > 0");
+  }
+  if (const auto fade = device.Find("fade")) {
+    udp->fade = fade->Number("s");
+    if (!(udp->fade >= 0.0)) fade->Fail(fmt::format("{} s", udp->fade), "a number >= 0");
+  }
+}
+
+// The keys of the hardware and network types.
+void ParseHardware(const Node& device, const DeviceType& type, DeviceConfig* config) {
+  if (type.name == "forcedimension") {
+    config->forcedimension.library = ParseLibrary(device, config->forcedimension.library);
+  } else if (type.name == "openhaptics") {
+    config->openhaptics.library = ParseLibrary(device, config->openhaptics.library);
+    if (const auto name = device.Find("name")) config->openhaptics.name = name->String();
+  } else if (type.name == "udp") {
+    ParseUdp(device, &config->udp);
   }
 }
 
@@ -170,11 +250,29 @@ DeviceConfig ParseDevice(const Node& device) {
     config.replay = device.Require("replay", "the path of a recorded run's ticks.csv")
                         .ExistingFile("a recorded run's ticks.csv");
   }
-  ParseLimits(device, &config.specs);
+  ParseHardware(device, type, &config);
+  ParseModel(device, &config);
+  ParseLimits(device, &config);
   if (const auto calibration = device.Find("calibration")) {
     config.calibration = ParseCalibration(*calibration);
   }
   return config;
+}
+
+void CheckStiffnessLimit(const Node& root, const DeviceConfig& device, double stiffness) {
+  if (!device.stiffness_limit_stated || stiffness <= device.specs.max_stiffness) return;
+  const std::string source =
+      device.model.empty() ? std::string() : fmt::format(" (device.model \"{}\")", device.model);
+  const std::string what = fmt::format(
+      "rendering.stiffness = {} N/m exceeds device.limits.max_stiffness = {} N/m{}", stiffness,
+      device.specs.max_stiffness, source);
+  const std::string fix =
+      "rendering.stiffness <= device.limits.max_stiffness, or raise device.limits.max_stiffness "
+      "if the device renders it stably";
+  const std::optional<Node> rendering = root.Find("rendering");
+  const std::optional<Node> node = rendering ? rendering->Find("stiffness") : std::nullopt;
+  if (node) node->Fail(what, fix);
+  root.Require("device", "").Fail(what, fix);
 }
 
 }  // namespace mrh::session::internal

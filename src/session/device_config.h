@@ -14,6 +14,11 @@ namespace mrh::session::internal {
 /// exist. @throws mrh::InvalidArgument naming the dotted key.
 DeviceConfig ParseDevice(const Node& device);
 
+/// The stiffness limit: when the session states it (device.model or
+/// device.limits.max_stiffness), `stiffness` (rendering.stiffness, N/m) must not exceed it.
+/// @throws mrh::InvalidArgument naming both keys and values.
+void CheckStiffnessLimit(const Node& root, const DeviceConfig& device, double stiffness);
+
 /// A unit quaternion from (qw, qx, qy, qz) read at `node` (for messages).
 /// @throws mrh::InvalidArgument if the norm is (nearly) zero.
 Quat ParseQuaternion(const Node& node, double qw, double qx, double qy, double qz);

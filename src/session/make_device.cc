@@ -4,6 +4,7 @@
 
 #include "mrh/core/error.h"
 #include "mrh/device/external.h"
+#include "mrh/device/hardware.h"
 #include "mrh/session/session.h"
 
 namespace mrh::session {
@@ -32,9 +33,17 @@ std::unique_ptr<device::Device> MakeConfiguredDevice(const Session& session) {
   }
   if (config.type == "replay") return device::MakeReplayDevice(config.replay, config.specs);
   if (config.type == "external") return std::make_unique<device::ExternalDevice>(config.specs);
+  if (config.type == "forcedimension") {
+    return device::MakeForceDimensionDevice(config.forcedimension, config.specs);
+  }
+  if (config.type == "openhaptics") {
+    return device::MakeOpenHapticsDevice(config.openhaptics, config.specs);
+  }
+  if (config.type == "udp") return device::MakeUdpDevice(config.udp, config.specs);
   throw InvalidArgument(
       fmt::format("{}: device.type: unknown device type \"{}\"; expected \"fixed\", "
-                  "\"scripted\", \"hand\", \"replay\" or \"external\"",
+                  "\"scripted\", \"hand\", \"replay\", \"external\", \"forcedimension\", "
+                  "\"openhaptics\" or \"udp\"",
                   session.file.string(), config.type));
 }
 

@@ -108,8 +108,12 @@ inline constexpr std::array<std::string_view, 3> kTopLevelBlocks{
     {"pointer", "rendering", "safety"}};
 
 /// `device` keys every device type accepts.
-inline constexpr std::array<std::string_view, 3> kDeviceCommonKeys{
-    {"type", "limits", "calibration"}};
+inline constexpr std::array<std::string_view, 4> kDeviceCommonKeys{
+    {"type", "model", "limits", "calibration"}};
+
+/// `device.limits` keys the parser handles itself (not plain fields of Specifications).
+inline constexpr std::array<std::string_view, 2> kLimitSpecialKeys{
+    {"workspace_radius", "output_dof"}};
 
 /// A device type and the keys only it accepts (empty slots unused).
 struct DeviceType {
@@ -117,12 +121,15 @@ struct DeviceType {
   std::array<std::string_view, 3> keys;
 };
 
-inline constexpr std::array<DeviceType, 5> kDeviceTypes{{
+inline constexpr std::array<DeviceType, 8> kDeviceTypes{{
     {"fixed", {"pose"}},
     {"scripted", {"keyframes", "trajectory"}},
     {"hand", {"keyframes", "trajectory", "hand"}},
     {"replay", {"replay"}},
     {"external", {}},  // fed by the caller's servo loop (Engine::Start/Tick/Stop)
+    {"forcedimension", {"library"}},     // DHD library loaded at run time
+    {"openhaptics", {"library", "name"}},  // HD library loaded at run time
+    {"udp", {"bind", "timeout", "fade"}},  // poses in, wrenches out over UDP
 }};
 
 /// `device.calibration` keys.

@@ -97,6 +97,7 @@ Session ParseDocument(const nlohmann::json& document, const Context& context) {
   internal::ReadBlock(root, "safety", internal::kSafetyFields, &session.engine.safety);
   session.device = internal::ParseDevice(
       root.Require("device", "an object with at least \"type\" (see docs/session-format.md)"));
+  internal::CheckStiffnessLimit(root, session.device, session.engine.rendering.stiffness);
   return session;
 }
 

@@ -28,6 +28,17 @@ struct DeviceState {
   std::uint32_t buttons = 0;     ///< bit i = button i pressed
 };
 
+/// Faults a device counted itself (hardware and network devices; simulated ones count none).
+/// Read from a non-RT thread; the values are snapshots of atomics.
+struct DeviceCounters {
+  std::int64_t vendor_errors = 0;      ///< vendor calls that returned an error
+  std::int64_t torque_dropped = 0;     ///< ticks whose nonzero torque a 3-DOF device could not show
+  std::int64_t packets_malformed = 0;  ///< network: wrong size, magic or version, non-finite
+  std::int64_t pose_timeouts = 0;      ///< network: ticks with no pose for longer than the timeout
+  std::int64_t poses_received = 0;     ///< network: well-formed pose packets
+  std::int64_t wrenches_sent = 0;      ///< network: wrench packets sent
+};
+
 /// A haptic device. Read() and SetWrench() are called from the haptic thread once per tick and
 /// must be RT-safe in every implementation (no allocation, locks, I/O or exceptions). Open/Close
 /// are setup calls.
@@ -49,6 +60,16 @@ class Device {
   /// Commands the wrench to display (device frame, torque about the tool origin). The caller
   /// guarantees finite values within the specifications. RT-safe.
   virtual void SetWrench(const Wrench& w_D) noexcept = 0;
+
+  /// The safety layer's bits (device::SafetyBits) for the wrench about to be commanded, so that a
+  /// device can pass them on (the UDP device sends them). Default: ignored. RT-safe.
+  virtual void SetSafetyBits(std::uint32_t bits) noexcept { (void)bits; }
+
+  /// What the device counted so far. Not RT-safe (may be called while it runs).
+  virtual DeviceCounters counters() const { return {}; }
+
+  /// The vendor's last error text, or "" (for messages after a run). Not RT-safe.
+  virtual std::string last_error() const { return {}; }
 };
 
 }  // namespace mrh::device

@@ -11,6 +11,7 @@
 #include "mrh/core/spatial.h"
 #include "mrh/device/calibration.h"
 #include "mrh/device/device.h"
+#include "mrh/device/hardware.h"
 #include "mrh/device/simulated.h"
 #include "mrh/engine/settings.h"
 
@@ -25,7 +26,9 @@ namespace mrh::session {
 
 /// The `device` block.
 struct DeviceConfig {
-  std::string type = "fixed";               ///< fixed | scripted | hand | replay
+  std::string type = "fixed";  ///< fixed | scripted | hand | replay | external | forcedimension
+                               ///< | openhaptics | udp
+  std::string model;           ///< device.model ("" = none): defaults for the limits
   Pose pose;                                ///< fixed: the held pose
   std::vector<device::Keyframe> keyframes;  ///< scripted / hand: inline keyframes
   std::filesystem::path trajectory;         ///< scripted / hand: CSV of keyframes (resolved)
@@ -33,6 +36,12 @@ struct DeviceConfig {
   device::HandSettings hand;                ///< hand: the simulated user's parameters
   device::Specifications specs;             ///< max_force, max_torque, ... overrides
   device::Calibration calibration;          ///< device → world
+  device::ForceDimensionSettings forcedimension;  ///< forcedimension: device.library
+  device::OpenHapticsSettings openhaptics;        ///< openhaptics: device.library, device.name
+  device::UdpSettings udp;                        ///< udp: device.bind, timeout, fade
+  /// True if device.model or device.limits.max_stiffness states the stiffness limit; then
+  /// rendering.stiffness above specs.max_stiffness is a validation error.
+  bool stiffness_limit_stated = false;
 };
 
 /// A parsed and validated session.
