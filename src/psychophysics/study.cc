@@ -14,7 +14,9 @@
 
 #include "mrh/core/error.h"
 #include "mrh/engine/method.h"
+#include "session/json_node.h"
 #include "session/json_text.h"
+#include "session/overrides.h"
 
 namespace mrh::psychophysics {
 namespace {
@@ -156,7 +158,10 @@ Study LoadStudy(const std::filesystem::path& file, const std::vector<std::string
   std::ifstream in(file, std::ios::binary);
   std::stringstream text;
   text << in.rdbuf();
-  const json document = session::internal::ParseJsonText(text.str(), file.string());
+  // The same `--set` overrides reach the psychophysics object (psychophysics.pause=0, ...).
+  json document = session::internal::ParseJsonText(text.str(), file.string());
+  session::internal::Context context(file.string(), std::filesystem::absolute(file).parent_path());
+  session::internal::ApplyOverrides(overrides, &document, &context);
   if (!document.contains("psychophysics") || !document.at("psychophysics").is_object()) {
     throw InvalidArgument(fmt::format(
         "{}: psychophysics = {}; expected an object with the study's settings (see "
