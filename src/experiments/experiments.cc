@@ -29,6 +29,10 @@ constexpr Entry kExperiments[] = {
     {"t4.1",
      "impulse delivered to a moving 60 kg cube per method, mass/speed sweep (fig. 4.13, tab. 4.3)",
      internal::RunT41},
+    {"t4.2",
+     "2AFC mass study with simulated observers: PSE per method, predicted table 4.4 "
+     "(figs. 4.14-4.15)",
+     internal::RunT42},
     {"t4.3", "computation occupancy per physics step with 1-1000 cubes (figs. 4.17-4.20)",
      internal::RunT43},
     {"t4.4", "felt mass steps up as cubes join a pushed line; an edge push turns the cube",

@@ -162,7 +162,7 @@ RunResult RunStudy(const Study& study, const RunSettings& settings, Apparatus* a
     result.answered_before = static_cast<int>(rows.size());
   }
   result.answered = result.answered_before;
-  TrialsWriter writer(file);
+  TrialsWriter writer(file, settings.sync);
   const std::filesystem::path stimuli = settings.out / "stimuli";
   for (std::size_t i = result.answered_before; i < schedule.size(); ++i) {
     const Trial& t = schedule[i];

@@ -169,7 +169,8 @@ std::vector<TrialRow> ReadTrials(const std::filesystem::path& file) {
   return rows;
 }
 
-TrialsWriter::TrialsWriter(const std::filesystem::path& file) : file_(file) {
+TrialsWriter::TrialsWriter(const std::filesystem::path& file, bool sync)
+    : file_(file), sync_(sync) {
   out_ = std::fopen(file.c_str(), "a");
   if (out_ == nullptr) {
     throw RuntimeError(fmt::format("{}: cannot open for appending ({})", file.string(),
@@ -187,7 +188,7 @@ void TrialsWriter::Append(const TrialRow& row) { Write(FormatTrialRow(row)); }
 void TrialsWriter::Write(const std::string& line) {
   const std::string text = line + "\n";
   const bool ok = std::fwrite(text.data(), 1, text.size(), out_) == text.size() &&
-                  std::fflush(out_) == 0 && ::fsync(::fileno(out_)) == 0;
+                  std::fflush(out_) == 0 && (!sync_ || ::fsync(::fileno(out_)) == 0);
   if (!ok) {
     throw RuntimeError(fmt::format("{}: cannot write a trial ({})", file_.string(),
                                    std::strerror(errno)));

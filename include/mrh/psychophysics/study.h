@@ -92,6 +92,9 @@ struct RunSettings {
   std::string subject;           ///< non-empty, no comma, quote or line break
   std::filesystem::path out;     ///< created; holds trials.csv and stimuli/
   engine::Mode mode = engine::Mode::kRealtime;  ///< of every stimulus
+  /// fsync trials.csv after each row (people: yes; simulated observers, who answer a thousand
+  /// trials a second, only flush).
+  bool sync = true;
 };
 
 /// What a run did.
