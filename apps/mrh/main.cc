@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "commands.h"
+#include "psychophysics_command.h"
 #include "mrh/core/error.h"
 
 namespace mrh::cli {
@@ -26,6 +27,7 @@ constexpr const char* kRootFooter = R"(Examples:
   mrh experiment --list                      list the reproducible experiments
   mrh ir session.json --pose 0 0 0.1 1 0 0 0 print the contact IR at a pointer pose (JSON)
   mrh view session.json                      open the interactive viewer
+  mrh psychophysics run s.json --subject A --out DIR   a 2AFC study (docs/psychophysics.md)
 
 Run `mrh <command> --help` for the options of a command.
 
@@ -72,6 +74,7 @@ struct Options {
   ExperimentOptions experiment;
   IrOptions ir;
   ViewOptions view;
+  PsychophysicsOptions psychophysics;
 };
 
 struct Commands {
@@ -80,6 +83,7 @@ struct Commands {
   const CLI::App* methods;
   const CLI::App* ir;
   const CLI::App* view;
+  PsychophysicsCommands psychophysics;
 };
 
 int Dispatch(const CLI::App& app, const Options& o, const Commands& c) {
@@ -88,6 +92,9 @@ int Dispatch(const CLI::App& app, const Options& o, const Commands& c) {
   if (app.got_subcommand(c.methods)) return MethodsCommand();
   if (app.got_subcommand(c.ir)) return IrCommand(o.ir);
   if (app.got_subcommand(c.view)) return ViewCommand(o.view);
+  if (app.got_subcommand(c.psychophysics.top)) {
+    return PsychophysicsCommand(c.psychophysics, o.psychophysics);
+  }
   return ExperimentCommand(o.experiment);
 }
 
@@ -108,11 +115,13 @@ int Main(int argc, char** argv) {
   AddExperimentCommand(app, &o.experiment);
   c.ir = AddIrCommand(app, &o.ir);
   c.view = AddViewCommand(app, &o.view);
+  c.psychophysics = AddPsychophysicsCommand(app, &o.psychophysics);
 
   if (const std::optional<std::string> word = UnknownCommand(app, argc, argv)) {
     return Fail(
         kExitBadInput,
-        fmt::format("unknown command '{}'; expected run, validate, methods, experiment, ir or view",
+        fmt::format("unknown command '{}'; expected run, validate, methods, experiment, ir, view or "
+                    "psychophysics",
                     *word),
         true);
   }

@@ -30,6 +30,10 @@ constexpr Entry kExperiments[] = {
     {"t4.1",
      "impulse delivered to a moving 60 kg cube per method, mass/speed sweep (fig. 4.13, tab. 4.3)",
      internal::RunT41},
+    {"t4.2",
+     "2AFC mass study with simulated observers: PSE per method, predicted table 4.4 "
+     "(figs. 4.14-4.15)",
+     internal::RunT42},
     {"t4.3",
      "computation occupancy per physics step, 1-100 cubes with/without friction (figs. "
      "4.17-4.20); --full: 1-1000 frictionless, 1-500 with friction",

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -37,6 +38,22 @@ struct T41Options {
   bool sweep = true;  ///< also sweep mass (15–240 kg) × speed (0.005–0.1 m/s)
 };
 int RunT41(const std::filesystem::path& out, bool quiet, const T41Options& options);
+
+/// T4.2: the 2AFC mass study (scenes/t4_2.json) with simulated observers through
+/// psychophysics::RunStudy and the psychometric analysis. Returns 0 if its checks pass.
+int RunT42(const std::filesystem::path& out, bool quiet);
+
+/// What RunT42 runs.
+struct T42Options {
+  std::vector<std::string> observers = {"A", "B", "C", "D", "E"};
+  int trials_per_mass = 0;  ///< 0: the session's (20)
+  double weber = 0.10;      ///< Weber fraction of the observers' momentum percept
+  std::uint64_t observer_seed = 42;  ///< observer i draws its noise from seed + i
+  /// Simulate each distinct stimulus once and reuse its momentum (the lockstep world is
+  /// deterministic, so repeated presentations are identical); false re-simulates every one.
+  bool cache = true;
+};
+int RunT42(const std::filesystem::path& out, bool quiet, const T42Options& options);
 
 /// Per-call timings of a method wrapped by RegisterTimedMethod (filled on the calling threads).
 struct MethodTimings {

@@ -99,9 +99,10 @@ inline constexpr std::array<Field<device::Specifications>, 3> kLimitFields{{
     {"max_stiffness", &device::Specifications::max_stiffness, "N/m", "largest stable stiffness"},
 }};
 
-/// Keys the parser handles itself (not plain fields), top level.
-inline constexpr std::array<std::string_view, 5> kTopLevelSpecialKeys{
-    {"scene", "mode", "keyframe", "gravity", "device"}};
+/// Keys the parser handles itself (not plain fields), top level. `psychophysics` is read and
+/// validated by mrh::psychophysics::LoadStudy (docs/psychophysics.md); sessions ignore it.
+inline constexpr std::array<std::string_view, 6> kTopLevelSpecialKeys{
+    {"scene", "mode", "keyframe", "gravity", "device", "psychophysics"}};
 
 /// Top-level blocks made only of fields (kPointerFields, kRenderingFields, kSafetyFields).
 inline constexpr std::array<std::string_view, 3> kTopLevelBlocks{
