@@ -98,6 +98,11 @@ void EngineSettings::Validate() const {
   RequireAtLeast(rendering.curved_segments, 6, "rendering.curved_segments");
   ValidateProxy(rendering);
   RequirePositive(rendering.perturbation_force, "rendering.perturbation_force", "N");
+  if (rendering.local_model != "contact" && rendering.local_model != "perturbation") {
+    throw InvalidArgument(fmt::format(
+        "rendering.local_model = \"{}\"; expected \"contact\" (default) or \"perturbation\"",
+        rendering.local_model));
+  }
   safety.Validate();
 }
 
