@@ -8,6 +8,7 @@
 
 #include "mrh/core/error.h"
 #include "mrh/engine/method.h"
+#include "local_contact_method.h"
 #include "local_dynamics_method.h"
 #include "point_penalty_method.h"
 #include "proxy_method.h"
@@ -49,8 +50,10 @@ void RegisterBuiltins() {
                    "Ch. 3: geometric IR + 6-DOF proxy with friction cones, reaction one step late",
                    internal::MakeProxyMethod);
     RegisterMethod("local-dynamics",
-                   "Ch. 4: neighbors simulated at the haptic rate from accelerance + bias",
-                   internal::MakeLocalDynamicsMethod);
+                   "Ch. 4: neighbors simulated at the haptic rate; rendering.local_model "
+                   "\"contact\" (their contact island with friction, default) or "
+                   "\"perturbation\" (thesis: accelerance + bias)",
+                   internal::MakeLocalDynamicsAnyModel);
   });
 }
 

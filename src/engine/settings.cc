@@ -68,6 +68,11 @@ void ValidateRendering(const RenderingSettings& r) {
   RequireIntInRange(r.curved_segments, 6, kMaxCurvedSegments, "rendering.curved_segments");
   ValidateProxy(r);
   RequireInRange(r.perturbation_force, 1e-3, 1e3, "rendering.perturbation_force", "N");
+  if (r.local_model != "contact" && r.local_model != "perturbation") {
+    throw InvalidArgument(fmt::format(
+        "rendering.local_model = \"{}\"; expected \"contact\" (default) or \"perturbation\"",
+        r.local_model));
+  }
 }
 
 // Rates: haptic_dt, physics_dt as a whole number of ticks, and a run of at least one tick.

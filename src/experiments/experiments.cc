@@ -42,6 +42,9 @@ constexpr Entry kExperiments[] = {
      internal::RunT44},
     {"t4.5", "haptic tick cost and physics occupancy vs 1-128 neighbors simulated locally",
      internal::RunT45},
+    {"t4.push",
+     "pushing resting boxes across a floor with friction: force and trajectory vs single-rate",
+     internal::RunT4Push},
     {"t4.latency", "haptic ticks from the user's force onset to the touched object's response",
      internal::RunLatency},
 };

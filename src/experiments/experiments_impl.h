@@ -143,6 +143,44 @@ struct LatencyOptions {
 };
 int RunLatency(const std::filesystem::path& out, bool quiet, const LatencyOptions& options);
 
+/// A t4.push case (issue 13): scene scenes/t4_push_<name>.xml, pointer height z (m), the time
+/// the pointer stops pushing (s) and the run length (s).
+struct PushCase {
+  std::string name;
+  double z = 0.05;
+  double push_until = 6.0;
+  double duration = 6.0;
+};
+
+/// What RunT4Push runs; methods[0] must be single-rate (the reference).
+struct PushOptions {
+  std::vector<PushCase> cases;
+  std::vector<std::string> methods = {"single-rate", "local-dynamics",
+                                      "local-dynamics/perturbation", "impulse"};
+};
+
+/// One case × method of t4.push: |f| statistics over 2–5 s, box COM at 5 s, peak |ω|.
+struct PushResult {
+  double mean_force = 0.0;    ///< N
+  double sd_force = 0.0;      ///< N
+  double contact_lost = 0.0;  ///< share of ticks with |f| = 0
+  Vec3 position = Vec3::Zero();  ///< m
+  double peak_spin = 0.0;     ///< rad/s
+};
+
+/// The five cases of the issue (one box, heavy box, row of three, wall, tip).
+PushOptions DefaultPushOptions();
+
+/// Runs every case × method (runs/ CSVs under `out`); results[case][method].
+std::vector<std::vector<PushResult>> RunPushCases(const std::filesystem::path& out,
+                                                  const PushOptions& options, bool quiet);
+
+/// t4.push: returns 0 if local-dynamics meets the issue's bars against single-rate in every
+/// case (mean within 5 %, sd <= max(2x, 2 % of mean), contact loss <= single-rate's, box within
+/// 2 cm at 5 s).
+int RunT4Push(const std::filesystem::path& out, bool quiet);
+int RunT4Push(const std::filesystem::path& out, bool quiet, const PushOptions& options);
+
 // Chapter 3 (method proxy-6dof).
 
 /// One haptic tick of a proxy-6dof run as the chapter-3 drivers see it (world frame).

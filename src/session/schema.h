@@ -42,7 +42,7 @@ inline constexpr std::array<Field<engine::PointerSettings>, 2> kPointerFields{{
 }};
 
 /// `rendering` block.
-inline constexpr std::array<Field<engine::RenderingSettings>, 14> kRenderingFields{{
+inline constexpr std::array<Field<engine::RenderingSettings>, 15> kRenderingFields{{
     {"stiffness", &engine::RenderingSettings::stiffness, "N/m", "penalty spring k (eq. 4.11)"},
     {"damping", &engine::RenderingSettings::damping, "N*s/m", "penalty damper d (eq. 4.11)"},
     {"neighbor_distance", &engine::RenderingSettings::neighbor_distance, "m",
@@ -68,6 +68,8 @@ inline constexpr std::array<Field<engine::RenderingSettings>, 14> kRenderingFiel
      "measure A and b by perturbation simulations (local-dynamics)"},
     {"perturbation_force", &engine::RenderingSettings::perturbation_force, "N",
      "test force when the user's last force is zero"},
+    {"local_model", &engine::RenderingSettings::local_model, "",
+     "local-dynamics: \"contact\" (island with friction, default) or \"perturbation\" (A, b)"},
 }};
 
 /// `rendering` keys the parser handles itself (not plain fields).

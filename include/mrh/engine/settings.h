@@ -68,6 +68,10 @@ struct RenderingSettings {
   bool perturbation = true;
   /// Test force along −n when the user's last force is zero (N, > 0; Springhead uses 0.5 N).
   double perturbation_force = 0.5;
+  /// Local model of local-dynamics (issue 13): "contact" (default: the neighbors' contact
+  /// island, its contacts with the world and each other, normal + Coulomb friction, simulated at
+  /// the haptic rate) or "perturbation" (the thesis' accelerance A and bias b, eq. 4.3–4.10).
+  std::string local_model = "contact";
 };
 
 /// Everything the engine needs besides the world and the device.

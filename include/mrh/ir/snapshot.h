@@ -8,6 +8,7 @@
 
 #include "mrh/core/fixed_vector.h"
 #include "mrh/core/spatial.h"
+#include "mrh/ir/local_contact.h"
 
 namespace mrh::ir {
 
@@ -104,6 +105,8 @@ struct PhysicsSnapshot {
   FixedVector<PointContact, kMaxPointContacts> contacts;
   FixedVector<GeometricPair, kMaxGeometricPairs> pairs;
   FixedVector<PairPoint, kMaxPairPoints> points;
+  /// The contact local model (local-dynamics with rendering.local_model "contact", issue 13).
+  LocalContactModel local_model;
   std::uint32_t status = kStatusOk;
 };
 

@@ -144,6 +144,7 @@ class World {
 
  private:
   friend class Perturber;  // perturbation runs work on the MuJoCo data directly (perturbation.h)
+  friend class ContactExporter;  // local contact model export (contact_export.h, issue 13)
   struct Impl;
   explicit World(std::unique_ptr<Impl> impl);
   std::unique_ptr<Impl> impl_;

@@ -1,0 +1,57 @@
+// SPDX-License-Identifier: Apache-2.0
+// The contact local model of local-dynamics (issue 13): the neighbors' contact island as exported
+// by the physics step, simulated by the haptic thread at 1 kHz (render/local_contact_solver.h).
+#pragma once
+
+#include <cstdint>
+
+#include "mrh/core/fixed_vector.h"
+#include "mrh/core/spatial.h"
+
+namespace mrh::ir {
+
+/// Bodies of the local island (the pointer's dynamic neighbors plus every dynamic body they
+/// touch, transitively) and their contact rows. Overflow: further bodies are treated as static
+/// and kStatusBodiesFull / kStatusContactsFull is set in the snapshot.
+inline constexpr std::size_t kMaxLocalBodies = 32;
+inline constexpr std::size_t kMaxLocalContacts = 192;
+
+/// A dynamic body of the local island, state at the end of the physics step.
+struct LocalIslandBody {
+  int body = -1;               ///< world body id
+  int motion = -1;             ///< index into PhysicsSnapshot::bodies, -1: not a pointer neighbor
+  double mass = 0.0;           ///< kg
+  Mat3 inertia_B = Mat3::Zero();  ///< rotational inertia about the COM, body axes (kg·m²)
+  Pose X_WB;                   ///< body pose (world)
+  Vec3 p_BCm = Vec3::Zero();   ///< COM in the body frame (m)
+  Twist V_WCm;                 ///< COM twist (world)
+  /// true: the haptic side must restart this body from X_WB / V_WCm even if it simulated it in
+  /// the previous period (the world could not take its local state).
+  bool reset = false;
+};
+
+/// One contact of an island body A with body B (another island body, or the static rest of the
+/// world when b < 0), as found by the physics engine at the end of the step with an inflated
+/// margin (so contacts about to close are included). Points and normal are fixed on their
+/// bodies, so the gap follows the local poses.
+struct LocalContactRow {
+  int a = -1;                  ///< index into LocalContactModel::bodies
+  int b = -1;                  ///< index into LocalContactModel::bodies, -1: static (world frame)
+  Vec3 p_A = Vec3::Zero();     ///< contact point on A's surface, A's body frame (m)
+  Vec3 p_B = Vec3::Zero();     ///< contact point on B's surface, B's body frame or world (m)
+  Vec3 n_B = Vec3::UnitZ();    ///< unit normal from B toward A, B's body frame or world
+  /// Signed distance when exported (m, < 0: penetration). The local solve keeps MuJoCo's soft
+  /// resting penetration instead of pushing it out (no jump at the next synchronization).
+  double dist0 = 0.0;
+  double mu = 0.0;             ///< Coulomb friction coefficient (0: frictionless, condim 1)
+};
+
+/// Everything the contact local model needs for one period (physics → haptic, in the snapshot).
+struct LocalContactModel {
+  bool valid = false;          ///< false: the method does not use the contact model
+  Vec3 gravity = Vec3::Zero(); ///< m/s², world
+  FixedVector<LocalIslandBody, kMaxLocalBodies> bodies;
+  FixedVector<LocalContactRow, kMaxLocalContacts> contacts;
+};
+
+}  // namespace mrh::ir

@@ -1,0 +1,115 @@
+// SPDX-License-Identifier: Apache-2.0
+// The contact local model of local-dynamics (issue 13): the neighbors' contact island simulated
+// at the haptic rate with its own contacts (normal + Coulomb friction cone) under gravity.
+#pragma once
+
+#include <array>
+#include <cstddef>
+
+#include "mrh/core/spatial.h"
+#include "mrh/ir/local_contact.h"
+
+namespace mrh::render {
+
+/// Settings of the local contact solve.
+struct LocalContactSolverSettings {
+  int iterations = 30;       ///< projected Gauss–Seidel sweeps per tick at most (>= 1)
+  double tolerance = 1e-9;   ///< stop when no impulse changed more than this in a sweep (N·s)
+  /// Share of a penetration deeper than the exported one removed per tick (velocity-level
+  /// Baumgarte term, dimensionless, 0..1).
+  double baumgarte = 0.1;
+};
+
+/// The island of ir::LocalContactModel as a small rigid-body simulation: per tick, semi-implicit
+/// Euler with gravity, the forces added by AddForce() (the pointer's reaction, eq. 4.12) and the
+/// contact impulses of a projected Gauss–Seidel solve of the island's contact rows (velocity
+/// level: non-penetration with a speculative term for open contacts, λ_n >= 0, friction in the
+/// disc |λ_t| <= μ λ_n, warm-started from the previous tick). Contacts open and close with the
+/// gap of body-fixed points; stick and slip follow from the cone. State: COM position, unit
+/// quaternion (body → world), COM twist, world frame. Fixed capacity, no allocation; every
+/// member is RT-safe (haptic thread only).
+class LocalContactSolver {
+ public:
+  explicit LocalContactSolver(const LocalContactSolverSettings& settings = {}) noexcept
+      : settings_(settings) {}
+
+  /// Takes a new period's model. A body that was in the current model (same world id, not
+  /// flagged reset) keeps its local state (the local simulation owns it while it stays in the
+  /// island); the others start from the exported state. RT-safe.
+  void Adopt(const ir::LocalContactModel& model) noexcept;
+
+  /// Drops every body (e.g. a method that stopped using the model). RT-safe.
+  void Clear() noexcept { count_ = 0; rows_count_ = 0; }
+
+  std::size_t size() const noexcept { return count_; }
+
+  /// Local index of the body with snapshot motion index `motion`, or -1. RT-safe.
+  int FindMotion(int motion) const noexcept;
+
+  int world_body(std::size_t i) const noexcept { return bodies_[i].body; }
+
+  /// Body pose, COM and COM twist of local body i (world). RT-safe.
+  Pose X_WB(std::size_t i) const noexcept;
+  const Vec3& p_WCm(std::size_t i) const noexcept { return bodies_[i].p; }
+  Twist V_WCm(std::size_t i) const noexcept { return Twist{bodies_[i].v, bodies_[i].w}; }
+
+  /// Velocity of local body i's material point at p_W (world). RT-safe.
+  Vec3 PointVelocity(std::size_t i, const Vec3& p_W) const noexcept {
+    return bodies_[i].v + bodies_[i].w.cross(p_W - bodies_[i].p);
+  }
+
+  /// Adds force f_W (N, world) at p_W (m, world) on local body i for the next Step(). RT-safe.
+  void AddForce(std::size_t i, const Vec3& f_W, const Vec3& p_W) noexcept;
+
+  /// Advances one tick of dt (s). Returns false if a state became non-finite: that body is
+  /// then kept at its pose with zero twist. RT-safe.
+  [[nodiscard]] bool Step(double dt) noexcept;
+
+  /// Contact rows that carried a normal impulse in the latest Step(). RT-safe.
+  int active_contacts() const noexcept { return active_; }
+
+ private:
+  struct Body {
+    int body = -1;
+    int motion = -1;
+    Vec3 p = Vec3::Zero();  // COM (world)
+    Quat q = Quat::Identity();
+    Vec3 p_BCm = Vec3::Zero();
+    Vec3 v = Vec3::Zero();
+    Vec3 w = Vec3::Zero();
+    double inv_mass = 0.0;
+    Mat3 I_B = Mat3::Zero();
+    Mat3 I_B_inv = Mat3::Zero();
+    Mat3 I_W_inv = Mat3::Zero();  // this tick
+    Vec3 f = Vec3::Zero();        // accumulated this tick
+    Vec3 tau = Vec3::Zero();      // about the COM
+  };
+  struct Row {
+    ir::LocalContactRow c;
+    // This tick: world normal and tangents, lever arms, inverse effective masses, target.
+    std::array<Vec3, 3> d{};
+    Vec3 rA = Vec3::Zero();
+    Vec3 rB = Vec3::Zero();
+    std::array<double, 3> inv_w{};
+    double target = 0.0;
+    std::array<double, 3> lambda{};  // impulses (N·s): normal, t1, t2
+  };
+
+  void Integrate(double dt) noexcept;
+  void PrepareRows(double dt) noexcept;
+  void ApplyImpulse(Row& r, const Vec3& P) noexcept;
+  double RelativeVelocity(const Row& r, const Vec3& dir) const noexcept;
+  double SolveRow(Row& r) noexcept;
+  bool Finish(double dt) noexcept;
+
+  LocalContactSolverSettings settings_;
+  std::array<Body, ir::kMaxLocalBodies> bodies_{};
+  std::array<Body, ir::kMaxLocalBodies> scratch_{};
+  std::size_t count_ = 0;
+  std::array<Row, ir::kMaxLocalContacts> rows_{};
+  std::size_t rows_count_ = 0;
+  Vec3 gravity_ = Vec3::Zero();
+  int active_ = 0;
+};
+
+}  // namespace mrh::render

@@ -1,0 +1,49 @@
+// SPDX-License-Identifier: Apache-2.0
+// Export of the contact local model (issue 13): the pointer neighbors' contact island with its
+// contact rows, from MuJoCo's collision detection at the end of a physics step.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "mrh/ir/local_contact.h"
+#include "mrh/world/world.h"
+
+namespace mrh::world {
+
+/// Builds ir::LocalContactModel from a World. Physics thread only; not RT-safe (buffers sized
+/// from the model at construction; Export() does not allocate after that).
+class ContactExporter {
+ public:
+  /// @param world must outlive the exporter.
+  /// @param margin extra collision margin (m, >= 0) for the export: contacts whose gap is below
+  ///   it are exported, so contacts that close during the next haptic period are in the model.
+  explicit ContactExporter(World* world, double margin = 0.005);
+
+  /// The island of `seeds` (world body ids of the pointer's dynamic neighbors; `motions` their
+  /// indices into the snapshot's bodies, same length) at the world's current state: every
+  /// free-jointed body reachable through contacts, up to ir::kMaxLocalBodies, and every contact
+  /// of an island body. Bodies beyond the capacity, static, mocap and non-free-jointed bodies
+  /// are the static environment of the model. Recomputes collisions at the current state (the
+  /// contacts MuJoCo holds after mj_step are those of the step's start); the next World::Step
+  /// recomputes them anyway, so stepping is unaffected. Returns ir::StatusBits for overflow.
+  std::uint32_t Export(std::span<const int> seeds, std::span<const int> motions,
+                       ir::LocalContactModel* out);
+
+  /// True if `body` can be simulated by the contact local model (a free-jointed body).
+  bool IsFreeBody(int body) const;
+
+ private:
+  void Collide();
+  std::uint32_t GrowIsland(ir::LocalContactModel* out);
+  std::uint32_t AddRows(ir::LocalContactModel* out);
+  bool AddBody(int body, int motion, ir::LocalContactModel* out);
+
+  World* world_;
+  double margin_;
+  std::vector<double> saved_margin_;  // per geom
+  std::vector<int> local_index_;      // per world body: index into out->bodies, or -1
+};
+
+}  // namespace mrh::world

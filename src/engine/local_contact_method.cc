@@ -1,0 +1,110 @@
+// SPDX-License-Identifier: Apache-2.0
+// local-dynamics, contact local model, physics half: synchronization, global step, IR, export.
+#include "local_contact_method.h"
+
+#include <algorithm>
+
+#include "local_dynamics_method.h"
+#include "mrh/world/world.h"
+#include "report_impulses.h"
+
+namespace mrh::engine::internal {
+namespace {
+
+bool Contains(const std::vector<int>& list, int body) {
+  return std::find(list.begin(), list.end(), body) != list.end();
+}
+
+}  // namespace
+
+LocalContactMethod::LocalContactMethod(const MethodContext& context,
+                                       const render::LocalContactSolverSettings& solver)
+    : world_(context.world),
+      pointer_body_(context.pointer_body),
+      physics_dt_(context.settings->physics_dt),
+      exporter_(context.world),
+      radius_(context.pointer_radius),
+      stiffness_(context.settings->rendering.stiffness),
+      damping_(context.settings->rendering.damping),
+      solver_(solver) {
+  builder_.emplace(*world_, pointer_body_, radius_, context.settings->rendering);
+  const auto capacity = static_cast<std::size_t>(world_->num_bodies());
+  seeds_.reserve(capacity);
+  motions_.reserve(capacity);
+  sent_last_.reserve(capacity);
+  sent_before_.reserve(capacity);
+  failed_.reserve(capacity);
+  local_of_motion_.fill(-1);
+}
+
+void LocalContactMethod::PhysicsStart(const ir::HapticReport& initial, ir::PhysicsSnapshot* out) {
+  world_->SetMocapPose(pointer_body_, initial.X_WP);
+  builder_->CapturePreviousPoses(*world_);
+  builder_->Build(*world_, initial.X_WP, out);
+  Export(out);
+  out->step = -1;
+  out->t = world_->time();
+  out->physics_dt = physics_dt_;
+}
+
+// (0) overwrite, (1) global step without the user's force, (2) IR, (3) export.
+void LocalContactMethod::PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot* out) {
+  Overwrite(report);
+  world_->SetMocapPose(pointer_body_, report.X_WP);
+  builder_->CapturePreviousPoses(*world_);
+  world_->Step();
+  builder_->Build(*world_, report.X_WP, out);
+  Export(out);
+  out->t = world_->time();
+  out->physics_dt = physics_dt_;
+  ++counters_.steps;
+}
+
+// eq. 4.16–4.17 for every island body of the snapshot the report's period rendered. A touched
+// body outside the island (no free joint) gets the period's reaction as an impulse (B4).
+void LocalContactMethod::Overwrite(const ir::HapticReport& report) {
+  failed_.clear();
+  for (const ir::LocalBodyState& state : report.local_states) {
+    if (!Contains(sent_before_, state.body)) continue;
+    if (world_->SetBodyState(state.body, state.X_WB, state.V_WCm)) {
+      ++counters_.overwrites;
+    } else {
+      ++counters_.overwrite_failures;
+      failed_.push_back(state.body);
+    }
+  }
+  for (const ir::BodyImpulse& impulse : report.impulses) {
+    if (Contains(sent_before_, impulse.body) && !Contains(failed_, impulse.body)) continue;
+    ApplyReportImpulses(*world_, report, physics_dt_, impulse.body);
+  }
+}
+
+// The island of the dynamic neighbors the pointer may touch (every body with a plane IR).
+void LocalContactMethod::Export(ir::PhysicsSnapshot* out) {
+  seeds_.clear();
+  motions_.clear();
+  for (const ir::PointContact& c : out->contacts) {
+    const ir::BodyMotion& m = out->bodies[static_cast<std::size_t>(c.motion)];
+    if (m.is_static || std::find(seeds_.begin(), seeds_.end(), m.body) != seeds_.end()) continue;
+    seeds_.push_back(m.body);
+    motions_.push_back(c.motion);
+  }
+  out->status |= exporter_.Export(seeds_, motions_, &out->local_model);
+  sent_before_.swap(sent_last_);
+  sent_last_.clear();
+  for (ir::LocalIslandBody& b : out->local_model.bodies) {
+    b.reset = Contains(failed_, b.body);
+    sent_last_.push_back(b.body);
+  }
+  counters_.last_island_bodies = static_cast<int>(out->local_model.bodies.size());
+  counters_.last_island_contacts = static_cast<int>(out->local_model.contacts.size());
+}
+
+std::unique_ptr<Method> MakeLocalDynamicsAnyModel(const MethodContext& context) {
+  if (context.settings->rendering.local_model == "perturbation") {
+    return MakeLocalDynamicsMethod(context);
+  }
+  return std::make_unique<LocalContactMethod>(context);
+}
+
+}  // namespace mrh::engine::internal

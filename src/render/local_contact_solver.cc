@@ -1,0 +1,216 @@
+// SPDX-License-Identifier: Apache-2.0
+// The contact local model of local-dynamics (issue 13): semi-implicit Euler + projected
+// Gauss–Seidel on the island's contact rows, at the haptic rate.
+#include "mrh/render/local_contact_solver.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "mrh/render/local_body.h"
+
+namespace mrh::render {
+namespace {
+
+bool Finite(const Vec3& v) {
+  return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z());
+}
+
+// Two unit tangents completing the unit normal n to a right-handed frame.
+void Tangents(const Vec3& n, Vec3* t1, Vec3* t2) {
+  const Vec3 axis = std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+  *t1 = n.cross(axis).normalized();
+  *t2 = n.cross(*t1);
+}
+
+Mat3 InverseOrZero(const Mat3& I) {
+  const double det = I.determinant();
+  if (!(std::abs(det) > 0.0) || !std::isfinite(det)) return Mat3::Zero();
+  return I.inverse();
+}
+
+}  // namespace
+
+void LocalContactSolver::Adopt(const ir::LocalContactModel& model) noexcept {
+  const std::size_t n = std::min(model.bodies.size(), bodies_.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    const ir::LocalIslandBody& e = model.bodies[i];
+    Body& b = scratch_[i];
+    b = Body{};
+    b.body = e.body;
+    b.motion = e.motion;
+    b.p_BCm = e.p_BCm;
+    b.inv_mass = e.mass > 0.0 ? 1.0 / e.mass : 0.0;
+    b.I_B = e.inertia_B;
+    b.I_B_inv = InverseOrZero(e.inertia_B);
+    b.p = e.X_WB * e.p_BCm;
+    b.q = e.X_WB.q.normalized();
+    b.v = e.V_WCm.v;
+    b.w = e.V_WCm.w;
+    for (std::size_t o = 0; !e.reset && o < count_; ++o) {
+      if (bodies_[o].body != e.body) continue;
+      b.p = bodies_[o].p;
+      b.q = bodies_[o].q;
+      b.v = bodies_[o].v;
+      b.w = bodies_[o].w;
+      break;
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i) bodies_[i] = scratch_[i];
+  count_ = n;
+  rows_count_ = 0;
+  for (const ir::LocalContactRow& c : model.contacts) {
+    if (rows_count_ == rows_.size()) break;
+    if (c.a < 0 || static_cast<std::size_t>(c.a) >= n || c.b >= static_cast<int>(n)) continue;
+    Row& r = rows_[rows_count_++];
+    r = Row{};
+    r.c = c;
+  }
+  gravity_ = model.gravity;
+  active_ = 0;
+}
+
+int LocalContactSolver::FindMotion(int motion) const noexcept {
+  for (std::size_t i = 0; i < count_; ++i) {
+    if (bodies_[i].motion == motion) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+Pose LocalContactSolver::X_WB(std::size_t i) const noexcept {
+  const Body& b = bodies_[i];
+  return Pose{b.p - b.q * b.p_BCm, b.q};
+}
+
+void LocalContactSolver::AddForce(std::size_t i, const Vec3& f_W, const Vec3& p_W) noexcept {
+  Body& b = bodies_[i];
+  b.f += f_W;
+  b.tau += (p_W - b.p).cross(f_W);
+}
+
+// Free velocities: gravity, the added forces and the gyroscopic term, explicit.
+void LocalContactSolver::Integrate(double dt) noexcept {
+  for (std::size_t i = 0; i < count_; ++i) {
+    Body& b = bodies_[i];
+    const Mat3 R = b.q.toRotationMatrix();
+    b.I_W_inv = R * b.I_B_inv * R.transpose();
+    const Vec3 Iw = R * (b.I_B * (R.transpose() * b.w));
+    b.v += dt * (gravity_ + b.inv_mass * b.f);
+    b.w += dt * (b.I_W_inv * (b.tau - b.w.cross(Iw)));
+  }
+}
+
+// World frames, lever arms, effective masses and targets of this tick; warm start.
+void LocalContactSolver::PrepareRows(double dt) noexcept {
+  for (std::size_t k = 0; k < rows_count_; ++k) {
+    Row& r = rows_[k];
+    const Body& A = bodies_[static_cast<std::size_t>(r.c.a)];
+    const Vec3 pA = A.p + A.q * (r.c.p_A - A.p_BCm);
+    Vec3 pB = r.c.p_B;
+    Vec3 n = r.c.n_B;
+    if (r.c.b >= 0) {
+      const Body& B = bodies_[static_cast<std::size_t>(r.c.b)];
+      pB = B.p + B.q * (r.c.p_B - B.p_BCm);
+      n = B.q * r.c.n_B;
+      r.rB = pB - B.p;
+    }
+    r.rA = pA - A.p;
+    r.d[0] = n;
+    Tangents(n, &r.d[1], &r.d[2]);
+    for (int j = 0; j < 3; ++j) {
+      const Vec3 ca = r.rA.cross(r.d[j]);
+      double w = A.inv_mass + ca.dot(A.I_W_inv * ca);
+      if (r.c.b >= 0) {
+        const Body& B = bodies_[static_cast<std::size_t>(r.c.b)];
+        const Vec3 cb = r.rB.cross(r.d[j]);
+        w += B.inv_mass + cb.dot(B.I_W_inv * cb);
+      }
+      r.inv_w[j] = w > 0.0 ? 1.0 / w : 0.0;
+    }
+    const double gap = n.dot(pA - pB) - std::min(r.c.dist0, 0.0);
+    r.target = gap >= 0.0 ? -gap / dt : -settings_.baumgarte * gap / dt;
+    if (r.lambda[0] > 0.0) {
+      ApplyImpulse(r, r.lambda[0] * r.d[0] + r.lambda[1] * r.d[1] + r.lambda[2] * r.d[2]);
+    }
+  }
+}
+
+double LocalContactSolver::RelativeVelocity(const Row& r, const Vec3& dir) const noexcept {
+  const Body& A = bodies_[static_cast<std::size_t>(r.c.a)];
+  Vec3 v = A.v + A.w.cross(r.rA);
+  if (r.c.b >= 0) {
+    const Body& B = bodies_[static_cast<std::size_t>(r.c.b)];
+    v -= B.v + B.w.cross(r.rB);
+  }
+  return dir.dot(v);
+}
+
+void LocalContactSolver::ApplyImpulse(Row& r, const Vec3& P) noexcept {
+  Body& A = bodies_[static_cast<std::size_t>(r.c.a)];
+  A.v += A.inv_mass * P;
+  A.w += A.I_W_inv * r.rA.cross(P);
+  if (r.c.b >= 0) {
+    Body& B = bodies_[static_cast<std::size_t>(r.c.b)];
+    B.v -= B.inv_mass * P;
+    B.w -= B.I_W_inv * r.rB.cross(P);
+  }
+}
+
+// One Gauss–Seidel update of a contact: normal (λ_n >= 0), then both tangents projected on the
+// friction disc. Returns the largest impulse change.
+double LocalContactSolver::SolveRow(Row& r) noexcept {
+  const double vn = RelativeVelocity(r, r.d[0]);
+  const double ln = std::max(0.0, r.lambda[0] + (r.target - vn) * r.inv_w[0]);
+  double change = std::abs(ln - r.lambda[0]);
+  ApplyImpulse(r, (ln - r.lambda[0]) * r.d[0]);
+  r.lambda[0] = ln;
+  double l1 = r.lambda[1] - RelativeVelocity(r, r.d[1]) * r.inv_w[1];
+  double l2 = r.lambda[2] - RelativeVelocity(r, r.d[2]) * r.inv_w[2];
+  const double limit = r.c.mu * ln;
+  const double mag = std::hypot(l1, l2);
+  if (mag > limit) {
+    const double s = mag > 0.0 ? limit / mag : 0.0;
+    l1 *= s;
+    l2 *= s;
+  }
+  change = std::max({change, std::abs(l1 - r.lambda[1]), std::abs(l2 - r.lambda[2])});
+  ApplyImpulse(r, (l1 - r.lambda[1]) * r.d[1] + (l2 - r.lambda[2]) * r.d[2]);
+  r.lambda[1] = l1;
+  r.lambda[2] = l2;
+  return change;
+}
+
+// Positions from the constrained velocities; non-finite bodies are stopped.
+bool LocalContactSolver::Finish(double dt) noexcept {
+  bool ok = true;
+  active_ = 0;
+  for (std::size_t k = 0; k < rows_count_; ++k) active_ += rows_[k].lambda[0] > 0.0 ? 1 : 0;
+  for (std::size_t i = 0; i < count_; ++i) {
+    Body& b = bodies_[i];
+    b.f.setZero();
+    b.tau.setZero();
+    const Vec3 p = b.p + dt * b.v;
+    const Quat q = IntegrateWorldRotation(b.q, b.w, dt);
+    if (!Finite(b.v) || !Finite(b.w) || !Finite(p) || !std::isfinite(q.norm())) {
+      b.v.setZero();
+      b.w.setZero();
+      ok = false;
+      continue;
+    }
+    b.p = p;
+    b.q = q;
+  }
+  return ok;
+}
+
+bool LocalContactSolver::Step(double dt) noexcept {
+  Integrate(dt);
+  PrepareRows(dt);
+  for (int it = 0; it < settings_.iterations; ++it) {
+    double change = 0.0;
+    for (std::size_t k = 0; k < rows_count_; ++k) change = std::max(change, SolveRow(rows_[k]));
+    if (change <= settings_.tolerance) break;
+  }
+  return Finish(dt);
+}
+
+}  // namespace mrh::render

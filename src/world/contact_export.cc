@@ -1,0 +1,150 @@
+// SPDX-License-Identifier: Apache-2.0
+// Export of the contact local model (issue 13): island growth through MuJoCo's contacts and the
+// contact rows in body-fixed terms.
+#include "mrh/world/contact_export.h"
+
+#include <mujoco/mujoco.h>
+
+#include <algorithm>
+
+#include "mrh/core/error.h"
+#include "mrh/ir/snapshot.h"
+#include "world/world_impl.h"
+
+namespace mrh::world {
+namespace {
+
+Vec3 ToVec3(const mjtNum* v) {
+  return Vec3(v[0], v[1], v[2]);
+}
+
+}  // namespace
+
+ContactExporter::ContactExporter(World* world, double margin) : world_(world), margin_(margin) {
+  if (!(margin >= 0.0)) throw InvalidArgument("contact export margin must be >= 0");
+  saved_margin_.resize(static_cast<std::size_t>(world->num_geoms()));
+  local_index_.assign(static_cast<std::size_t>(world->num_bodies()), -1);
+}
+
+bool ContactExporter::IsFreeBody(int body) const {
+  const mjModel& m = *world_->impl_->model;
+  if (body <= 0 || m.body_jntnum[body] != 1 || m.body_mocapid[body] >= 0) return false;
+  return m.jnt_type[m.body_jntadr[body]] == mjJNT_FREE;
+}
+
+// Collision detection at the current positions with every geom's margin raised to margin_.
+void ContactExporter::Collide() {
+  World::Impl& w = *world_->impl_;
+  mjModel* m = w.model.get();
+  w.kinematics_stale = true;
+  w.EnsureKinematics();
+  for (int g = 0; g < m->ngeom; ++g) {
+    saved_margin_[static_cast<std::size_t>(g)] = m->geom_margin[g];
+    m->geom_margin[g] = std::max(m->geom_margin[g], margin_);
+  }
+  mj_collision(m, w.data.get());
+  for (int g = 0; g < m->ngeom; ++g) m->geom_margin[g] = saved_margin_[static_cast<std::size_t>(g)];
+}
+
+bool ContactExporter::AddBody(int body, int motion, ir::LocalContactModel* out) {
+  if (local_index_[static_cast<std::size_t>(body)] >= 0) return true;
+  const BodyInfo& info = world_->body(body);
+  const BodyState state = world_->body_state(body);
+  ir::LocalIslandBody b;
+  b.body = body;
+  b.motion = motion;
+  b.mass = info.mass;
+  b.inertia_B = info.inertia_B;
+  b.X_WB = state.X_WB;
+  b.p_BCm = info.p_BCm;
+  b.V_WCm = state.V_WCm;
+  if (!out->bodies.PushBack(b)) return false;
+  local_index_[static_cast<std::size_t>(body)] = static_cast<int>(out->bodies.size()) - 1;
+  return true;
+}
+
+// Adds every free body touching an island body until nothing changes (or the capacity is full).
+std::uint32_t ContactExporter::GrowIsland(ir::LocalContactModel* out) {
+  const World::Impl& w = *world_->impl_;
+  const mjModel& m = *w.model;
+  const mjData& d = *w.data;
+  bool grew = true;
+  while (grew) {
+    grew = false;
+    for (int c = 0; c < d.ncon; ++c) {
+      const int b1 = m.geom_bodyid[d.contact[c].geom1];
+      const int b2 = m.geom_bodyid[d.contact[c].geom2];
+      const bool in1 = local_index_[static_cast<std::size_t>(b1)] >= 0;
+      const bool in2 = local_index_[static_cast<std::size_t>(b2)] >= 0;
+      if (in1 == in2) continue;
+      const int other = in1 ? b2 : b1;
+      if (!IsFreeBody(other)) continue;
+      if (!AddBody(other, -1, out)) return ir::kStatusBodiesFull;
+      grew = true;
+    }
+  }
+  return ir::kStatusOk;
+}
+
+// One row per contact with an island body: A is the island body (geom2's if both are), the
+// normal points from B to A, points on each surface in its own body frame (world for static B).
+std::uint32_t ContactExporter::AddRows(ir::LocalContactModel* out) {
+  const World::Impl& w = *world_->impl_;
+  const mjModel& m = *w.model;
+  const mjData& d = *w.data;
+  for (int c = 0; c < d.ncon; ++c) {
+    const mjContact& con = d.contact[c];
+    const int b1 = m.geom_bodyid[con.geom1];
+    const int b2 = m.geom_bodyid[con.geom2];
+    const int i1 = local_index_[static_cast<std::size_t>(b1)];
+    const int i2 = local_index_[static_cast<std::size_t>(b2)];
+    if (i1 < 0 && i2 < 0) continue;
+    const Vec3 n12 = ToVec3(con.frame);  // geom1 → geom2
+    const Vec3 pos = ToVec3(con.pos);
+    const Vec3 p1 = pos - 0.5 * con.dist * n12;
+    const Vec3 p2 = pos + 0.5 * con.dist * n12;
+    const bool a_is_2 = i2 >= 0;
+    ir::LocalContactRow row;
+    row.a = a_is_2 ? i2 : i1;
+    row.b = a_is_2 ? i1 : -1;
+    const Vec3 pA = a_is_2 ? p2 : p1;
+    const Vec3 pB = a_is_2 ? p1 : p2;
+    const Vec3 n = a_is_2 ? n12 : Vec3(-n12);
+    const Pose& X_WA = out->bodies[static_cast<std::size_t>(row.a)].X_WB;
+    row.p_A = X_WA.Inverse() * pA;
+    if (row.b >= 0) {
+      const Pose& X_WB = out->bodies[static_cast<std::size_t>(row.b)].X_WB;
+      row.p_B = X_WB.Inverse() * pB;
+      row.n_B = X_WB.q.conjugate() * n;
+    } else {
+      row.p_B = pB;
+      row.n_B = n;
+    }
+    row.dist0 = con.dist;
+    row.mu = con.dim >= 3 ? con.friction[0] : 0.0;
+    if (!out->contacts.PushBack(row)) return ir::kStatusContactsFull;
+  }
+  return ir::kStatusOk;
+}
+
+std::uint32_t ContactExporter::Export(std::span<const int> seeds, std::span<const int> motions,
+                                      ir::LocalContactModel* out) {
+  out->valid = true;
+  out->bodies.Clear();
+  out->contacts.Clear();
+  out->gravity = world_->gravity();
+  Collide();
+  std::uint32_t status = ir::kStatusOk;
+  for (std::size_t i = 0; i < seeds.size(); ++i) {
+    if (!IsFreeBody(seeds[i])) continue;
+    if (!AddBody(seeds[i], motions[i], out)) status |= ir::kStatusBodiesFull;
+  }
+  status |= GrowIsland(out);
+  status |= AddRows(out);
+  for (const ir::LocalIslandBody& b : out->bodies) {
+    local_index_[static_cast<std::size_t>(b.body)] = -1;
+  }
+  return status;
+}
+
+}  // namespace mrh::world
