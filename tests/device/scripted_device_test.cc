@@ -133,7 +133,7 @@ TEST(ScriptedDeviceTest, RejectsNonIncreasingTimesNamingTheKeyframe) {
         (void)MakeScriptedDevice(
             {Key(0.0, Vec3::Zero()), Key(1.0, Vec3::Zero()), Key(1.0, Vec3::Zero())});
       },
-      ThrowsMessage<InvalidArgument>(HasSubstr("keyframe 2: t = 1 s is not after keyframe 1")));
+      ThrowsMessage<InvalidArgument>(HasSubstr("keyframe 2: t = 1 s is not 1e-06 s or more after the previous t = 1 s")));
 }
 
 TEST(ScriptedDeviceTest, RejectsNonFiniteValuesNamingTheKeyframe) {
@@ -228,7 +228,7 @@ TEST(LoadKeyframesCsvTest, NonIncreasingTimeNamesFileLine) {
         (void)LoadKeyframesCsv(path);
       },
       ThrowsMessage<InvalidArgument>(
-          HasSubstr(path.string() + ":4: t = 0.5 s is not after the previous row's")));
+          HasSubstr(path.string() + ":4: column 't': t = 0.5 s is not 1e-06 s or more after the previous")));
 }
 
 TEST(LoadKeyframesCsvTest, HeaderOnlyFileNamesFile) {

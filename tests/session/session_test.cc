@@ -183,7 +183,8 @@ TEST(SessionTest, EngineValidationErrorIsPrefixedWithTheFile) {
       [] {
         Parse(Minimal(R"("physics_dt": -1)"));
       },
-      ThrowsInvalidExactly("session.json: physics_dt = -1 s; expected a finite value > 0"));
+      ThrowsInvalidExactly("session.json: physics_dt = -1 s; expected a finite value > 0 and "
+                           "<= 1 s"));
 }
 
 TEST(SessionTest, PhysicsPeriodMustBeAWholeNumberOfTicks) {
