@@ -291,7 +291,7 @@ TEST(SessionTest, RotationWeightNeedsThreePositiveNumbers) {
 
 TEST(SessionTest, TooFewCurvedSegmentsIsAnError) {
   EXPECT_THAT([] { Parse(Minimal(R"("rendering": {"curved_segments": 4})")); },
-              ThrowsInvalid("rendering.curved_segments = 4; expected an integer >= 6"));
+              ThrowsInvalid("rendering.curved_segments = 4; expected a whole number in [6, 1024]"));
 }
 
 }  // namespace
