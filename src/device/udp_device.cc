@@ -16,7 +16,7 @@
 #include <thread>
 
 #include "device/hardware_impl.h"
-#include "device/text_impl.h"
+#include "mrh/core/validate.h"
 #include "device/udp_packets.h"
 #include "mrh/core/error.h"
 #include "mrh/core/triple_buffer.h"
@@ -75,11 +75,11 @@ class UdpDeviceImpl final : public UdpDevice {
   UdpDeviceImpl(const UdpSettings& settings, const Specifications& specs)
       : settings_(settings), specs_(specs), addr_(ParseBind(settings.bind)) {
     if (!(settings.timeout > 0.0) || !std::isfinite(settings.timeout)) {
-      throw InvalidArgument("device.timeout = " + internal::FormatNumber(settings.timeout) +
+      throw InvalidArgument("device.timeout = " + FormatNumber(settings.timeout) +
                             " s; expected a number > 0");
     }
     if (!(settings.fade >= 0.0) || !std::isfinite(settings.fade)) {
-      throw InvalidArgument("device.fade = " + internal::FormatNumber(settings.fade) +
+      throw InvalidArgument("device.fade = " + FormatNumber(settings.fade) +
                             " s; expected a number >= 0");
     }
   }

@@ -41,9 +41,9 @@ void ValidateProxy(const RenderingSettings& r) {
   if (r.rotation_weight) {
     for (int i = 0; i < 3; ++i) {
       const double w = (*r.rotation_weight)[i];
-      if (std::isfinite(w) && w >= 1e-12 && w <= 1e3) continue;
+      if (std::isfinite(w) && w >= 1e-12 && w <= 1e6) continue;
       throw InvalidArgument(fmt::format(
-          "rendering.rotation_weight = {} m^2; expected three finite values in [1e-12, 1000] "
+          "rendering.rotation_weight = {} m^2; expected three finite values in [1e-12, 1e+06] "
           "m^2 (the diagonal of R_w)",
           FormatNumbers(r.rotation_weight->data(), 3)));
     }

@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
 // Loading an MJCF scene into a World: MuJoCo's loader, one-line errors, the pointer body check.
+#include <fcntl.h>
 #include <mujoco/mujoco.h>
+#include <unistd.h>
 
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -88,6 +91,11 @@ void CheckNumbers(const mjtNum* v, int count, double limit, const std::string& o
 // (FCL asserts, the perturbation measurements divide by them); refuse them at load.
 void CheckSceneNumbers(const mjModel& m, const std::string& origin) {
   CheckNumbers(m.opt.gravity, 3, kMaxGravity, origin, "<option gravity>", "m/s^2");
+  for (int g = 0; g < m.ngeom; ++g) {
+    const std::string geom = Name(m, mjOBJ_GEOM, g, "geom");
+    CheckNumbers(m.geom_size + 3 * g, 3, kMaxExtent, origin, geom + " size", "m");
+    CheckNumbers(m.geom_pos + 3 * g, 3, kMaxExtent, origin, geom + " pos", "m");
+  }
   for (int b = 0; b < m.nbody; ++b) {
     const std::string body = Name(m, mjOBJ_BODY, b, "body");
     CheckNumbers(m.body_pos + 3 * b, 3, kMaxExtent, origin, body + " pos", "m");
@@ -95,11 +103,6 @@ void CheckSceneNumbers(const mjModel& m, const std::string& origin) {
     CheckNumbers(m.body_mass + b, 1, kMaxMass, origin, body + " mass", "kg");
     CheckNumbers(m.body_inertia + 3 * b, 3, kMaxMass * kMaxExtent, origin, body + " inertia",
                  "kg*m^2");
-  }
-  for (int g = 0; g < m.ngeom; ++g) {
-    const std::string geom = Name(m, mjOBJ_GEOM, g, "geom");
-    CheckNumbers(m.geom_size + 3 * g, 3, kMaxExtent, origin, geom + " size", "m");
-    CheckNumbers(m.geom_pos + 3 * g, 3, kMaxExtent, origin, geom + " pos", "m");
   }
   for (int v = 0; v < m.nmeshvert; ++v) {
     const mjtNum p[3] = {m.mesh_vert[3 * v], m.mesh_vert[3 * v + 1], m.mesh_vert[3 * v + 2]};
@@ -154,6 +157,43 @@ std::vector<std::string> SceneWarnings(const mjModel& m, const std::string& orig
   return warnings;
 }
 
+// MuJoCo's mesh compiler runs qhull with stderr as its error file, so a degenerate mesh (equal,
+// collinear or coplanar points) prints a dozen lines before MuJoCo's own error. While the
+// loader runs, stdout and stderr point at /dev/null; MuJoCo's message still reaches the error
+// buffer, which becomes the one-line SceneError.
+class QuietStdio {
+ public:
+  QuietStdio() {
+    std::fflush(stdout);
+    std::fflush(stderr);
+    const int null = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
+    if (null < 0) return;
+    saved_out_ = ::dup(STDOUT_FILENO);
+    saved_err_ = ::dup(STDERR_FILENO);
+    if (saved_out_ >= 0) ::dup2(null, STDOUT_FILENO);
+    if (saved_err_ >= 0) ::dup2(null, STDERR_FILENO);
+    ::close(null);
+  }
+  ~QuietStdio() {
+    std::fflush(stdout);
+    std::fflush(stderr);
+    Restore(saved_out_, STDOUT_FILENO);
+    Restore(saved_err_, STDERR_FILENO);
+  }
+  QuietStdio(const QuietStdio&) = delete;
+  QuietStdio& operator=(const QuietStdio&) = delete;
+
+ private:
+  static void Restore(int saved, int fd) {
+    if (saved < 0) return;
+    ::dup2(saved, fd);
+    ::close(saved);
+  }
+
+  int saved_out_ = -1;
+  int saved_err_ = -1;
+};
+
 // `text` is the scene's MJCF, for the buffer sizes it sets itself (internal::SizeBuffers).
 internal::ModelPtr LoadOrThrow(const char* file, const mjVFS* vfs, const std::string& origin,
                                const std::string& text) {
@@ -162,6 +202,7 @@ internal::ModelPtr LoadOrThrow(const char* file, const mjVFS* vfs, const std::st
   internal::ModelPtr model;
   try {
     const internal::MujocoScope scope(origin);
+    const QuietStdio quiet;
     model.reset(mj_loadXML(file, vfs, error.data(), static_cast<int>(error.size())));
   } catch (const RuntimeError& e) {
     throw SceneError(e.what());

@@ -14,7 +14,7 @@ mrh_cli_test(IrFarFromEverythingPrintsNoPairs 0 stdout "^\\{\"pairs\":\\[\\],\"s
 mrh_cli_test(IrNonUnitQuaternionIsNormalised 0 stdout "^\\{\"pairs\":"
              ir ${ir_session} --pose 0 0 0.3 0.99999 0 0 0)
 mrh_cli_test(IrZeroQuaternionExits2 2 stderr
-             "^mrh: error: --pose: quaternion .* has \\(almost\\) zero norm; expected a rotation"
+             "^mrh: error: --pose: quaternion .* has \\(almost\\) zero norm. expected a rotation"
              ir ${ir_session} --pose 0 0 0.1 0 0 0 0)
 mrh_cli_test(IrTooFewPoseNumbersExits2 2 stderr "^mrh: error: .*--pose"
              ir ${ir_session} --pose 0 0 0.1)

@@ -16,7 +16,8 @@ using ::testing::ThrowsMessage;
 
 TEST(FormatNumberTest, PrintsDenormalsHugeAndNonFiniteValuesFaithfully) {
   EXPECT_EQ(FormatNumber(5e-324), "5e-324");
-  EXPECT_EQ(FormatNumber(9.99989e-321), "9.99989e-321");
+  EXPECT_EQ(FormatNumber(1e-320), "1e-320");
+  EXPECT_EQ(FormatNumber(2.2250738585072014e-308), "2.2250738585072014e-308");
   EXPECT_EQ(FormatNumber(1e308), "1e+308");
   EXPECT_EQ(FormatNumber(std::numeric_limits<double>::infinity()), "inf");
   EXPECT_EQ(FormatNumber(-std::numeric_limits<double>::infinity()), "-inf");

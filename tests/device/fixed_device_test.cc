@@ -67,7 +67,7 @@ TEST(FixedDeviceTest, RejectsNonFinitePose) {
       [&] {
         (void)MakeFixedDevice(X);
       },
-      ThrowsMessage<InvalidArgument>(HasSubstr("fixed device: pose is not finite")));
+      ThrowsMessage<InvalidArgument>(HasSubstr("fixed device: pose: position x = nan m")));
 }
 
 }  // namespace

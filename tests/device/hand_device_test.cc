@@ -237,7 +237,7 @@ TEST(HandSettingsTest, MessageGivesValueUnitAndExpectation) {
         hand.Validate();
       },
       ThrowsMessage<InvalidArgument>(
-          HasSubstr("device.hand.mass = -0.5 kg; expected a finite value > 0")));
+          HasSubstr("device.hand.mass = -0.5 kg; expected a finite value in [0.001, 1000] kg")));
 }
 
 TEST(HandDeviceTest, RejectsInvalidSettings) {

@@ -81,7 +81,7 @@ TEST(ReplayDeviceTest, RepeatedTimeNamesFileAndLine) {
       [&] {
         (void)MakeReplayDevice(path);
       },
-      ThrowsMessage<InvalidArgument>(HasSubstr(path.string() + ":3: t = 0 s")));
+      ThrowsMessage<InvalidArgument>(HasSubstr(path.string() + ":3: column 't': t = 0 s")));
 }
 
 }  // namespace

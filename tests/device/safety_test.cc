@@ -324,7 +324,7 @@ TEST(SafetyFilterTest, ConstructorRejectsNegativeForceLimit) {
       [&] {
         SafetyFilter filter(specs, SafetySettings{});
       },
-      ThrowsMessage<InvalidArgument>(HasSubstr("device.specs.max_force = -1 N")));
+      ThrowsMessage<InvalidArgument>(HasSubstr("device.limits.max_force = -1 N")));
 }
 
 TEST(SafetyFilterTest, ConstructorRejectsNonFiniteTorqueLimit) {
@@ -334,7 +334,7 @@ TEST(SafetyFilterTest, ConstructorRejectsNonFiniteTorqueLimit) {
       [&] {
         SafetyFilter filter(specs, SafetySettings{});
       },
-      ThrowsMessage<InvalidArgument>(HasSubstr("device.specs.max_torque")));
+      ThrowsMessage<InvalidArgument>(HasSubstr("device.limits.max_torque")));
 }
 
 }  // namespace

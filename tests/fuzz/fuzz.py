@@ -247,6 +247,8 @@ def make_case(rng, index, root, work):
     folder = base.parent
     files = []
     sets = []
+    if kind == "scene" and not (folder / str(doc.get("scene", ""))).is_file():
+        kind = "session"
     if kind == "session":
         text, sets = mutate_json(rng, base.read_text())
     elif kind == "scene":
@@ -291,11 +293,11 @@ def names_a_file(message, case, work):
         candidates.update({str(f), os.path.relpath(f, work)})
     for f in (work / "fixtures").iterdir():
         candidates.update({str(f), os.path.relpath(f, work)})
-    head = re.match(r"^mrh: error: (.+?)(:\d+)?: ", message)
+    head = re.match(r"^mrh: error: (.+?)(:\d+)*: ", message)
     return head is not None and head.group(1) in candidates
 
 
-def check_call(what, code, out, err, case, work, elapsed, timeout):
+def check_call(what, code, out, err, elapsed, case, work, timeout):
     """Returns a list of problems of one call."""
     if code is None:
         return [f"{what}: hang (no exit within {timeout} s)"]
@@ -327,9 +329,9 @@ def run_case(case, mrh, work, timeout):
     rel = os.path.relpath(case.session, work)
     out_dir = work / "out" / f"case_{case.index}"
     v = call(mrh, ["validate", rel] + sets, work, timeout)
-    problems = check_call("validate", *v, case, work, v[3], timeout)
+    problems = check_call("validate", *v, case, work, timeout)
     r = call(mrh, ["run", rel, "--quiet", "--out", str(out_dir)] + sets, work, timeout)
-    problems += check_call("run", *r, case, work, r[3], timeout)
+    problems += check_call("run", *r, case, work, timeout)
     if v[0] in (0, 2) and r[0] in (0, 2) and v[0] != r[0]:
         problems.append(f"validate exit {v[0]} but run exit {r[0]}: "
                         f"{(v[2] + r[2]).decode(errors='replace')[:300]}")

@@ -78,7 +78,7 @@ TEST(OverridesTest, MissingEqualsSignIsAnErrorNamingTheOverride) {
         Parse(Minimal(), {"physics_dt"});
       },
       ThrowsInvalidExactly("session.json: --set physics_dt: missing '='; expected "
-                           "key=value, e.g. --set rendering.stiffness=2000"));
+                           "KEY=VALUE, e.g. --set rendering.stiffness=2000"));
 }
 
 TEST(OverridesTest, EmptyKeyIsAnError) {

@@ -183,7 +183,8 @@ TEST(SessionTest, EngineValidationErrorIsPrefixedWithTheFile) {
       [] {
         Parse(Minimal(R"("physics_dt": -1)"));
       },
-      ThrowsInvalidExactly("session.json: physics_dt = -1 s; expected a finite value > 0"));
+      ThrowsInvalidExactly("session.json: physics_dt = -1 s; expected a finite value > 0 and "
+                           "<= 1 s"));
 }
 
 TEST(SessionTest, PhysicsPeriodMustBeAWholeNumberOfTicks) {
@@ -290,7 +291,7 @@ TEST(SessionTest, RotationWeightNeedsThreePositiveNumbers) {
 
 TEST(SessionTest, TooFewCurvedSegmentsIsAnError) {
   EXPECT_THAT([] { Parse(Minimal(R"("rendering": {"curved_segments": 4})")); },
-              ThrowsInvalid("rendering.curved_segments = 4; expected an integer >= 6"));
+              ThrowsInvalid("rendering.curved_segments = 4; expected a whole number in [6, 1024]"));
 }
 
 }  // namespace
