@@ -4,7 +4,7 @@
 # presses (psychophysics_keys.py), then analysed: every trial of the design must be in
 # trials.csv with the answers pressed, and `analyze` must write psychometric.json.
 # Usage: psychophysics_window_test.sh MRH SESSION OUT_DIR
-# Exits 77 (CTest: skipped) without xvfb-run or python3.
+# Exits 77 (CTest: skipped) without xvfb-run, python3 or libXtst.
 set -u
 mrh=$1 session=$2 out=$3
 here=$(dirname "$0")
@@ -14,6 +14,10 @@ for tool in xvfb-run python3; do
     exit 77
   fi
 done
+if ! python3 -c 'import ctypes.util, sys; sys.exit(not ctypes.util.find_library("Xtst"))'; then
+  echo "libXtst not found (apt-get install libxtst6): skipping"
+  exit 77
+fi
 rm -rf "$out"
 # 2 masses x 2 trials of one method: 4 trials of 2 short stimuli each (SESSION: the small one).
 xvfb-run -a -s "-screen 0 1280x1024x24" sh -c '
