@@ -23,7 +23,8 @@ for arg in "$@"; do
   esac
 done
 if [[ $viewer -eq 1 ]]; then
-  packages+=(libglfw3-dev libimgui-dev xvfb xauth libosmesa6-dev libegl-dev)
+  packages+=(libglfw3-dev libimgui-dev xvfb xauth libosmesa6-dev libegl-dev
+            libxtst6)  # libxtst6: scripted key presses (XTest) in the psychophysics window test
 fi
 
 missing=()

@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // `mrh psychophysics run|analyze`: a 2AFC study with a person, and its psychometric analysis.
+#include "psychophysics_command.h"
+
 #include <fmt/format.h>
 
 #include <chrono>
@@ -8,12 +10,11 @@
 #include <string>
 #include <thread>
 
+#include "commands.h"
 #include "mrh/core/error.h"
 #include "mrh/engine/engine.h"
 #include "mrh/psychophysics/analysis.h"
 #include "mrh/psychophysics/study.h"
-#include "commands.h"
-#include "psychophysics_command.h"
 #ifdef MRH_HAVE_VIEWER
 #include "mrh/viewer/study_window.h"
 #endif
@@ -83,8 +84,8 @@ int RunStudyCommand(const PsychophysicsOptions& o) {
   const auto apparatus = MakeApparatus(o, study);
   const psychophysics::RunResult r = psychophysics::RunStudy(
       study, psychophysics::RunSettings{.subject = o.subject, .out = o.out}, apparatus.get());
-  fmt::print("subject {}: {} of {} trials answered ({} this run), seed {}\n", o.subject,
-             r.answered, r.total, r.answered - r.answered_before, r.seed);
+  fmt::print("subject {}: {} of {} trials answered ({} this run), seed {}\n", o.subject, r.answered,
+             r.total, r.answered - r.answered_before, r.seed);
   fmt::print("trials: {}\n", (o.out / "trials.csv").string());
   return kExitOk;
 }
@@ -107,9 +108,10 @@ int AnalyzeCommand(const PsychophysicsOptions& o) {
 }  // namespace
 
 PsychophysicsCommands AddPsychophysicsCommand(CLI::App& app, PsychophysicsOptions* o) {
-  CLI::App* top = app.add_subcommand(
-      "psychophysics", "Run a 2AFC mass-discrimination study with a person (thesis §4.5.4) and "
-                       "analyse its trials");
+  CLI::App* top =
+      app.add_subcommand("psychophysics",
+                         "Run a 2AFC mass-discrimination study with a person (thesis §4.5.4) and "
+                         "analyse its trials");
   top->require_subcommand(1);
   top->footer(kFooter);
   CLI::App* run = top->add_subcommand("run", "Run (or resume) one subject's session");
@@ -126,8 +128,9 @@ PsychophysicsCommands AddPsychophysicsCommand(CLI::App& app, PsychophysicsOption
   AddSetOption(*run, &o->sets);
   run->footer(kFooter);
   CLI::App* analyze = top->add_subcommand("analyze", "Fit psychometric functions to trials files");
-  analyze->add_option("TRIALS", o->trials, "trials.csv files")->required()->check(
-      CLI::ExistingFile);
+  analyze->add_option("TRIALS", o->trials, "trials.csv files")
+      ->required()
+      ->check(CLI::ExistingFile);
   analyze->add_option("--out,-o", o->out, "Output folder")->required()->type_name("DIR");
   analyze->footer(kFooter);
   return PsychophysicsCommands{.top = top, .run = run, .analyze = analyze};

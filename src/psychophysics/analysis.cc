@@ -33,11 +33,16 @@ nlohmann::json FitsJson(const std::vector<SubjectFit>& fits) {
   nlohmann::json list = nlohmann::json::array();
   for (const SubjectFit& s : fits) {
     const PsychometricFit& f = s.fit;
-    list.push_back({{"subject", s.subject}, {"method", s.method},
-                    {"standard_mass", f.standard_mass}, {"trials", f.trials},
-                    {"theta1", Estimate(f, f.theta1)}, {"theta2", Estimate(f, f.theta2)},
-                    {"pse", Estimate(f, f.pse)}, {"pse_sd", Estimate(f, f.pse_sd)},
-                    {"chi2", Estimate(f, f.chi2)}, {"p", Estimate(f, f.p)}});
+    list.push_back({{"subject", s.subject},
+                    {"method", s.method},
+                    {"standard_mass", f.standard_mass},
+                    {"trials", f.trials},
+                    {"theta1", Estimate(f, f.theta1)},
+                    {"theta2", Estimate(f, f.theta2)},
+                    {"pse", Estimate(f, f.pse)},
+                    {"pse_sd", Estimate(f, f.pse_sd)},
+                    {"chi2", Estimate(f, f.chi2)},
+                    {"p", Estimate(f, f.p)}});
   }
   return {{"fits", list}};
 }
@@ -48,8 +53,8 @@ std::string TableCsv(const std::vector<SubjectFit>& fits) {
     const PsychometricFit& f = s.fit;
     if (f.status == FitStatus::kOk) {
       csv += fmt::format("{},{},{},{},ok,{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n",
-                         s.subject, s.method, f.standard_mass, f.trials, f.theta1, f.theta2,
-                         f.pse, f.pse_sd, f.chi2, f.p);
+                         s.subject, s.method, f.standard_mass, f.trials, f.theta1, f.theta2, f.pse,
+                         f.pse_sd, f.chi2, f.p);
     } else {
       csv += fmt::format("{},{},{},{},{},,,,,,\n", s.subject, s.method, f.standard_mass, f.trials,
                          FitStatusName(f.status));

@@ -21,8 +21,8 @@ constexpr int kMaxHalvings = 60;
 
 void Check(std::span<const Observation> data, double standard_mass) {
   if (!std::isfinite(standard_mass)) {
-    throw InvalidArgument(fmt::format("standard mass = {}; expected a finite mass in kg",
-                                      standard_mass));
+    throw InvalidArgument(
+        fmt::format("standard mass = {}; expected a finite mass in kg", standard_mass));
   }
   for (const Observation& o : data) {
     if (!std::isfinite(o.mass) || o.n < 0 || o.yes < 0 || o.yes > o.n) {
@@ -63,7 +63,9 @@ struct Local {
 };
 
 // log σ(z) and log(1 − σ(z)) without overflow.
-double LogSigmoid(double z) { return z >= 0 ? -std::log1p(std::exp(-z)) : z - std::log1p(std::exp(z)); }
+double LogSigmoid(double z) {
+  return z >= 0 ? -std::log1p(std::exp(-z)) : z - std::log1p(std::exp(z));
+}
 
 Local Evaluate(std::span<const Observation> data, double c, double s, double b0, double b1) {
   Local l;
@@ -117,8 +119,8 @@ void Finish(std::span<const Observation> data, double c, double s, double b0, do
   fit->pse = -fit->theta1 / fit->theta2;
   const double d1 = -1.0 / fit->theta2;
   const double d2 = fit->theta1 / (fit->theta2 * fit->theta2);
-  const double var = d1 * d1 * fit->var_theta1 + 2.0 * d1 * d2 * fit->cov_theta12 +
-                     d2 * d2 * fit->var_theta2;
+  const double var =
+      d1 * d1 * fit->var_theta1 + 2.0 * d1 * d2 * fit->cov_theta12 + d2 * d2 * fit->var_theta2;
   fit->pse_sd = std::sqrt(var);
   const double diff = fit->pse - fit->standard_mass;
   fit->chi2 = diff * diff / var;
@@ -129,17 +131,25 @@ void Finish(std::span<const Observation> data, double c, double s, double b0, do
 
 const char* FitStatusName(FitStatus status) noexcept {
   switch (status) {
-    case FitStatus::kOk: return "ok";
-    case FitStatus::kNoTrials: return "no trials";
-    case FitStatus::kAllSame: return "all answers equal";
-    case FitStatus::kOneLevel: return "one mass level";
-    case FitStatus::kSeparable: return "separable";
-    case FitStatus::kNotConverged: return "not converged";
+    case FitStatus::kOk:
+      return "ok";
+    case FitStatus::kNoTrials:
+      return "no trials";
+    case FitStatus::kAllSame:
+      return "all answers equal";
+    case FitStatus::kOneLevel:
+      return "one mass level";
+    case FitStatus::kSeparable:
+      return "separable";
+    case FitStatus::kNotConverged:
+      return "not converged";
   }
   return "?";
 }
 
-double ChiSquare1Survival(double chi2) noexcept { return std::erfc(std::sqrt(0.5 * chi2)); }
+double ChiSquare1Survival(double chi2) noexcept {
+  return std::erfc(std::sqrt(0.5 * chi2));
+}
 
 PsychometricFit FitLogistic(std::span<const Observation> data, double standard_mass) {
   Check(data, standard_mass);
@@ -165,8 +175,10 @@ PsychometricFit FitLogistic(std::span<const Observation> data, double standard_m
   Finish(data, c, s, b0, b1, &fit);
   if (!std::isfinite(fit.pse_sd) || !std::isfinite(fit.chi2)) {
     const int iterations = fit.iterations;
-    fit = PsychometricFit{.status = FitStatus::kNotConverged, .trials = fit.trials,
-                          .standard_mass = standard_mass, .iterations = iterations};
+    fit = PsychometricFit{.status = FitStatus::kNotConverged,
+                          .trials = fit.trials,
+                          .standard_mass = standard_mass,
+                          .iterations = iterations};
   }
   return fit;
 }

@@ -24,8 +24,9 @@ std::optional<std::pair<std::size_t, std::size_t>> FindAttribute(const std::stri
                                                                  std::string_view element,
                                                                  std::string_view name,
                                                                  std::string_view attribute) {
-  const auto value_in = [](std::string_view tag, std::string_view key)
-      -> std::optional<std::pair<std::size_t, std::size_t>> {
+  const auto value_in =
+      [](std::string_view tag,
+         std::string_view key) -> std::optional<std::pair<std::size_t, std::size_t>> {
     const std::string pattern = fmt::format("{}=\"", key);
     for (std::size_t at = tag.find(pattern); at != std::string_view::npos;
          at = tag.find(pattern, at + 1)) {
@@ -83,15 +84,15 @@ std::string EditScene(const Study& study, double mass) {
         file.string(), study.base.keyframe));
   }
   std::string scaled;
-  for (const double x : v) scaled += fmt::format("{}{}", scaled.empty() ? "" : " ",
-                                                 x / norm * study.settings.speed);
+  for (const double x : v)
+    scaled += fmt::format("{}{}", scaled.empty() ? "" : " ", x / norm * study.settings.speed);
   text.replace(qvel->first, qvel->second, scaled);
   const auto m = FindAttribute(text, "geom", study.settings.geom, "mass");
   if (!m) {
-    throw InvalidArgument(fmt::format(
-        "{}: no <geom name=\"{}\" mass=\"...\">; expected the stimulus geom named by "
-        "psychophysics.geom, with its mass",
-        file.string(), study.settings.geom));
+    throw InvalidArgument(
+        fmt::format("{}: no <geom name=\"{}\" mass=\"...\">; expected the stimulus geom named by "
+                    "psychophysics.geom, with its mass",
+                    file.string(), study.settings.geom));
   }
   return text.replace(m->first, m->second, fmt::format("{}", mass));
 }
@@ -106,8 +107,8 @@ void CheckSubject(const std::string& subject) {
 
 // The answered rows must be this subject's run of this schedule, from trial 0 in order.
 void CheckResume(const std::filesystem::path& file, const std::vector<TrialRow>& rows,
-                 const std::vector<Trial>& schedule, const std::string& subject,
-                 std::uint64_t seed, const StudySettings& s) {
+                 const std::vector<Trial>& schedule, const std::string& subject, std::uint64_t seed,
+                 const StudySettings& s) {
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const TrialRow& r = rows[i];
     const bool same = i < schedule.size() && r.subject == subject && r.seed == seed &&
@@ -134,8 +135,8 @@ session::Session StimulusSession(const Study& study, const std::string& method, 
   s.engine.method = method;
   s.engine.duration = study.settings.stimulus_duration;
   const std::filesystem::path scene =
-      dir / fmt::format("{}_m{}_v{}.xml", study.base.scene.stem().string(), mass,
-                        study.settings.speed);
+      dir /
+      fmt::format("{}_m{}_v{}.xml", study.base.scene.stem().string(), mass, study.settings.speed);
   if (!std::filesystem::exists(scene)) {
     const std::string text = EditScene(study, mass);
     std::filesystem::create_directories(dir);
@@ -178,12 +179,18 @@ RunResult RunStudy(const Study& study, const RunSettings& settings, Apparatus* a
     if (response->answer != 1 && response->answer != 2) {
       throw RuntimeError(fmt::format("apparatus answered {}; expected 1 or 2", response->answer));
     }
-    writer.Append(TrialRow{.subject = settings.subject, .trial = t.index, .method = t.method,
-                           .standard_method = s.standard_method, .standard_mass = s.standard_mass,
-                           .comparison_mass = t.comparison_mass, .speed = s.speed,
-                           .comparison_first = t.comparison_first, .answer = response->answer,
+    writer.Append(TrialRow{.subject = settings.subject,
+                           .trial = t.index,
+                           .method = t.method,
+                           .standard_method = s.standard_method,
+                           .standard_mass = s.standard_mass,
+                           .comparison_mass = t.comparison_mass,
+                           .speed = s.speed,
+                           .comparison_first = t.comparison_first,
+                           .answer = response->answer,
                            .comparison_heavier = (response->answer == 1) == t.comparison_first,
-                           .response_time = response->response_time, .seed = result.seed});
+                           .response_time = response->response_time,
+                           .seed = result.seed});
     ++result.answered;
   }
   return result;

@@ -23,8 +23,8 @@ namespace {
 
 using nlohmann::json;
 
-constexpr const char* kKeys[] = {"standard_method", "standard_mass", "masses", "methods",
-                                 "trials_per_mass", "speed", "seed", "geom",
+constexpr const char* kKeys[] = {"standard_method",   "standard_mass", "masses", "methods",
+                                 "trials_per_mass",   "speed",         "seed",   "geom",
                                  "stimulus_duration", "pause"};
 
 // Errors name the file and the dotted key: "s.json: psychophysics.masses[1] = -3; expected ...".
@@ -78,8 +78,9 @@ StudySettings ParseSettings(const Block& b) {
     if (std::find_if(std::begin(kKeys), std::end(kKeys), [&](const char* k) {
           return key == k;
         }) == std::end(kKeys)) {
-      b.Fail(key, value, "no such key; known: standard_method, standard_mass, masses, methods, "
-                         "trials_per_mass, speed, seed, geom, stimulus_duration, pause");
+      b.Fail(key, value,
+             "no such key; known: standard_method, standard_mass, masses, methods, "
+             "trials_per_mass, speed, seed, geom, stimulus_duration, pause");
     }
   }
   StudySettings s;
@@ -166,8 +167,8 @@ Study LoadStudy(const std::filesystem::path& file, const std::vector<std::string
     throw InvalidArgument(fmt::format(
         "{}: psychophysics = {}; expected an object with the study's settings (see "
         "docs/psychophysics.md)",
-        file.string(), document.contains("psychophysics") ? document["psychophysics"].dump()
-                                                          : "(missing)"));
+        file.string(),
+        document.contains("psychophysics") ? document["psychophysics"].dump() : "(missing)"));
   }
   study.settings = ParseSettings(Block(file.string(), document.at("psychophysics")));
   try {
@@ -190,7 +191,8 @@ std::vector<Trial> MakeSchedule(const StudySettings& settings, std::uint64_t see
   for (const std::string& method : settings.methods) {
     for (const double mass : settings.masses) {
       for (int r = 0; r < settings.trials_per_mass; ++r) {
-        trials.push_back(Trial{.method = method, .comparison_mass = mass,
+        trials.push_back(Trial{.method = method,
+                               .comparison_mass = mass,
                                .comparison_first = 2 * r < settings.trials_per_mass});
       }
     }

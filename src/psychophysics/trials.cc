@@ -20,8 +20,9 @@ namespace mrh::psychophysics {
 namespace {
 
 constexpr std::array<const char*, 12> kColumns{
-    "subject",     "trial",  "method", "standard_method",    "standard_mass", "comparison_mass",
-    "speed", "comparison_first", "answer", "comparison_heavier", "response_time", "seed"};
+    "subject",         "trial", "method",           "standard_method", "standard_mass",
+    "comparison_mass", "speed", "comparison_first", "answer",          "comparison_heavier",
+    "response_time",   "seed"};
 
 std::vector<std::string> Split(const std::string& line) {
   std::vector<std::string> cells;
@@ -149,13 +150,13 @@ std::string FormatTrialRow(const TrialRow& row) {
 std::vector<TrialRow> ReadTrials(const std::filesystem::path& file) {
   std::ifstream in(file);
   if (!in) {
-    throw InvalidArgument(fmt::format("{}: cannot open the trials file; expected a readable CSV",
-                                      file.string()));
+    throw InvalidArgument(
+        fmt::format("{}: cannot open the trials file; expected a readable CSV", file.string()));
   }
   std::string line;
   if (!std::getline(in, line)) {
-    throw InvalidArgument(fmt::format("{}:1: empty file; expected the header {}", file.string(),
-                                      TrialsHeader()));
+    throw InvalidArgument(
+        fmt::format("{}:1: empty file; expected the header {}", file.string(), TrialsHeader()));
   }
   if (!line.empty() && line.back() == '\r') line.pop_back();
   const std::map<std::string, int> index = HeaderIndex(file, line);
@@ -173,8 +174,8 @@ TrialsWriter::TrialsWriter(const std::filesystem::path& file, bool sync)
     : file_(file), sync_(sync) {
   out_ = std::fopen(file.c_str(), "a");
   if (out_ == nullptr) {
-    throw RuntimeError(fmt::format("{}: cannot open for appending ({})", file.string(),
-                                   std::strerror(errno)));
+    throw RuntimeError(
+        fmt::format("{}: cannot open for appending ({})", file.string(), std::strerror(errno)));
   }
   if (std::ftell(out_) == 0) Write(TrialsHeader());
 }
@@ -183,15 +184,17 @@ TrialsWriter::~TrialsWriter() {
   if (out_ != nullptr) (void)std::fclose(out_);  // every row was flushed already
 }
 
-void TrialsWriter::Append(const TrialRow& row) { Write(FormatTrialRow(row)); }
+void TrialsWriter::Append(const TrialRow& row) {
+  Write(FormatTrialRow(row));
+}
 
 void TrialsWriter::Write(const std::string& line) {
   const std::string text = line + "\n";
   const bool ok = std::fwrite(text.data(), 1, text.size(), out_) == text.size() &&
                   std::fflush(out_) == 0 && (!sync_ || ::fsync(::fileno(out_)) == 0);
   if (!ok) {
-    throw RuntimeError(fmt::format("{}: cannot write a trial ({})", file_.string(),
-                                   std::strerror(errno)));
+    throw RuntimeError(
+        fmt::format("{}: cannot write a trial ({})", file_.string(), std::strerror(errno)));
   }
 }
 

@@ -34,9 +34,8 @@ class StudyWindow final : public psychophysics::Apparatus {
   StudyWindow(const session::Session& base, const StudyWindowSettings& settings)
       : base_(base),
         settings_(settings),
-        window_(WindowSettings{.title = "mrh psychophysics",
-                               .width = settings.width,
-                               .height = settings.height}) {
+        window_(WindowSettings{
+            .title = "mrh psychophysics", .width = settings.width, .height = settings.height}) {
     glfwSetInputMode(window_.handle(), GLFW_STICKY_KEYS, GLFW_TRUE);
   }
 
@@ -51,8 +50,8 @@ class StudyWindow final : public psychophysics::Apparatus {
     session::Session s = stimulus;
     s.engine.mode = engine::Mode::kRealtime;
     world::World world = session::LoadWorld(s);
-    const Pose X_WP0 = world.pointer_body() >= 0 ? world.body_state(world.pointer_body()).X_WB
-                                                 : Pose{};
+    const Pose X_WP0 =
+        world.pointer_body() >= 0 ? world.body_state(world.pointer_body()).X_WB : Pose{};
     const Pose X_DT0 = s.device.calibration.ToDevice(X_WP0);
     std::unique_ptr<device::Device> own;
     std::unique_ptr<device::MouseDevice> mouse;
@@ -69,7 +68,8 @@ class StudyWindow final : public psychophysics::Apparatus {
     engine.Start();
     HapticLoop loop;
     loop.Start(&engine, input, s.engine.haptic_dt, s.engine.realtime_priority);
-    const auto ticks = static_cast<std::int64_t>(std::llround(s.engine.duration / s.engine.haptic_dt));
+    const auto ticks =
+        static_cast<std::int64_t>(std::llround(s.engine.duration / s.engine.haptic_dt));
     double x0 = 0.0, y0 = 0.0;
     glfwGetCursorPos(window_.handle(), &x0, &y0);
     while (loop.ticks() < ticks && !Stopping()) {
@@ -130,8 +130,7 @@ class StudyWindow final : public psychophysics::Apparatus {
       const float pixels = kCueFontPixels * window_.content_scale();
       const ImVec2 extent = ImGui::GetFont()->CalcTextSizeA(pixels, 1e9f, 0.0f, text);
       ImGui::GetForegroundDrawList()->AddText(
-          ImGui::GetFont(), pixels,
-          ImVec2((size.x - extent.x) * 0.5f, (size.y - extent.y) * 0.5f),
+          ImGui::GetFont(), pixels, ImVec2((size.x - extent.x) * 0.5f, (size.y - extent.y) * 0.5f),
           IM_COL32(230, 230, 230, 255), text);
     }
     ImGui::EndFrame();

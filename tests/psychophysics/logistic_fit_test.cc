@@ -56,11 +56,19 @@ struct Reference {
 
 const Reference kReferences[] = {
     {{{30, 20, 2}, {45, 20, 5}, {60, 20, 9}, {75, 20, 12}, {90, 20, 16}, {105, 20, 18}},
-     -3.699372802144909, 0.056266297306463056, 65.74757855480884, 3.9492068042125381,
-     2.1181176451730912, 0.14556535434722156},
+     -3.699372802144909,
+     0.056266297306463056,
+     65.74757855480884,
+     3.9492068042125381,
+     2.1181176451730912,
+     0.14556535434722156},
     {{{30, 20, 9}, {45, 20, 14}, {60, 20, 17}, {75, 20, 19}, {90, 20, 19}, {105, 20, 20}},
-     -2.0700824146953125, 0.06356419264436515, 32.566801033361692, 5.5287544240187456,
-     24.620581546286566, 6.980222818093175e-07},
+     -2.0700824146953125,
+     0.06356419264436515,
+     32.566801033361692,
+     5.5287544240187456,
+     24.620581546286566,
+     6.980222818093175e-07},
 };
 
 TEST(LogisticFitTest, MatchesAnIndependentNewtonRaphsonTo1e6Relative) {
@@ -153,6 +161,7 @@ TEST(LogisticFitTest, DataWithoutAFiniteMaximumAreReportedNotFitted) {
     std::vector<Observation> data;
     FitStatus status;
   };
+
   const Case cases[] = {
       {{}, FitStatus::kNoTrials},
       {{{30, 0, 0}}, FitStatus::kNoTrials},
@@ -160,7 +169,7 @@ TEST(LogisticFitTest, DataWithoutAFiniteMaximumAreReportedNotFitted) {
       {{{30, 20, 20}, {60, 20, 20}}, FitStatus::kAllSame},
       {{{60, 20, 7}}, FitStatus::kOneLevel},
       {{{30, 20, 0}, {60, 20, 0}, {90, 20, 20}}, FitStatus::kSeparable},
-      {{{30, 20, 0}, {60, 20, 5}, {90, 20, 20}}, FitStatus::kSeparable},  // quasi-complete
+      {{{30, 20, 0}, {60, 20, 5}, {90, 20, 20}}, FitStatus::kSeparable},   // quasi-complete
       {{{30, 20, 20}, {60, 20, 20}, {90, 20, 3}}, FitStatus::kSeparable},  // decreasing
   };
   for (const Case& c : cases) {

@@ -125,14 +125,18 @@ TEST(StimulusTest, SetsTheMassAndTheSpeedOfTheCube) {
 class FakeApparatus final : public Apparatus {
  public:
   explicit FakeApparatus(int stop_after) : left_(stop_after) {}
+
   void Cue(int interval, double) override { cues.push_back(interval); }
+
   void Present(const session::Session& s) override {
     presented.emplace_back(s.engine.method, s.scene.filename().string());
   }
+
   std::optional<Response> Ask() override {
     if (left_-- <= 0) return std::nullopt;
     return Response{.answer = 1, .response_time = 0.5};
   }
+
   std::vector<int> cues;
   std::vector<std::pair<std::string, std::string>> presented;
 
@@ -148,8 +152,8 @@ std::string ReadAll(const fs::path& file) {
 }
 
 TEST(RunStudyTest, RecordsWhichStimulusWasTheComparisonAndResumesWhereItStopped) {
-  const Study study = LoadStudy(kSession, {"psychophysics.masses=[45,75]",
-                                           "psychophysics.trials_per_mass=3"});
+  const Study study =
+      LoadStudy(kSession, {"psychophysics.masses=[45,75]", "psychophysics.trials_per_mass=3"});
   const fs::path stopped = TempDir("mrh_psychophysics_resume_"), whole = stopped / "whole";
   RunSettings run{.subject = "S", .out = stopped, .mode = engine::Mode::kLockstep, .sync = false};
   FakeApparatus first(5), second(100);

@@ -28,10 +28,18 @@ fs::path TempDir(const std::string& stem) {
 
 TrialRow Row(const std::string& subject, const std::string& method, double mass, bool heavier,
              int trial) {
-  return TrialRow{.subject = subject, .trial = trial, .method = method,
-                  .standard_method = "single-rate", .standard_mass = 60, .comparison_mass = mass,
-                  .speed = 0.017, .comparison_first = true, .answer = heavier ? 1 : 2,
-                  .comparison_heavier = heavier, .response_time = 0.25, .seed = 18446744073709551615u};
+  return TrialRow{.subject = subject,
+                  .trial = trial,
+                  .method = method,
+                  .standard_method = "single-rate",
+                  .standard_mass = 60,
+                  .comparison_mass = mass,
+                  .speed = 0.017,
+                  .comparison_first = true,
+                  .answer = heavier ? 1 : 2,
+                  .comparison_heavier = heavier,
+                  .response_time = 0.25,
+                  .seed = 18446744073709551615u};
 }
 
 TEST(TrialsTest, RowsRoundTripThroughTheFile) {
@@ -107,9 +115,9 @@ TEST(AnalysisTest, GroupsBySubjectAndMethodAndWritesExactlyTheDocumentedKeys) {
   ASSERT_EQ(j["fits"].size(), 2u);
   std::vector<std::string> keys;
   for (const auto& [key, value] : j["fits"][0].items()) keys.push_back(key);
-  EXPECT_THAT(keys, ::testing::UnorderedElementsAre("subject", "method", "standard_mass",
-                                                    "trials", "theta1", "theta2", "pse",
-                                                    "pse_sd", "chi2", "p"));
+  EXPECT_THAT(keys,
+              ::testing::UnorderedElementsAre("subject", "method", "standard_mass", "trials",
+                                              "theta1", "theta2", "pse", "pse_sd", "chi2", "p"));
   EXPECT_DOUBLE_EQ(j["fits"][0]["pse"].get<double>(), fits[0].fit.pse);
   EXPECT_EQ(j["fits"][0]["trials"], 40);
   EXPECT_TRUE(j["fits"][1]["pse"].is_null());

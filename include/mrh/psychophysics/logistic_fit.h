@@ -32,16 +32,16 @@ const char* FitStatusName(FitStatus status) noexcept;
 /// are then 0 (never NaN).
 struct PsychometricFit {
   FitStatus status = FitStatus::kNoTrials;
-  int trials = 0;              ///< Σ n
-  double standard_mass = 0.0;  ///< kg
-  double theta1 = 0.0;         ///< 1
-  double theta2 = 0.0;         ///< 1/kg
+  int trials = 0;                                                ///< Σ n
+  double standard_mass = 0.0;                                    ///< kg
+  double theta1 = 0.0;                                           ///< 1
+  double theta2 = 0.0;                                           ///< 1/kg
   double var_theta1 = 0.0, var_theta2 = 0.0, cov_theta12 = 0.0;  ///< inverse Fisher information
-  double pse = 0.0;            ///< kg, −θ1/θ2: where P = 1/2
-  double pse_sd = 0.0;         ///< kg, delta-method standard deviation of the PSE
-  double chi2 = 0.0;           ///< (PSE − standard)² / Var(PSE), 1 degree of freedom
-  double p = 0.0;              ///< P(χ²₁ >= chi2)
-  int iterations = 0;          ///< Newton–Raphson iterations used
+  double pse = 0.0;                                              ///< kg, −θ1/θ2: where P = 1/2
+  double pse_sd = 0.0;  ///< kg, delta-method standard deviation of the PSE
+  double chi2 = 0.0;    ///< (PSE − standard)² / Var(PSE), 1 degree of freedom
+  double p = 0.0;       ///< P(χ²₁ >= chi2)
+  int iterations = 0;   ///< Newton–Raphson iterations used
 };
 
 /// Newton–Raphson iterations at most; a well-posed fit converges in < 10.

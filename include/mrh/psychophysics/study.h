@@ -14,16 +14,16 @@ namespace mrh::psychophysics {
 
 /// The session's `psychophysics` object (docs/psychophysics.md). Defaults are the thesis' design.
 struct StudySettings {
-  std::string standard_method = "single-rate";  ///< method of the standard stimulus
-  double standard_mass = 60.0;                  ///< kg
-  std::vector<double> masses{30, 45, 60, 75, 90, 105};             ///< kg, comparison masses
+  std::string standard_method = "single-rate";          ///< method of the standard stimulus
+  double standard_mass = 60.0;                          ///< kg
+  std::vector<double> masses{30, 45, 60, 75, 90, 105};  ///< kg, comparison masses
   std::vector<std::string> methods{"local-dynamics", "impulse"};  ///< comparison methods
-  int trials_per_mass = 20;       ///< per comparison method and mass
-  double speed = 0.017;           ///< m/s, initial speed of the cube in both stimuli
+  int trials_per_mass = 20;           ///< per comparison method and mass
+  double speed = 0.017;               ///< m/s, initial speed of the cube in both stimuli
   std::optional<std::uint64_t> seed;  ///< random order; unset: from the subject's name
-  std::string geom = "cube";      ///< MJCF geom whose mass="..." each stimulus sets
-  double stimulus_duration = 2.0; ///< s of each stimulus
-  double pause = 1.0;             ///< s of blank pause before each stimulus (with its cue)
+  std::string geom = "cube";          ///< MJCF geom whose mass="..." each stimulus sets
+  double stimulus_duration = 2.0;     ///< s of each stimulus
+  double pause = 1.0;                 ///< s of blank pause before each stimulus (with its cue)
 
   /// @throws mrh::InvalidArgument naming the `psychophysics.*` key, its value and what is
   /// expected (empty lists, non-positive masses or times, unknown methods, repeated entries).
@@ -69,8 +69,8 @@ session::Session StimulusSession(const Study& study, const std::string& method, 
 
 /// The subject's answer.
 struct Response {
-  int answer = 0;             ///< 1 or 2: the stimulus that felt heavier
-  double response_time = 0.0; ///< s
+  int answer = 0;              ///< 1 or 2: the stimulus that felt heavier
+  double response_time = 0.0;  ///< s
 };
 
 /// How stimuli reach the subject and answers come back: a window and a device for people, a
@@ -89,8 +89,8 @@ class Apparatus {
 
 /// Where a run writes and who it is for.
 struct RunSettings {
-  std::string subject;           ///< non-empty, no comma, quote or line break
-  std::filesystem::path out;     ///< created; holds trials.csv and stimuli/
+  std::string subject;                          ///< non-empty, no comma, quote or line break
+  std::filesystem::path out;                    ///< created; holds trials.csv and stimuli/
   engine::Mode mode = engine::Mode::kRealtime;  ///< of every stimulus
   /// fsync trials.csv after each row (people: yes; simulated observers, who answer a thousand
   /// trials a second, only flush).

@@ -13,17 +13,17 @@ namespace mrh::psychophysics {
 /// One answered 2AFC trial (docs/psychophysics.md, "Trials file").
 struct TrialRow {
   std::string subject;
-  int trial = 0;                   ///< 0-based index in the run's schedule
-  std::string method;              ///< rendering method of the comparison stimulus
-  std::string standard_method;     ///< rendering method of the standard stimulus
-  double standard_mass = 0.0;      ///< kg
-  double comparison_mass = 0.0;    ///< kg
-  double speed = 0.0;              ///< m/s, initial speed of the cube (both stimuli)
-  bool comparison_first = false;   ///< the comparison was stimulus 1 (else 2)
-  int answer = 0;                  ///< stimulus the subject called heavier: 1 or 2
-  bool comparison_heavier = false; ///< the answer named the comparison
-  double response_time = 0.0;      ///< s from the question to the answer
-  std::uint64_t seed = 0;          ///< seed of the run's random order
+  int trial = 0;                    ///< 0-based index in the run's schedule
+  std::string method;               ///< rendering method of the comparison stimulus
+  std::string standard_method;      ///< rendering method of the standard stimulus
+  double standard_mass = 0.0;       ///< kg
+  double comparison_mass = 0.0;     ///< kg
+  double speed = 0.0;               ///< m/s, initial speed of the cube (both stimuli)
+  bool comparison_first = false;    ///< the comparison was stimulus 1 (else 2)
+  int answer = 0;                   ///< stimulus the subject called heavier: 1 or 2
+  bool comparison_heavier = false;  ///< the answer named the comparison
+  double response_time = 0.0;       ///< s from the question to the answer
+  std::uint64_t seed = 0;           ///< seed of the run's random order
 };
 
 /// The header line (without newline): subject,trial,method,standard_method,standard_mass,
