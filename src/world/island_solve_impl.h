@@ -37,14 +37,6 @@ class IslandSolve {
   bool Solve(const mjModel& m, mjData* d, const double f_W[3], const double p_W[3],
              const double* qacc_zero, double* qacc);
 
-  /// Writes the prepared island's exact zero-force solution into its dofs of `qacc` (nv).
-  /// @pre Prepare() returned true.
-  void WriteZero(double* qacc) const {
-    for (std::size_t i = 0; i < dofs_.size(); ++i) {
-      qacc[dofs_[i]] = zero_[static_cast<Eigen::Index>(i)];
-    }
-  }
-
   /// Dofs of the prepared island; active-set iterations of the last Prepare() or Solve().
   int num_dofs() const { return static_cast<int>(dofs_.size()); }
 

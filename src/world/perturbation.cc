@@ -200,7 +200,6 @@ Perturber::Perturber(World* world, const PerturberSettings& settings)
   bodies_.reserve(capacity);
   start_.reserve(capacity);
   zero_.reserve(capacity);
-  zero_exact_.reserve(capacity);
 }
 
 Perturber::~Perturber() = default;
@@ -223,8 +222,6 @@ void Perturber::Begin(std::span<const int> bodies) {
   zero_.resize(bodies_.size());
   open_ = true;
   zero_done_ = false;
-  world_solved_ = true;
-  zero_exact_.assign(bodies_.size(), 0);
   ++counters_.begins;
   if (forward_skip_) {
     const std::int64_t t0 = NowNs();
@@ -241,26 +238,14 @@ void Perturber::Begin(std::span<const int> bodies) {
 // stages (kinematics, collision, constraint Jacobians, bias forces) do not depend on applied
 // forces, so every test-force run keeps them and redoes only actuation, acceleration and the
 // constraint solve.
-//
-// With the island solve, the whole-world constraint solve (most of the pass's time with
-// hundreds of resting bodies) is left out: each measured body's island is solved exactly by
-// Measure(), from the saved warm start (the last step's solution) as its first guess.
 void Perturber::SetUpForwardSkip() {
   World::Impl& w = *world_->impl_;
   const mjModel* m = w.model.get();
   mjData* d = w.data.get();
   std::copy_n(d->qacc_warmstart, m->nv, warmstart_.data());
-  world_solved_ = !settings_.island_solve;
-  if (world_solved_) {
+  {
     const SolverOverride solver(w.model.get(), settings_);
     mj_forwardSkip(m, d, mjSTAGE_NONE, 1);
-  } else {
-    mj_fwdPosition(m, d);
-    mj_fwdVelocity(m, d);
-    mj_referenceConstraint(m, d);
-    mj_fwdActuation(m, d);
-    mj_fwdAcceleration(m, d);
-    std::copy_n(warmstart_.data(), m->nv, d->qacc);
   }
   std::copy_n(d->qacc_smooth, m->nv, zero_smooth_.data());
   w.kinematics_stale = false;
@@ -290,7 +275,7 @@ void Perturber::ZeroForceRun() {
   if (forward_skip_) {
     // Begin() already did this run's forward pass; its results are still in the data.
     RecordBaseContacts();
-    if (world_solved_) counters_.zero_force_solver_iterations += world_->impl_->data->solver_iter;
+    counters_.zero_force_solver_iterations += world_->impl_->data->solver_iter;
     ++counters_.forward_skip_runs;
   } else {
     {
@@ -314,37 +299,7 @@ void Perturber::ZeroForceRun() {
 }
 
 Twist Perturber::ForceRun(std::size_t index, const Vec3& f_W, const Vec3& p_W) {
-  MRH_DEMAND(open_ && zero_done_);
-  if (!world_solved_) SolveWholeWorld();
   return Run(index, f_W, p_W, -1);
-}
-
-// The zero-force run's constraint solve over the whole world, left out by SetUpForwardSkip().
-void Perturber::SolveWholeWorld() {
-  World::Impl& w = *world_->impl_;
-  const mjModel* m = w.model.get();
-  mjData* d = w.data.get();
-  std::copy_n(warmstart_.data(), m->nv, d->qacc_warmstart);
-  {
-    const SolverOverride solver(w.model.get(), settings_);
-    mj_fwdConstraint(m, d);
-  }
-  counters_.zero_force_solver_iterations += d->solver_iter;
-  for (std::size_t i = 0; i < bodies_.size(); ++i) {
-    if (zero_exact_[i] == 0) zero_[i] = TwistAfterEuler(*m, *d, bodies_[i], dt_, d->qacc);
-  }
-  std::copy_n(d->qacc, m->nv, zero_q_.data());
-  std::copy_n(d->qacc, m->nv, zero_solution_.data());
-  world_solved_ = true;
-}
-
-// bodies_[index]'s island, just prepared, holds its exact zero-force solution: the base of the
-// measurement (zero_q_ on the island's dofs, u_0).
-void Perturber::UseIslandZero(std::size_t index) {
-  const World::Impl& w = *world_->impl_;
-  island_->WriteZero(zero_q_.data());
-  zero_[index] = TwistAfterEuler(*w.model, *w.data, bodies_[index], dt_, zero_q_.data());
-  zero_exact_[index] = 1;
 }
 
 Twist Perturber::Run(std::size_t index, const Vec3& f_W, const Vec3& p_W, int slot) {
@@ -422,6 +377,7 @@ Twist Perturber::RunFullStep(std::size_t index, const Vec3& f_W, const Vec3& p_W
 DynamicIr Perturber::Measure(std::size_t index, const Vec3& f1, const Vec3& p_W) {
   MRH_DEMAND(open_ && zero_done_ && index < bodies_.size());
   const Mat3 F = TestForces(f1);
+  const Vec6 u0 = ToVec6(zero_[index]);
   island_ready_ = false;
   if (forward_skip_ && settings_.island_solve) {
     const World::Impl& w = *world_->impl_;
@@ -431,13 +387,10 @@ DynamicIr Perturber::Measure(std::size_t index, const Vec3& f1, const Vec3& p_W)
     counters_.island_iterations += island_->iterations();
     if (island_ready_) {
       counters_.max_island_dofs = std::max(counters_.max_island_dofs, island_->num_dofs());
-      if (!world_solved_) UseIslandZero(index);
     } else {
       ++counters_.island_fallbacks;
     }
   }
-  if (!island_ready_ && !world_solved_) SolveWholeWorld();
-  const Vec6 u0 = ToVec6(zero_[index]);
   Mat63 Y;
   for (int k = 0; k < 3; ++k) {
     // eq. 4.8 (corrected, C8): y_k = (u_k − u_0)/Δt; b cancels.
@@ -573,9 +526,8 @@ const Twist& Perturber::start_velocity(std::size_t index) const {
   return start_[index];
 }
 
-const Twist& Perturber::zero_force_velocity(std::size_t index) {
+const Twist& Perturber::zero_force_velocity(std::size_t index) const {
   MRH_DEMAND(zero_done_ && index < zero_.size());
-  if (!world_solved_ && zero_exact_[index] == 0) SolveWholeWorld();
   return zero_[index];
 }
 

@@ -49,15 +49,14 @@ TEST_F(T43ExperimentTest, ReportsEveryRunCompleteAndFinite) {
   EXPECT_EQ(exit_code_, 0);
 }
 
-// The essential result as counts: the test-force runs and the zero-force run cost no MuJoCo
-// solver iterations (they are solved on the pushed cube's island), while the global step does.
+// The essential result as counts: the test-force runs cost no MuJoCo solver iterations (they
+// are solved on the pushed cube's island), while the global step and the zero-force run do.
 void ExpectIslandSolvedTestRuns(const nlohmann::json& summary, const std::string& cubes) {
   const nlohmann::json& work = summary["perturbation_work"][cubes];
   ASSERT_TRUE(work.is_object()) << cubes;
   EXPECT_EQ(work["test_runs"].get<int>(), 3 * work["steps"].get<int>()) << cubes;
   EXPECT_EQ(work["test_run_solver_iterations"].get<int>(), 0) << cubes;
-  // The zero-force run solves each measured cube's island exactly, not the whole world.
-  EXPECT_EQ(work["zero_force_solver_iterations"].get<int>(), 0) << cubes;
+  EXPECT_GT(work["zero_force_solver_iterations"].get<int>(), 0) << cubes;
   EXPECT_GT(work["global_step_solver_iterations"].get<int>(), 0) << cubes;
 }
 

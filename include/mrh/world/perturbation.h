@@ -168,9 +168,7 @@ class Perturber {
   /// COM twist of bodies[index] in the saved state (readable until the next Begin()).
   const Twist& start_velocity(std::size_t index) const;
   /// COM twist of bodies[index] after the zero-force run (readable until the next Begin()).
-  /// With the island solve, Measure(index) takes it from the exact island solution; before
-  /// that (or where there is no island) it comes from MuJoCo's whole-world solve, run on demand.
-  const Twist& zero_force_velocity(std::size_t index);
+  const Twist& zero_force_velocity(std::size_t index) const;
   /// Geom pairs in contact at the saved state (MuJoCo contacts of the zero-force run), as sorted
   /// ContactKey()s; readable until the next Begin(). @pre ZeroForceRun() was called.
   std::span<const std::uint64_t> base_contacts() const;
@@ -200,8 +198,6 @@ class Perturber {
   bool RunIsland(std::size_t index, const Vec3& f_W, const Vec3& p_W, int slot, Twist* out);
   void CaptureFullStep(std::vector<double>* qvel, std::vector<Twist>* twists);
   void CollectGroup(int measured, const Mat3& F_inverse);
-  void SolveWholeWorld();
-  void UseIslandZero(std::size_t index);
 
   World* world_;
   PerturberSettings settings_;
@@ -228,12 +224,6 @@ class Perturber {
   bool open_ = false;
   bool zero_done_ = false;
   bool forward_skip_ = false;
-  // Whether the zero-force run's whole-world constraint solve ran (zero_q_, zero_, the data's
-  // qacc hold it). With the island solve it runs only where an island cannot be solved: each
-  // measured body's island gives its exact zero-force solution, the rest of the world never
-  // reaches the rendering.
-  bool world_solved_ = true;
-  std::vector<char> zero_exact_;  // per body: zero_[i] is its island's exact solution
   double dt_ = 0.0;
   PerturberCounters counters_;
 };
