@@ -1,0 +1,113 @@
+// SPDX-License-Identifier: Apache-2.0
+// Issue 13: one local-dynamics physics step (global step, IR, perturbation runs, dynamic IR) with
+// 500 cubes resting with friction (condim 3, pyramidal cones, μ = 1) on a floor, the pointer
+// pushing the first row at 0.1 m/s. One repetition = one physics period (20 haptic ticks, one
+// physics step inline, lockstep); its time is the step's own compute time (StepRecord).
+// Report p50/p99 with: mrh_bench --benchmark_filter=LocalDynamics
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mrh/device/external.h"
+#include "mrh/engine/engine.h"
+#include "mrh/world/world.h"
+
+namespace mrh::engine {
+namespace {
+
+constexpr double kPhysicsDt = 0.02;   // s
+constexpr double kHapticDt = 0.001;   // s
+constexpr int kTicksPerStep = 20;
+constexpr double kHalf = 0.05;        // m, cube half size
+constexpr double kRadius = 0.02;      // m, pointer sphere
+constexpr double kStartX = -kHalf - kRadius - 0.002;
+constexpr double kSpeed = 0.1;        // m/s
+
+// The t4.3 layout (rows of 10 cubes, 2 cm gaps, rows 0.25 m apart), with friction.
+std::string CubesXml(int cubes) {
+  std::string bodies;
+  for (int i = 0; i < cubes; ++i) {
+    bodies += "<body pos=\"" + std::to_string(0.12 * (i % 10)) + " " +
+              std::to_string(0.25 * (i / 10)) +
+              " 0.05\"><freejoint/><geom type=\"box\" size=\"0.05 0.05 0.05\" mass=\"0.2\"/>"
+              "</body>";
+  }
+  return "<mujoco><option timestep=\"0.02\" solver=\"CG\"/><default><geom condim=\"3\"/>"
+         "</default><worldbody><geom type=\"plane\" size=\"20 20 0.1\"/>" +
+         bodies + "<body name=\"pointer\" mocap=\"true\" pos=\"" + std::to_string(kStartX) +
+         " 0 0.05\"><geom type=\"sphere\" size=\"0.02\" contype=\"0\" conaffinity=\"0\"/></body>"
+         "</worldbody></mujoco>";
+}
+
+class StepTimes final : public Recorder {
+ public:
+  void OnTick(const TickRecord&) override {}
+  void OnStep(const StepRecord& step, const world::World&) override { last_ms = step.compute_ms; }
+  double last_ms = 0.0;
+};
+
+struct Run {
+  std::unique_ptr<Engine> engine;
+  StepTimes times;
+  long tick = 0;
+};
+
+Run& SharedRun(int cubes) {
+  static Run run = [cubes] {
+    EngineSettings s;
+    s.method = "local-dynamics";
+    s.physics_dt = kPhysicsDt;
+    s.haptic_dt = kHapticDt;
+    s.duration = 1e3;
+    s.pointer.radius = kRadius;
+    s.rendering.stiffness = 2000.0;
+    s.safety.ramp = false;
+    s.realtime_priority = false;
+    device::Specifications specs;
+    specs.max_force = 100.0;
+    Run r;
+    r.engine = std::make_unique<Engine>(world::World::LoadString(CubesXml(cubes)),
+                                        std::make_unique<device::ExternalDevice>(specs),
+                                        device::Calibration{}, s);
+    return r;
+  }();
+  return run;
+}
+
+void BM_LocalDynamicsStep500Friction(benchmark::State& state) {
+  Run& run = SharedRun(500);
+  if (run.tick == 0) run.engine->Start(&run.times);
+  for (auto _ : state) {
+    for (int i = 0; i < kTicksPerStep; ++i, ++run.tick) {
+      const double t = static_cast<double>(run.tick) * kHapticDt;
+      device::DeviceState reading;
+      reading.t = t;
+      reading.X_DT.p = Vec3(kStartX + kSpeed * t, 0.0, kHalf);
+      reading.V_DT.v = Vec3(kSpeed, 0.0, 0.0);
+      benchmark::DoNotOptimize(run.engine->Tick(t, reading));
+    }
+    state.SetIterationTime(run.times.last_ms * 1e-3);
+  }
+}
+
+double Percentile(const std::vector<double>& v, double p) {
+  std::vector<double> s = v;
+  std::sort(s.begin(), s.end());
+  return s[static_cast<std::size_t>(p * static_cast<double>(s.size() - 1) + 0.5)];
+}
+
+// 100 steps: the pointer reaches the first cube after ~0.02 s and pushes it for 2 s.
+BENCHMARK(BM_LocalDynamicsStep500Friction)
+    ->Unit(benchmark::kMillisecond)
+    ->UseManualTime()
+    ->Iterations(1)
+    ->Repetitions(100)
+    ->ReportAggregatesOnly(true)
+    ->ComputeStatistics("p50", [](const std::vector<double>& v) { return Percentile(v, 0.50); })
+    ->ComputeStatistics("p99", [](const std::vector<double>& v) { return Percentile(v, 0.99); });
+
+}  // namespace
+}  // namespace mrh::engine
