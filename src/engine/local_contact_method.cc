@@ -73,10 +73,12 @@ void LocalContactMethod::Overwrite(const ir::HapticReport& report) {
       failed_.push_back(state.body);
     }
   }
-  for (const ir::BodyImpulse& impulse : report.impulses) {
-    if (Contains(sent_before_, impulse.body) && !Contains(failed_, impulse.body)) continue;
-    ApplyReportImpulses(*world_, report, physics_dt_, impulse.body);
-  }
+  // The period's reaction as a force J/Δt^G during the global step, for every touched body:
+  // an island body's state is overwritten again at the next synchronization, but its end state
+  // here is where its contacts for the next period are found, so it should have been pushed as
+  // the local simulation pushes it (without, a decelerating box pitches in the global step and
+  // exports tilted contacts).
+  ApplyReportImpulses(*world_, report, physics_dt_);
 }
 
 // The island of the dynamic neighbors the pointer may touch (every body with a plane IR).
