@@ -102,8 +102,22 @@ void LocalContactMethod::Export(ir::PhysicsSnapshot* out) {
   counters_.last_island_contacts = static_cast<int>(out->local_model.contacts.size());
 }
 
+// The contact model simulates free-jointed bodies only: a scene with any other moving body
+// (e.g. T4.1's slide-jointed cube) keeps the thesis' perturbation model.
+namespace {
+bool AllMovingBodiesFree(world::World& world) {
+  const world::ContactExporter probe(&world);
+  for (int b = 1; b < world.num_bodies(); ++b) {
+    const world::BodyInfo& info = world.body(b);
+    if (!info.is_static && !info.is_mocap && !probe.IsFreeBody(b)) return false;
+  }
+  return true;
+}
+}  // namespace
+
 std::unique_ptr<Method> MakeLocalDynamicsAnyModel(const MethodContext& context) {
-  if (context.settings->rendering.local_model == "perturbation") {
+  if (context.settings->rendering.local_model == "perturbation" ||
+      !AllMovingBodiesFree(*context.world)) {
     return MakeLocalDynamicsMethod(context);
   }
   return std::make_unique<LocalContactMethod>(context);

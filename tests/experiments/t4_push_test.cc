@@ -58,7 +58,12 @@ void ExpectBars(const std::string& name) {
 
 TEST(T4PushTest, OneBoxLocalDynamicsFeelsLikeSingleRate) { ExpectBars("box"); }
 
+TEST(T4PushTest, HeavyBoxLocalDynamicsFeelsLikeSingleRate) { ExpectBars("heavy"); }
+
 TEST(T4PushTest, WallLocalDynamicsFeelsLikeSingleRate) { ExpectBars("wall"); }
+
+// Not yet within the bars (issue 13, open): the row of three (+7 % mean force, 2.4× sd, and
+// single-rate's own row turns 6 cm sideways, so positions diverge) and the tipping box (+12 %).
 
 // The thesis' linearised model on the same push: the force chatters and contact is lost.
 TEST(T4PushTest, PerturbationModelFailsTheBarsOnTheOneBoxCase) {
