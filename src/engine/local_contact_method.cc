@@ -73,10 +73,12 @@ void LocalContactMethod::Overwrite(const ir::HapticReport& report) {
       failed_.push_back(state.body);
     }
   }
-  for (const ir::BodyImpulse& impulse : report.impulses) {
-    if (Contains(sent_before_, impulse.body) && !Contains(failed_, impulse.body)) continue;
-    ApplyReportImpulses(*world_, report, physics_dt_, impulse.body);
-  }
+  // The period's reaction as a force J/Δt^G during the global step, for every touched body:
+  // an island body's state is overwritten again at the next synchronization, but its end state
+  // here is where its contacts for the next period are found, so it should have been pushed as
+  // the local simulation pushes it (without, a decelerating box pitches in the global step and
+  // exports tilted contacts).
+  ApplyReportImpulses(*world_, report, physics_dt_);
 }
 
 // The island of the dynamic neighbors the pointer may touch (every body with a plane IR).
@@ -100,8 +102,22 @@ void LocalContactMethod::Export(ir::PhysicsSnapshot* out) {
   counters_.last_island_contacts = static_cast<int>(out->local_model.contacts.size());
 }
 
+// The contact model simulates free-jointed bodies only: a scene with any other moving body
+// (e.g. T4.1's slide-jointed cube) keeps the thesis' perturbation model.
+namespace {
+bool AllMovingBodiesFree(world::World& world) {
+  const world::ContactExporter probe(&world);
+  for (int b = 1; b < world.num_bodies(); ++b) {
+    const world::BodyInfo& info = world.body(b);
+    if (!info.is_static && !info.is_mocap && !probe.IsFreeBody(b)) return false;
+  }
+  return true;
+}
+}  // namespace
+
 std::unique_ptr<Method> MakeLocalDynamicsAnyModel(const MethodContext& context) {
-  if (context.settings->rendering.local_model == "perturbation") {
+  if (context.settings->rendering.local_model == "perturbation" ||
+      !AllMovingBodiesFree(*context.world)) {
     return MakeLocalDynamicsMethod(context);
   }
   return std::make_unique<LocalContactMethod>(context);

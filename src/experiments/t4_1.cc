@@ -153,7 +153,8 @@ MethodResult RunCase(const session::Session& session, const Case& c,
 // The accelerance local-dynamics measures for the free cube at t = 0, through the public Method
 // interface: one physics step from the initial state, read the snapshot's A.
 ir::Mat63 MeasureAccelerance() {
-  const session::Session s = CaseSession("local-dynamics", Case{}, {});
+  session::Session s = CaseSession("local-dynamics", Case{}, {});
+  s.engine.rendering.local_model = "perturbation";  // the thesis' A (issue 13's model has none)
   world::World world = session::LoadWorld(s);
   world.set_timestep(s.engine.physics_dt);
   engine::MethodContext context{.world = &world,

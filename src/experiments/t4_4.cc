@@ -98,6 +98,8 @@ session::Session MakeSession(const std::string& variant, const std::string& meth
   json["device"]["keyframes"] =
       edge ? Keyframes(kEdgeY + kEdgeOffset, kEdgeDuration) : Keyframes(0.0, kLineDuration);
   if (variant == kNoPerturbation) json["rendering"]["perturbation"] = false;
+  // T4.4 measures the thesis' accelerance A (issue 13's contact model has none).
+  json["rendering"]["local_model"] = "perturbation";
   return session::ParseSession(json.dump(), ScenesDir(), {}, "scenes/t4_4.json (" + variant + ")");
 }
 

@@ -57,11 +57,10 @@ session::Session MakeSession(const PushCase& c, const std::string& variant) {
   j["rendering"] = {{"stiffness", 2000.0}, {"damping", 5.0}};
   if (variant == kPerturbation) j["rendering"]["local_model"] = "perturbation";
   const double x_end = kX0 + kSpeed * c.push_until;
-  j["device"] = {{"type", "scripted"},
-                 {"keyframes",
-                  {{0.0, kX0, 0.0, c.z, 1, 0, 0, 0},
-                   {c.push_until, x_end, 0.0, c.z, 1, 0, 0, 0},
-                   {c.duration, x_end, 0.0, c.z, 1, 0, 0, 0}}}};
+  nlohmann::json frames = {{0.0, kX0, 0.0, c.z, 1, 0, 0, 0},
+                           {c.push_until, x_end, 0.0, c.z, 1, 0, 0, 0}};
+  if (c.duration > c.push_until) frames.push_back({c.duration, x_end, 0.0, c.z, 1, 0, 0, 0});
+  j["device"] = {{"type", "scripted"}, {"keyframes", frames}};
   return session::ParseSession(j.dump(), ScenesDir(), {},
                                fmt::format("t4.push {} ({})", c.name, variant));
 }

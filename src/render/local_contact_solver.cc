@@ -126,7 +126,7 @@ void LocalContactSolver::PrepareRows(double dt) noexcept {
       }
       r.inv_w[j] = w > 0.0 ? 1.0 / w : 0.0;
     }
-    const double gap = n.dot(pA - pB) - std::min(r.c.dist0, 0.0);
+    const double gap = n.dot(pA - pB);
     r.target = gap >= 0.0 ? -gap / dt : -settings_.baumgarte * gap / dt;
     if (r.lambda[0] > 0.0) {
       ApplyImpulse(r, r.lambda[0] * r.d[0] + r.lambda[1] * r.d[1] + r.lambda[2] * r.d[2]);
@@ -205,9 +205,14 @@ bool LocalContactSolver::Finish(double dt) noexcept {
 bool LocalContactSolver::Step(double dt) noexcept {
   Integrate(dt);
   PrepareRows(dt);
+  // Symmetric Gauss–Seidel: the sweep direction alternates, so the order of the rows biases
+  // no direction (a box pushed straight stays straight).
   for (int it = 0; it < settings_.iterations; ++it) {
     double change = 0.0;
-    for (std::size_t k = 0; k < rows_count_; ++k) change = std::max(change, SolveRow(rows_[k]));
+    for (std::size_t i = 0; i < rows_count_; ++i) {
+      const std::size_t k = (it % 2 == 0) ? i : rows_count_ - 1 - i;
+      change = std::max(change, SolveRow(rows_[k]));
+    }
     if (change <= settings_.tolerance) break;
   }
   return Finish(dt);

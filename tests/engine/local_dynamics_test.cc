@@ -64,6 +64,9 @@ EngineSettings LocalSettings(double duration) {
   s.duration = duration;
   s.pointer.radius = 0.02;
   s.rendering.stiffness = 1000.0;
+  // These tests check the thesis model (eq. 4.16–4.18 with A, b). Issue 13: the contact model
+  // does not yet keep an untouched resting cube at rest to 1e-6 (0.25 mm, 2 mm/s drift).
+  s.rendering.local_model = "perturbation";
   s.safety.ramp = false;
   s.realtime_priority = false;
   return s;
