@@ -1,7 +1,11 @@
 // SPDX-License-Identifier: Apache-2.0
 // A stand-in for OpenHaptics' libHD.so: the HD symbols mrhaptics uses, a servo "scheduler" the
 // test drives by hand (fakehd_RunServoTicks), a scripted transform and recorded forces.
+#include <atomic>
+#include <chrono>
+#include <cstdlib>
 #include <cstring>
+#include <thread>
 
 namespace {
 
@@ -37,6 +41,24 @@ struct State {
 
 State state;
 
+// With FAKEHD_THREAD=1 in the environment the "scheduler" is a real thread ticking at ~1 kHz
+// (for smoke runs of `mrh run` / `mrh view`); otherwise tests tick it by hand.
+std::thread scheduler_thread;
+std::atomic<bool> scheduler_quit{false};
+std::atomic<HDCallback> sync_callback{nullptr};  // run once on the scheduler thread, as in HD
+void* sync_data = nullptr;
+
+void SchedulerLoop() {
+  while (!scheduler_quit.load()) {
+    if (HDCallback cb = sync_callback.load()) {
+      (void)cb(sync_data);
+      sync_callback.store(nullptr);
+    }
+    if (state.scheduled && state.callback(state.data) == 0) state.scheduled = false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+}
+
 }  // namespace
 
 extern "C" {
@@ -62,9 +84,29 @@ unsigned long hdScheduleAsynchronous(HDCallback cb, void* data, unsigned short) 
   return 7;
 }
 
-void hdScheduleSynchronous(HDCallback cb, void* data, unsigned short) { (void)cb(data); }
-void hdStartScheduler() { state.scheduler = true; }
-void hdStopScheduler() { state.scheduler = false; }
+void hdScheduleSynchronous(HDCallback cb, void* data, unsigned short) {
+  if (!scheduler_thread.joinable()) {
+    (void)cb(data);
+    return;
+  }
+  sync_data = data;
+  sync_callback.store(cb);
+  while (sync_callback.load() != nullptr) std::this_thread::sleep_for(std::chrono::microseconds(100));
+}
+void hdStartScheduler() {
+  state.scheduler = true;
+  const char* threaded = std::getenv("FAKEHD_THREAD");
+  if (threaded != nullptr && threaded[0] == '1' && !scheduler_thread.joinable()) {
+    scheduler_quit.store(false);
+    scheduler_thread = std::thread(SchedulerLoop);
+  }
+}
+
+void hdStopScheduler() {
+  scheduler_quit.store(true);
+  if (scheduler_thread.joinable()) scheduler_thread.join();
+  state.scheduler = false;
+}
 void hdUnschedule(unsigned long) { state.scheduled = false; }
 void hdBeginFrame(unsigned int) { ++state.in_frame; }
 
