@@ -17,6 +17,7 @@ constexpr auto kProgressPeriod = std::chrono::milliseconds(50);
 class EngineClient final : public device::ServoClient {
  public:
   explicit EngineClient(engine::Engine* engine) : engine_(engine) {}
+
   // Engine::Tick is RT-safe in real-time mode (it does not throw there).
   Wrench OnServoTick(double t, const device::DeviceState& reading) noexcept override {
     return engine_->Tick(t, reading);

@@ -136,7 +136,8 @@ TEST(DeviceConfigTest, UnknownTypeIsAnError) {
         Parse(WithDevice(R"({"type": "mouse"})"));
       },
       ThrowsInvalidExactly("session.json: device.type: unknown device type \"mouse\"; "
-                           "expected one of \"fixed\", \"scripted\", \"hand\", \"replay\", \"external\", "
+                           "expected one of \"fixed\", \"scripted\", \"hand\", \"replay\", "
+                           "\"external\", "
                            "\"forcedimension\", \"openhaptics\", \"udp\""));
 }
 

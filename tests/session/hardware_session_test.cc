@@ -27,8 +27,11 @@ TEST(HardwareSessionTest, ForceDimensionTakesALibrarySonameOrAnExistingPath) {
   EXPECT_EQ(Parse(WithDevice(R"({"type": "forcedimension", "library": "libdhd.so.3"})"))
                 .device.forcedimension.library,
             "libdhd.so.3");
-  EXPECT_THAT([] { Parse(WithDevice(R"({"type": "forcedimension", "library": "sdk/libdhd.so"})")); },
-              ThrowsInvalid("session.json: device.library:"));
+  EXPECT_THAT(
+      [] {
+        Parse(WithDevice(R"({"type": "forcedimension", "library": "sdk/libdhd.so"})"));
+      },
+      ThrowsInvalid("session.json: device.library:"));
 }
 
 TEST(HardwareSessionTest, OpenHapticsTakesALibraryAndADeviceName) {
@@ -47,12 +50,21 @@ TEST(HardwareSessionTest, UdpReadsBindTimeoutAndFade) {
 }
 
 TEST(HardwareSessionTest, BadUdpValuesAreOneLineErrorsNamingTheKey) {
-  EXPECT_THAT([] { Parse(WithDevice(R"({"type": "udp", "bind": "localhost"})")); },
-              ThrowsInvalid("session.json: device.bind: \"localhost\" is not host:port"));
-  EXPECT_THAT([] { Parse(WithDevice(R"({"type": "udp", "timeout": 0})")); },
-              ThrowsInvalid("session.json: device.timeout: 0 s; expected a number > 0"));
-  EXPECT_THAT([] { Parse(WithDevice(R"({"type": "forcedimension", "bind": "1.2.3.4:5"})")); },
-              ThrowsInvalid("device.bind: not used by device type \"forcedimension\""));
+  EXPECT_THAT(
+      [] {
+        Parse(WithDevice(R"({"type": "udp", "bind": "localhost"})"));
+      },
+      ThrowsInvalid("session.json: device.bind: \"localhost\" is not host:port"));
+  EXPECT_THAT(
+      [] {
+        Parse(WithDevice(R"({"type": "udp", "timeout": 0})"));
+      },
+      ThrowsInvalid("session.json: device.timeout: 0 s; expected a number > 0"));
+  EXPECT_THAT(
+      [] {
+        Parse(WithDevice(R"({"type": "forcedimension", "bind": "1.2.3.4:5"})"));
+      },
+      ThrowsInvalid("device.bind: not used by device type \"forcedimension\""));
 }
 
 TEST(HardwareSessionTest, AModelBringsItsDataSheetLimitsAndLimitsOverrideThem) {
@@ -69,21 +81,30 @@ TEST(HardwareSessionTest, AModelBringsItsDataSheetLimitsAndLimitsOverrideThem) {
 }
 
 TEST(HardwareSessionTest, UnknownModelsAndBadDofAreErrors) {
-  EXPECT_THAT([] { Parse(WithDevice(R"({"type": "udp", "model": "omega"})")); },
-              ThrowsInvalid("session.json: device.model: unknown device model \"omega\"; "
-                            "expected one of \"touch\""));
-  EXPECT_THAT([] { Parse(WithDevice(R"({"type": "udp", "limits": {"output_dof": 4}})")); },
-              ThrowsInvalid("device.limits.output_dof: 4; expected 3 (force only) or 6"));
+  EXPECT_THAT(
+      [] {
+        Parse(WithDevice(R"({"type": "udp", "model": "omega"})"));
+      },
+      ThrowsInvalid("session.json: device.model: unknown device model \"omega\"; "
+                    "expected one of \"touch\""));
+  EXPECT_THAT(
+      [] {
+        Parse(WithDevice(R"({"type": "udp", "limits": {"output_dof": 4}})"));
+      },
+      ThrowsInvalid("device.limits.output_dof: 4; expected 3 (force only) or 6"));
 }
 
 TEST(HardwareSessionTest, StiffnessAboveAStatedLimitNamesBothKeysAndValues) {
   const std::string text = R"({"scene": "scene.xml", "rendering": {"stiffness": 2000},
       "device": {"type": "udp", "model": "touch"}})";
-  EXPECT_THAT([&] { Parse(text); },
-              ThrowsInvalid("session.json: rendering.stiffness: rendering.stiffness = 2000 N/m "
-                            "exceeds device.limits.max_stiffness = 1020 N/m (device.model "
-                            "\"touch\"); expected rendering.stiffness <= "
-                            "device.limits.max_stiffness, or raise"));
+  EXPECT_THAT(
+      [&] {
+        Parse(text);
+      },
+      ThrowsInvalid("session.json: rendering.stiffness: rendering.stiffness = 2000 N/m "
+                    "exceeds device.limits.max_stiffness = 1020 N/m (device.model "
+                    "\"touch\"); expected rendering.stiffness <= "
+                    "device.limits.max_stiffness, or raise"));
   // The user may raise the limit explicitly.
   EXPECT_NO_THROW(Parse(text, {"device.limits.max_stiffness=2500"}));
   // Without a model or an explicit limit no device maximum is known: no check.
@@ -94,7 +115,9 @@ TEST(HardwareSessionTest, StiffnessAboveAStatedLimitNamesBothKeysAndValues) {
 class TickForces final : public engine::Recorder {
  public:
   void OnTick(const engine::TickRecord& t) override { displayed_W.push_back(t.displayed_W); }
+
   void OnStep(const engine::StepRecord&, const world::World&) override {}
+
   std::vector<Wrench> displayed_W;
 };
 
@@ -111,9 +134,10 @@ TEST(HardwareSessionTest, ForcesWrittenToTheDhdEqualTheDisplayedWrenchInTheDevic
   fake.Get<void(const double*, const double*, const double*, int)>("fakedhd_SetPose")(p, R, v, 0);
   const Session session = Parse(std::string(R"({"scene": "scene.xml", "gravity": [0, 0, 0],
       "duration": 0.2, "safety": {"ramp": false},
-      "device": {"type": "forcedimension", "library": ")") + MRH_FAKE_DHD + R"(",
-        "calibration": {"position": [0.1, 0, 0], "orientation": [)" + std::to_string(s) +
-                                 ", 0, 0, " + std::to_string(s) + "]}}}");
+      "device": {"type": "forcedimension", "library": ")") +
+                                MRH_FAKE_DHD + R"(",
+        "calibration": {"position": [0.1, 0, 0], "orientation": [)" +
+                                std::to_string(s) + ", 0, 0, " + std::to_string(s) + "]}}}");
   TickForces recorder;
   const engine::RunStats stats = MakeEngine(session)->Run(&recorder);
   ASSERT_GT(stats.ticks, 0);

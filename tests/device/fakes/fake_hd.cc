@@ -10,6 +10,7 @@
 namespace {
 
 using HDCallback = unsigned int (*)(void*);
+
 struct HDErrorInfo {
   unsigned int errorCode;
   int internalErrorCode;
@@ -74,8 +75,13 @@ unsigned int hdInitDevice(const char* name) {
   return 1;
 }
 
-void hdDisableDevice(unsigned int) { state.disabled = true; }
-void hdEnable(unsigned int cap) { state.force_output = state.force_output || cap == 0x4000; }
+void hdDisableDevice(unsigned int) {
+  state.disabled = true;
+}
+
+void hdEnable(unsigned int cap) {
+  state.force_output = state.force_output || cap == 0x4000;
+}
 
 unsigned long hdScheduleAsynchronous(HDCallback cb, void* data, unsigned short) {
   state.callback = cb;
@@ -91,8 +97,10 @@ void hdScheduleSynchronous(HDCallback cb, void* data, unsigned short) {
   }
   sync_data = data;
   sync_callback.store(cb);
-  while (sync_callback.load() != nullptr) std::this_thread::sleep_for(std::chrono::microseconds(100));
+  while (sync_callback.load() != nullptr)
+    std::this_thread::sleep_for(std::chrono::microseconds(100));
 }
+
 void hdStartScheduler() {
   state.scheduler = true;
   const char* threaded = std::getenv("FAKEHD_THREAD");
@@ -107,8 +115,14 @@ void hdStopScheduler() {
   if (scheduler_thread.joinable()) scheduler_thread.join();
   state.scheduler = false;
 }
-void hdUnschedule(unsigned long) { state.scheduled = false; }
-void hdBeginFrame(unsigned int) { ++state.in_frame; }
+
+void hdUnschedule(unsigned long) {
+  state.scheduled = false;
+}
+
+void hdBeginFrame(unsigned int) {
+  ++state.in_frame;
+}
 
 void hdEndFrame(unsigned int) {
   --state.in_frame;
@@ -137,15 +151,34 @@ HDErrorInfo hdGetError() {
   return info;
 }
 
-const char* hdGetErrorString(unsigned int) { return "fake HD error"; }
+const char* hdGetErrorString(unsigned int) {
+  return "fake HD error";
+}
 
 // Test controls and queries.
-void fakehd_Reset() { state = State{}; }
-void fakehd_FailInit(int on) { state.fail_init = on != 0; }
-void fakehd_FailFrames(int n) { state.fail_frames = n; }
-void fakehd_SetTransform(const double m[16]) { std::memcpy(state.transform, m, sizeof(state.transform)); }
-void fakehd_SetVelocity(const double v[3]) { std::memcpy(state.velocity, v, sizeof(state.velocity)); }
-void fakehd_SetButtons(int b) { state.buttons = b; }
+void fakehd_Reset() {
+  state = State{};
+}
+
+void fakehd_FailInit(int on) {
+  state.fail_init = on != 0;
+}
+
+void fakehd_FailFrames(int n) {
+  state.fail_frames = n;
+}
+
+void fakehd_SetTransform(const double m[16]) {
+  std::memcpy(state.transform, m, sizeof(state.transform));
+}
+
+void fakehd_SetVelocity(const double v[3]) {
+  std::memcpy(state.velocity, v, sizeof(state.velocity));
+}
+
+void fakehd_SetButtons(int b) {
+  state.buttons = b;
+}
 
 // Runs n servo ticks of the scheduled callback on the calling thread; returns how many ran
 // (a callback that returns HD_CALLBACK_DONE is unscheduled, as in HD).
@@ -161,13 +194,36 @@ int fakehd_RunServoTicks(int n) {
   return ran;
 }
 
-int fakehd_ForceCount() { return state.records; }
-void fakehd_Force(int i, double out[3]) { std::memcpy(out, state.forces[i], 3 * sizeof(double)); }
-int fakehd_TorqueWrites() { return state.torque_writes; }
-int fakehd_ForceOutputEnabled() { return state.force_output ? 1 : 0; }
-int fakehd_SchedulerRunning() { return state.scheduler ? 1 : 0; }
-int fakehd_Disabled() { return state.disabled ? 1 : 0; }
-int fakehd_Unbalanced() { return state.in_frame; }
-const char* fakehd_DeviceName() { return state.name; }
+int fakehd_ForceCount() {
+  return state.records;
+}
+
+void fakehd_Force(int i, double out[3]) {
+  std::memcpy(out, state.forces[i], 3 * sizeof(double));
+}
+
+int fakehd_TorqueWrites() {
+  return state.torque_writes;
+}
+
+int fakehd_ForceOutputEnabled() {
+  return state.force_output ? 1 : 0;
+}
+
+int fakehd_SchedulerRunning() {
+  return state.scheduler ? 1 : 0;
+}
+
+int fakehd_Disabled() {
+  return state.disabled ? 1 : 0;
+}
+
+int fakehd_Unbalanced() {
+  return state.in_frame;
+}
+
+const char* fakehd_DeviceName() {
+  return state.name;
+}
 
 }  // extern "C"
