@@ -8,10 +8,13 @@
 #include <cstdlib>
 
 #include "commands.h"
+#include "mrh/device/device.h"
 #include "mrh/engine/engine.h"
 #include "mrh/report/report.h"
 #include "mrh/session/session.h"
+#include "mrh/world/world.h"
 #include "progress_bar.h"
+#include "servo_run.h"
 
 namespace mrh::cli {
 namespace {
@@ -87,6 +90,32 @@ void PrintSummary(const engine::RunStats& s) {
   }
 }
 
+// What a real or network device counted itself (vendor errors, dropped torque, bad packets).
+void PrintDeviceFaults(const device::Device& device) {
+  const device::DeviceCounters c = device.counters();
+  if (c.poses_received > 0 || c.wrenches_sent > 0) {
+    fmt::print("device:    {} poses received, {} wrenches sent\n", c.poses_received,
+               c.wrenches_sent);
+  }
+  if (c.vendor_errors > 0) {
+    fmt::print(stderr, "mrh: warning: device: {} vendor errors (last: {})\n", c.vendor_errors,
+               device.last_error());
+  }
+  if (c.torque_dropped > 0) {
+    fmt::print(stderr,
+               "mrh: warning: device: torque dropped on {} ticks (3-DOF force output)\n",
+               c.torque_dropped);
+  }
+  if (c.packets_malformed > 0) {
+    fmt::print(stderr, "mrh: warning: device: {} malformed or foreign packets dropped\n",
+               c.packets_malformed);
+  }
+  if (c.pose_timeouts > 0) {
+    fmt::print(stderr, "mrh: warning: device: no pose for device.timeout on {} ticks (faded)\n",
+               c.pose_timeouts);
+  }
+}
+
 }  // namespace
 
 CLI::App* AddRunCommand(CLI::App& app, RunOptions* o) {
@@ -116,7 +145,18 @@ CLI::App* AddRunCommand(CLI::App& app, RunOptions* o) {
 
 int RunCommand(const RunOptions& o) {
   const session::Session s = session::LoadSession(o.session, Overrides(o));
-  const std::unique_ptr<engine::Engine> engine = session::MakeEngine(s);
+  // The device is built here (not by MakeEngine) to read its fault counters after the run.
+  std::unique_ptr<device::Device> owned_device = session::MakeDevice(s);
+  device::Device* device = owned_device.get();
+  // A device whose vendor scheduler owns the servo thread runs the engine inside its callback
+  // (real time); otherwise the engine owns the loop.
+  auto* servo = dynamic_cast<device::ServoDevice*>(device);
+  const bool on_servo_thread = servo != nullptr && s.engine.mode == engine::Mode::kRealtime;
+  std::unique_ptr<engine::Engine> engine;
+  if (!on_servo_thread) {
+    engine = std::make_unique<engine::Engine>(session::LoadWorld(s), std::move(owned_device),
+                                              s.device.calibration, s.engine);
+  }
   const fs::path out = OutputDir(o, s);
   report::CsvRecorder recorder(out);
 
@@ -124,9 +164,10 @@ int RunCommand(const RunOptions& o) {
       ProgressSettings{.enabled = !o.quiet && (o.progress || ::isatty(STDERR_FILENO) == 1),
                        .realtime = s.engine.mode == engine::Mode::kRealtime,
                        .duration = s.engine.duration});
-  const engine::RunStats stats = engine->Run(&recorder, [&](double f) {
-    bar.Update(f);
-  });
+  const auto update = [&](double f) { bar.Update(f); };
+  const engine::RunStats stats = on_servo_thread
+                                     ? RunOnServoThread(s, servo, &recorder, update)
+                                     : engine->Run(&recorder, update);
   bar.Finish();
   recorder.Close();
   report::WriteSummary(out, stats, s.file.string(), s.scene.string());
@@ -141,6 +182,7 @@ int RunCommand(const RunOptions& o) {
     fmt::print(stderr, "mrh: warning: {}\n", warning);
   }
   if (!o.quiet) PrintSummary(stats);
+  PrintDeviceFaults(*device);
   if (plotted) fmt::print("report: {}\n", (out / "report.png").string());
   fmt::print("summary: {}\n", (out / "summary.json").string());
   return kExitOk;

@@ -42,8 +42,8 @@ void* DynamicLibrary::Find(const char* name, bool required) const {
   ::dlerror();
   void* symbol = ::dlsym(handle_, name);
   if (symbol == nullptr && required) {
-    throw InvalidArgument("the " + what_ + " \"" + path_ + "\" lacks the required symbol " +
-                          name + ": " + LastDlError() + "; is it the right library and version?");
+    throw InvalidArgument("the " + what_ + " \"" + path_ + "\" lacks the required symbol " + name +
+                          ": " + LastDlError() + "; is it the right library and version?");
   }
   return symbol;
 }

@@ -42,7 +42,9 @@ constexpr std::array<DeviceModel, 10> kModels{{
 
 }  // namespace
 
-std::span<const DeviceModel> DeviceModels() { return kModels; }
+std::span<const DeviceModel> DeviceModels() {
+  return kModels;
+}
 
 const DeviceModel* FindDeviceModel(std::string_view name) {
   for (const DeviceModel& model : kModels) {

@@ -21,23 +21,25 @@ using HDenum = unsigned int;
 using HDerror = unsigned int;
 using HDCallbackCode = unsigned int;
 using HDSchedulerHandle = unsigned long;
+
 struct HDErrorInfo {
   HDerror errorCode;
   int internalErrorCode;
   HHD hHD;
 };
+
 using HDSchedulerCallback = HDCallbackCode (*)(void*);
-constexpr HHD kHdInvalidHandle = 0xFFFFFFFFu;     // HD_INVALID_HANDLE
-constexpr HDerror kHdSuccess = 0x0000;            // HD_SUCCESS
-constexpr HDCallbackCode kHdCallbackDone = 0;     // HD_CALLBACK_DONE
-constexpr HDCallbackCode kHdCallbackContinue = 1; // HD_CALLBACK_CONTINUE
-constexpr HDenum kHdCurrentButtons = 0x2000;      // HD_CURRENT_BUTTONS
-constexpr HDenum kHdCurrentVelocity = 0x2051;     // HD_CURRENT_VELOCITY (mm/s)
-constexpr HDenum kHdCurrentTransform = 0x2052;    // HD_CURRENT_TRANSFORM (column-major, mm)
+constexpr HHD kHdInvalidHandle = 0xFFFFFFFFu;         // HD_INVALID_HANDLE
+constexpr HDerror kHdSuccess = 0x0000;                // HD_SUCCESS
+constexpr HDCallbackCode kHdCallbackDone = 0;         // HD_CALLBACK_DONE
+constexpr HDCallbackCode kHdCallbackContinue = 1;     // HD_CALLBACK_CONTINUE
+constexpr HDenum kHdCurrentButtons = 0x2000;          // HD_CURRENT_BUTTONS
+constexpr HDenum kHdCurrentVelocity = 0x2051;         // HD_CURRENT_VELOCITY (mm/s)
+constexpr HDenum kHdCurrentTransform = 0x2052;        // HD_CURRENT_TRANSFORM (column-major, mm)
 constexpr HDenum kHdCurrentAngularVelocity = 0x2053;  // HD_CURRENT_ANGULAR_VELOCITY (rad/s)
-constexpr HDenum kHdCurrentForce = 0x2700;        // HD_CURRENT_FORCE (N)
-constexpr HDenum kHdCurrentTorque = 0x2701;       // HD_CURRENT_TORQUE (mN·m)
-constexpr HDenum kHdForceOutput = 0x4000;         // HD_FORCE_OUTPUT
+constexpr HDenum kHdCurrentForce = 0x2700;            // HD_CURRENT_FORCE (N)
+constexpr HDenum kHdCurrentTorque = 0x2701;           // HD_CURRENT_TORQUE (mN·m)
+constexpr HDenum kHdForceOutput = 0x4000;             // HD_FORCE_OUTPUT
 constexpr unsigned short kHdMaxSchedulerPriority = 0xFFFF;  // HD_MAX_SCHEDULER_PRIORITY
 constexpr double kMetresPerMm = 1e-3;
 
@@ -54,8 +56,8 @@ struct HdApi {
   void (*get_doublev)(HDenum, double*) = nullptr;
   void (*set_doublev)(HDenum, const double*) = nullptr;
   HDErrorInfo (*get_error)() = nullptr;
-  void (*get_integerv)(HDenum, int*) = nullptr;                  // optional: buttons
-  const char* (*get_error_string)(HDerror) = nullptr;            // optional: messages
+  void (*get_integerv)(HDenum, int*) = nullptr;        // optional: buttons
+  const char* (*get_error_string)(HDerror) = nullptr;  // optional: messages
   void (*schedule_synchronous)(HDSchedulerCallback, void*, unsigned short) = nullptr;  // optional
 };
 
@@ -139,7 +141,8 @@ class OpenHapticsDevice final : public ServoDevice {
   static std::string Hex(unsigned int value) {
     static constexpr char kDigits[] = "0123456789abcdef";
     std::string text(4, '0');
-    for (int i = 3; i >= 0; --i, value >>= 4) text[static_cast<std::size_t>(i)] = kDigits[value & 0xF];
+    for (int i = 3; i >= 0; --i, value >>= 4)
+      text[static_cast<std::size_t>(i)] = kDigits[value & 0xF];
     return text;
   }
 

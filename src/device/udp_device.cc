@@ -36,8 +36,9 @@ std::int64_t SteadyNs() noexcept {
 }
 
 sockaddr_in ParseBind(const std::string& bind) {
-  const std::string expected = "; expected \"host:port\" with an IPv4 host (e.g. "
-                               "\"127.0.0.1:47800\", \"0.0.0.0:47800\") and a port 0..65535";
+  const std::string expected =
+      "; expected \"host:port\" with an IPv4 host (e.g. "
+      "\"127.0.0.1:47800\", \"0.0.0.0:47800\") and a port 0..65535";
   const std::size_t colon = bind.rfind(':');
   if (colon == std::string::npos) {
     throw InvalidArgument("device.bind = \"" + bind + "\": no port" + expected);
@@ -51,8 +52,9 @@ sockaddr_in ParseBind(const std::string& bind) {
     throw InvalidArgument("device.bind = \"" + bind + "\": bad host \"" + host + "\"" + expected);
   }
   const bool digits = !port_text.empty() && port_text.size() <= 5 &&
-                      std::all_of(port_text.begin(), port_text.end(),
-                                  [](char c) { return c >= '0' && c <= '9'; });
+                      std::all_of(port_text.begin(), port_text.end(), [](char c) {
+                        return c >= '0' && c <= '9';
+                      });
   const int port = digits ? std::stoi(port_text) : -1;
   if (port < 0 || port > 65535) {
     throw InvalidArgument("device.bind = \"" + bind + "\": bad port \"" + port_text + "\"" +
@@ -87,13 +89,16 @@ class UdpDeviceImpl final : public UdpDevice {
   ~UdpDeviceImpl() override { Close(); }
 
   const Specifications& specifications() const override { return specs_; }
+
   int bound_port() const override { return port_; }
+
   DeviceCounters counters() const override { return counters_.Load(); }
 
   void Open() override;
   void Close() override;
   DeviceState Read(double t) noexcept override;
   void SetWrench(const Wrench& w_D) noexcept override;
+
   void SetSafetyBits(std::uint32_t bits) noexcept override { safety_bits_ = bits; }
 
  private:
@@ -137,7 +142,9 @@ void UdpDeviceImpl::Open() {
   }
   quit_.store(false);
   last_read_ns_ = SteadyNs();
-  receiver_ = std::thread([this] { Receive(); });
+  receiver_ = std::thread([this] {
+    Receive();
+  });
 }
 
 void UdpDeviceImpl::Close() {
@@ -220,9 +227,9 @@ void UdpDeviceImpl::SetWrench(const Wrench& w_D) noexcept {
   unsigned char packet[internal::kWrenchPacketSize];
   internal::EncodeWrench(latest_.pose.seq, w, status, packet);
   // Non-blocking: a full socket buffer loses this packet (the next tick sends a newer one).
-  const ssize_t sent = ::sendto(fd_, packet, sizeof(packet), MSG_DONTWAIT,
-                                reinterpret_cast<const sockaddr*>(&latest_.from),
-                                sizeof(latest_.from));
+  const ssize_t sent =
+      ::sendto(fd_, packet, sizeof(packet), MSG_DONTWAIT,
+               reinterpret_cast<const sockaddr*>(&latest_.from), sizeof(latest_.from));
   if (sent == static_cast<ssize_t>(sizeof(packet))) {
     internal::AtomicCounters::Bump(counters_.wrenches_sent);
   }
@@ -230,10 +237,11 @@ void UdpDeviceImpl::SetWrench(const Wrench& w_D) noexcept {
 
 }  // namespace
 
-void CheckUdpBind(const std::string& bind) { (void)ParseBind(bind); }
+void CheckUdpBind(const std::string& bind) {
+  (void)ParseBind(bind);
+}
 
-std::unique_ptr<UdpDevice> MakeUdpDevice(const UdpSettings& settings,
-                                         const Specifications& specs) {
+std::unique_ptr<UdpDevice> MakeUdpDevice(const UdpSettings& settings, const Specifications& specs) {
   return std::make_unique<UdpDeviceImpl>(settings, specs);
 }
 

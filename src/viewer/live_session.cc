@@ -102,6 +102,8 @@ std::unique_ptr<device::Device> LiveSession::MakeSource(InputSource source) cons
 void LiveSession::Launch(const engine::EngineSettings& settings, InputSource source,
                          const world::Snapshot* state) {
   std::unique_ptr<device::Device> owned = MakeSource(source);
+  // A real device (forcedimension, openhaptics, udp) connects here; simulated ones do nothing.
+  if (owned) owned->Open();
   device::Device* input = owned ? owned.get() : mouse_;
   engine::EngineSettings s = settings;
   s.mode = engine::Mode::kRealtime;
@@ -128,6 +130,7 @@ void LiveSession::Launch(const engine::EngineSettings& settings, InputSource sou
 
 void LiveSession::StopEngine() {
   loop_.Stop();
+  if (owned_source_) owned_source_->Close();  // zero output before the device is let go
   if (!engine_) return;
   const engine::RunStats stats = engine_->Stop();
   time_offset_ += static_cast<double>(stats.ticks) * settings_.haptic_dt;

@@ -17,9 +17,11 @@ class FakeLibrary {
       : handle_(::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL)) {
     if (handle_ == nullptr) ADD_FAILURE() << "cannot load " << path << ": " << ::dlerror();
   }
+
   ~FakeLibrary() {
     if (handle_ != nullptr) (void)::dlclose(handle_);
   }
+
   FakeLibrary(const FakeLibrary&) = delete;
   FakeLibrary& operator=(const FakeLibrary&) = delete;
 

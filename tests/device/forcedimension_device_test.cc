@@ -15,8 +15,8 @@ namespace mrh::device {
 namespace {
 
 using ::testing::AllOf;
-using ::testing::HasSubstr;
 using testing::FakeLibrary;
+using ::testing::HasSubstr;
 
 constexpr double kTol = 1e-12;
 
@@ -31,8 +31,8 @@ class ForceDimensionTest : public ::testing::Test {
   }
 
   void SetPose(const double p[3], const double R[9], const double v[3], int buttons) {
-    fake_.Get<void(const double*, const double*, const double*, int)>("fakedhd_SetPose")(
-        p, R, v, buttons);
+    fake_.Get<void(const double*, const double*, const double*, int)>("fakedhd_SetPose")(p, R, v,
+                                                                                         buttons);
   }
 
   int Query(const char* name) { return fake_.Get<int()>(name)(); }
@@ -57,7 +57,7 @@ TEST_F(ForceDimensionTest, OpenEnablesForcesAndCloseZeroesDisablesAndCloses) {
   EXPECT_EQ(Query("fakedhd_ForceEnabled"), 0);
   const std::array<double, 6> last = Force(Query("fakedhd_ForceCount") - 1);
   for (double v : last) EXPECT_EQ(v, 0.0);  // the last command before closing is zero
-  device->Close();  // a second Close is harmless
+  device->Close();                          // a second Close is harmless
   EXPECT_EQ(Query("fakedhd_CloseCalls"), 1);
 }
 
@@ -85,7 +85,8 @@ TEST_F(ForceDimensionTest, WritesTheCommandedForceAndTorqueUnchanged) {
   ASSERT_EQ(Query("fakedhd_ForceCount"), before + 1);
   const std::array<double, 6> f = Force(before);
   const std::array<double, 6> expected{1.5, -2.0, 0.25, 0.01, 0.02, -0.03};
-  for (int i = 0; i < 6; ++i) EXPECT_EQ(f[static_cast<std::size_t>(i)], expected[static_cast<std::size_t>(i)]);
+  for (int i = 0; i < 6; ++i)
+    EXPECT_EQ(f[static_cast<std::size_t>(i)], expected[static_cast<std::size_t>(i)]);
 }
 
 TEST_F(ForceDimensionTest, AThreeDofDeviceDropsAndCountsTorque) {
@@ -119,22 +120,30 @@ TEST_F(ForceDimensionTest, AFailedReadKeepsTheLastPoseAndIsCounted) {
 TEST_F(ForceDimensionTest, AFailedOpenIsAOneLineErrorWithTheVendorsText) {
   fake_.Get<void(int)>("fakedhd_FailOpen")(1);
   auto device = Make();
-  EXPECT_THAT([&] { device->Open(); },
-              ::testing::ThrowsMessage<RuntimeError>(
-                  AllOf(HasSubstr("dhdOpen failed"), HasSubstr("fake: no device found"),
-                        ::testing::Not(HasSubstr("\n")))));
+  EXPECT_THAT(
+      [&] {
+        device->Open();
+      },
+      ::testing::ThrowsMessage<RuntimeError>(AllOf(HasSubstr("dhdOpen failed"),
+                                                   HasSubstr("fake: no device found"),
+                                                   ::testing::Not(HasSubstr("\n")))));
 }
 
 TEST(ForceDimensionLoadTest, AMissingLibraryNamesThePathAndTheLoadersReason) {
   const std::string path = "/nonexistent/libdhd.so";
-  EXPECT_THAT([&] { (void)MakeForceDimensionDevice(ForceDimensionSettings{path}, {}); },
-              ::testing::ThrowsMessage<InvalidArgument>(
-                  AllOf(HasSubstr(path), HasSubstr("No such file"), HasSubstr("DHD"))));
+  EXPECT_THAT(
+      [&] {
+        (void)MakeForceDimensionDevice(ForceDimensionSettings{path}, {});
+      },
+      ::testing::ThrowsMessage<InvalidArgument>(
+          AllOf(HasSubstr(path), HasSubstr("No such file"), HasSubstr("DHD"))));
 }
 
 TEST(ForceDimensionLoadTest, ALibraryWithoutARequiredSymbolNamesTheSymbol) {
   EXPECT_THAT(
-      [&] { (void)MakeForceDimensionDevice(ForceDimensionSettings{MRH_FAKE_DHD_INCOMPLETE}, {}); },
+      [&] {
+        (void)MakeForceDimensionDevice(ForceDimensionSettings{MRH_FAKE_DHD_INCOMPLETE}, {});
+      },
       ::testing::ThrowsMessage<InvalidArgument>(
           AllOf(HasSubstr(MRH_FAKE_DHD_INCOMPLETE), HasSubstr("dhdClose"))));
 }

@@ -15,8 +15,8 @@ namespace mrh::device {
 namespace {
 
 using ::testing::AllOf;
-using ::testing::HasSubstr;
 using testing::FakeLibrary;
+using ::testing::HasSubstr;
 
 constexpr double kTol = 1e-12;
 
@@ -31,6 +31,7 @@ class OpenHapticsTest : public ::testing::Test {
   }
 
   int Ticks(int n) { return fake_.Get<int(int)>("fakehd_RunServoTicks")(n); }
+
   int Query(const char* name) { return fake_.Get<int()>(name)(); }
 
   std::array<double, 3> Force(int i) {
@@ -103,6 +104,7 @@ class EchoClient final : public ServoClient {
     last_t = t;
     return Wrench{-100.0 * reading.X_DT.p, Vec3::Zero()};  // a spring to the origin
   }
+
   int calls = 0;
   double last_t = -1.0;
 };
@@ -134,17 +136,23 @@ TEST_F(OpenHapticsTest, HdErrorsInTheServoLoopAreCountedAndTheLoopGoesOn) {
 TEST_F(OpenHapticsTest, AFailedInitIsAOneLineErrorNamingTheCall) {
   fake_.Get<void(int)>("fakehd_FailInit")(1);
   auto device = Make();
-  EXPECT_THAT([&] { device->Open(); },
-              ::testing::ThrowsMessage<RuntimeError>(AllOf(
-                  HasSubstr("hdInitDevice failed"), HasSubstr("fake HD error"),
-                  HasSubstr("PHANToM 1"), ::testing::Not(HasSubstr("\n")))));
+  EXPECT_THAT(
+      [&] {
+        device->Open();
+      },
+      ::testing::ThrowsMessage<RuntimeError>(
+          AllOf(HasSubstr("hdInitDevice failed"), HasSubstr("fake HD error"),
+                HasSubstr("PHANToM 1"), ::testing::Not(HasSubstr("\n")))));
 }
 
 TEST(OpenHapticsLoadTest, AMissingLibraryNamesThePathAndTheLoadersReason) {
-  EXPECT_THAT([] { (void)MakeOpenHapticsDevice(OpenHapticsSettings{"libHD-missing.so", ""}, {}); },
-              ::testing::ThrowsMessage<InvalidArgument>(
-                  AllOf(HasSubstr("libHD-missing.so"), HasSubstr("cannot open shared object"),
-                        HasSubstr("OpenHaptics"))));
+  EXPECT_THAT(
+      [] {
+        (void)MakeOpenHapticsDevice(OpenHapticsSettings{"libHD-missing.so", ""}, {});
+      },
+      ::testing::ThrowsMessage<InvalidArgument>(AllOf(HasSubstr("libHD-missing.so"),
+                                                      HasSubstr("cannot open shared object"),
+                                                      HasSubstr("OpenHaptics"))));
 }
 
 }  // namespace

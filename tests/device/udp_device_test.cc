@@ -2,12 +2,11 @@
 // The udp device over loopback: a client in the test packs poses byte by byte as
 // docs/devices.md specifies and reads the wrench packets back.
 #include <arpa/inet.h>
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
 #include <unistd.h>
-
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
 
 #include <bit>
 #include <chrono>
@@ -56,7 +55,9 @@ class Client {
     timeval two_seconds{2, 0};  // a bound on a lost packet, not a timing measurement
     EXPECT_EQ(::setsockopt(fd_, SOL_SOCKET, SO_RCVTIMEO, &two_seconds, sizeof(two_seconds)), 0);
   }
+
   ~Client() { (void)::close(fd_); }
+
   Client(const Client&) = delete;
   Client& operator=(const Client&) = delete;
 
@@ -107,7 +108,9 @@ TEST(UdpDeviceTest, PosesInWrenchesOutAnsweringTheSequenceNumber) {
   const double pose[8] = {0.25, 0.01, 0.02, 0.03, s, 0, 0, s};  // 90 degrees about z
   client.Send(PosePacket(41, pose, 3));
   DeviceState state;
-  ASSERT_TRUE(WaitFor([&] { return (state = device->Read(0.0)).X_DT.p.x() == 0.01; }));
+  ASSERT_TRUE(WaitFor([&] {
+    return (state = device->Read(0.0)).X_DT.p.x() == 0.01;
+  }));
   EXPECT_NEAR((state.X_DT.p - Vec3(0.01, 0.02, 0.03)).norm(), 0.0, kTol);
   EXPECT_NEAR((state.X_DT.q * Vec3::UnitX() - Vec3::UnitY()).norm(), 0.0, kTol);
   EXPECT_EQ(state.buttons, 3u);
@@ -132,7 +135,9 @@ TEST(UdpDeviceTest, TheNewestPoseWins) {
     const double pose[8] = {0, 0.001 * i, 0, 0, 1, 0, 0, 0};
     client.Send(PosePacket(static_cast<std::uint64_t>(i), pose, 0));
   }
-  ASSERT_TRUE(WaitFor([&] { return device->counters().poses_received == 5; }));
+  ASSERT_TRUE(WaitFor([&] {
+    return device->counters().poses_received == 5;
+  }));
   EXPECT_DOUBLE_EQ(device->Read(0.0).X_DT.p.x(), 0.005);
 }
 
@@ -141,7 +146,9 @@ TEST(UdpDeviceTest, MalformedAndForeignPacketsAreCountedAndDropped) {
   Client client(device->bound_port());
   const double good[8] = {0, 0.01, 0, 0, 1, 0, 0, 0};
   client.Send(PosePacket(1, good, 0));
-  ASSERT_TRUE(WaitFor([&] { return device->Read(0.0).X_DT.p.x() == 0.01; }));
+  ASSERT_TRUE(WaitFor([&] {
+    return device->Read(0.0).X_DT.p.x() == 0.01;
+  }));
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double bad_value[8] = {0, nan, 0, 0, 1, 0, 0, 0};
   const double zero_quat[8] = {0, 0.02, 0, 0, 0, 0, 0, 0};
@@ -155,7 +162,9 @@ TEST(UdpDeviceTest, MalformedAndForeignPacketsAreCountedAndDropped) {
   client.Send(PosePacket(4, good, 0, "MRHP", 2));
   client.Send(PosePacket(5, bad_value, 0));
   client.Send(PosePacket(6, zero_quat, 0));
-  ASSERT_TRUE(WaitFor([&] { return device->counters().packets_malformed == 6; }));
+  ASSERT_TRUE(WaitFor([&] {
+    return device->counters().packets_malformed == 6;
+  }));
   EXPECT_EQ(device->counters().poses_received, 1);
   EXPECT_DOUBLE_EQ(device->Read(0.0).X_DT.p.x(), 0.01);  // still the good pose
 }
@@ -166,7 +175,9 @@ TEST(UdpDeviceTest, NoPoseForTheTimeoutFadesTheForceToZeroAndIsCounted) {
   Client client(device->bound_port());
   const double pose[8] = {0, 0.01, 0, 0, 1, 0, 0, 0};
   client.Send(PosePacket(9, pose, 0));
-  ASSERT_TRUE(WaitFor([&] { return device->Read(0.0).X_DT.p.x() == 0.01; }));
+  ASSERT_TRUE(WaitFor([&] {
+    return device->Read(0.0).X_DT.p.x() == 0.01;
+  }));
   // Well past timeout + fade: one read moves the gain by elapsed / fade, far more than 1.
   std::this_thread::sleep_for(std::chrono::milliseconds(100));
   (void)device->Read(0.1);
@@ -183,7 +194,9 @@ TEST(UdpDeviceTest, AThreeDofDeviceSendsNoTorqueAndFlagsIt) {
   Client client(device->bound_port());
   const double pose[8] = {0, 0.01, 0, 0, 1, 0, 0, 0};
   client.Send(PosePacket(1, pose, 0));
-  ASSERT_TRUE(WaitFor([&] { return device->Read(0.0).X_DT.p.x() == 0.01; }));
+  ASSERT_TRUE(WaitFor([&] {
+    return device->Read(0.0).X_DT.p.x() == 0.01;
+  }));
   device->SetWrench(Wrench{Vec3(1, 0, 0), Vec3(0, 0, 0.2)});
   WrenchPacket w;
   ASSERT_TRUE(client.Receive(&w));
@@ -203,8 +216,11 @@ TEST(UdpDeviceTest, BeforeAnyPoseNothingIsSentAndNothingIsCountedAsTimeout) {
 
 TEST(UdpDeviceTest, ABadBindIsAnErrorNamingTheValue) {
   for (const char* bind : {"127.0.0.1", "nohost:47800", "127.0.0.1:99999", "127.0.0.1:x"}) {
-    EXPECT_THAT([&] { CheckUdpBind(bind); },
-                ::testing::ThrowsMessage<InvalidArgument>(::testing::HasSubstr(bind)));
+    EXPECT_THAT(
+        [&] {
+          CheckUdpBind(bind);
+        },
+        ::testing::ThrowsMessage<InvalidArgument>(::testing::HasSubstr(bind)));
   }
 }
 
@@ -212,8 +228,11 @@ TEST(UdpDeviceTest, ABusyPortIsAnErrorNamingTheBindAddress) {
   auto first = OpenDevice(1.0, 0.0);
   const std::string bind = "127.0.0.1:" + std::to_string(first->bound_port());
   auto second = MakeUdpDevice(UdpSettings{bind, 1.0, 0.0}, {});
-  EXPECT_THAT([&] { second->Open(); },
-              ::testing::ThrowsMessage<RuntimeError>(::testing::HasSubstr(bind)));
+  EXPECT_THAT(
+      [&] {
+        second->Open();
+      },
+      ::testing::ThrowsMessage<RuntimeError>(::testing::HasSubstr(bind)));
 }
 
 }  // namespace

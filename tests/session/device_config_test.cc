@@ -117,8 +117,8 @@ TEST(DeviceConfigTest, DeviceMustBeAnObject) {
         Parse(WithDevice(R"("fixed")"));
       },
       ThrowsInvalidExactly("session.json: device: found a string (\"fixed\"); expected an "
-                           "object with keys: type, limits, calibration, pose, keyframes, "
-                           "trajectory, hand, replay"));
+                           "object with keys: type, model, limits, calibration, pose, keyframes, "
+                           "trajectory, hand, replay, library, name, bind, timeout, fade"));
 }
 
 TEST(DeviceConfigTest, MissingTypeIsAnError) {
@@ -127,7 +127,8 @@ TEST(DeviceConfigTest, MissingTypeIsAnError) {
         Parse(WithDevice(R"({"pose": [0, 0, 0, 1, 0, 0, 0]})"));
       },
       ThrowsInvalidExactly("session.json: device.type: missing; expected one of "
-                           "\"fixed\", \"scripted\", \"hand\", \"replay\", \"external\""));
+                           "\"fixed\", \"scripted\", \"hand\", \"replay\", \"external\", "
+                           "\"forcedimension\", \"openhaptics\", \"udp\""));
 }
 
 TEST(DeviceConfigTest, UnknownTypeIsAnError) {
@@ -136,7 +137,9 @@ TEST(DeviceConfigTest, UnknownTypeIsAnError) {
         Parse(WithDevice(R"({"type": "mouse"})"));
       },
       ThrowsInvalidExactly("session.json: device.type: unknown device type \"mouse\"; "
-                           "expected one of \"fixed\", \"scripted\", \"hand\", \"replay\", \"external\""));
+                           "expected one of \"fixed\", \"scripted\", \"hand\", \"replay\", "
+                           "\"external\", "
+                           "\"forcedimension\", \"openhaptics\", \"udp\""));
 }
 
 TEST(DeviceConfigTest, KeyOfAnotherTypeIsAnErrorNamingTheType) {
@@ -146,8 +149,8 @@ TEST(DeviceConfigTest, KeyOfAnotherTypeIsAnErrorNamingTheType) {
                              "keyframes": [[0, 0, 0, 0, 1, 0, 0, 0]]})"));
       },
       ThrowsInvalidExactly("session.json: device.keyframes: not used by device type \"fixed\"; "
-                           "expected only the keys of a fixed device: type, limits, calibration, "
-                           "pose"));
+                           "expected only the keys of a fixed device: type, model, limits, "
+                           "calibration, pose"));
 }
 
 TEST(DeviceConfigTest, HandParametersOnAScriptedDeviceAreAnError) {
@@ -157,8 +160,8 @@ TEST(DeviceConfigTest, HandParametersOnAScriptedDeviceAreAnError) {
                              "hand": {"mass": 1}})"));
       },
       ThrowsInvalid("session.json: device.hand: not used by device type \"scripted\"; expected "
-                    "only the keys of a scripted device: type, limits, calibration, keyframes, "
-                    "trajectory"));
+                    "only the keys of a scripted device: type, model, limits, calibration, "
+                    "keyframes, trajectory"));
 }
 
 TEST(DeviceConfigTest, FixedDeviceWithoutPoseIsAnError) {

@@ -68,8 +68,9 @@ TEST(SessionKeysTest, UnknownDeviceKeyListsEveryDeviceKey) {
       [] {
         Parse(WithDevice(R"({"type": "fixed", "pose": [0, 0, 0, 1, 0, 0, 0], "gain": 1})"));
       },
-      ThrowsInvalid("session.json: device.gain: unknown key; expected one of: type, limits, "
-                    "calibration, pose, keyframes, trajectory, hand, replay"));
+      ThrowsInvalid("session.json: device.gain: unknown key; expected one of: type, model, "
+                    "limits, calibration, pose, keyframes, trajectory, hand, replay, library, "
+                    "name, bind, timeout, fade"));
 }
 
 TEST(SessionKeysTest, UnknownKeyTwoLevelsDownIsNamedByItsFullPath) {

@@ -58,8 +58,8 @@ std::unique_ptr<Device> MakeOpenHapticsDevice(const OpenHapticsSettings& setting
 
 /// Status bits the UDP device adds to the safety layer's bits in each wrench packet.
 enum UdpStatusBits : std::uint32_t {
-  kUdpPoseTimeout = 1u << 16,   ///< no pose for `timeout`: the force is fading or faded out
-  kUdpTorqueDropped = 1u << 17, ///< a 3-DOF device (limits.output_dof 3) dropped the torque
+  kUdpPoseTimeout = 1u << 16,    ///< no pose for `timeout`: the force is fading or faded out
+  kUdpTorqueDropped = 1u << 17,  ///< a 3-DOF device (limits.output_dof 3) dropped the torque
 };
 
 /// The network device. bound_port() tells which port Open() bound (useful with port 0).

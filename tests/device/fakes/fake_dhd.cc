@@ -89,11 +89,17 @@ int dhdEnableForce(unsigned char on, char) {
   return 0;
 }
 
-int dhdGetButtonMask(char) { return state.buttons; }
+int dhdGetButtonMask(char) {
+  return state.buttons;
+}
 
-const char* dhdErrorGetLastStr() { return state.error; }
+const char* dhdErrorGetLastStr() {
+  return state.error;
+}
 
-const char* dhdGetSystemName(char) { return "fake omega.3"; }
+const char* dhdGetSystemName(char) {
+  return "fake omega.3";
+}
 
 int dhdGetAngularVelocityRad(double* x, double* y, double* z, char) {
   *x = 0.1, *y = 0.2, *z = 0.3;
@@ -101,10 +107,21 @@ int dhdGetAngularVelocityRad(double* x, double* y, double* z, char) {
 }
 
 // Test controls and queries.
-void fakedhd_Reset() { state = State{}; }
-void fakedhd_FailOpen(int on) { state.fail_open = on != 0; }
-void fakedhd_FailReads(int n) { state.fail_reads = n; }
-void fakedhd_FailWrites(int n) { state.fail_writes = n; }
+void fakedhd_Reset() {
+  state = State{};
+}
+
+void fakedhd_FailOpen(int on) {
+  state.fail_open = on != 0;
+}
+
+void fakedhd_FailReads(int n) {
+  state.fail_reads = n;
+}
+
+void fakedhd_FailWrites(int n) {
+  state.fail_writes = n;
+}
 
 void fakedhd_SetPose(const double p[3], const double R_rowmajor[9], const double v[3],
                      int buttons) {
@@ -114,12 +131,28 @@ void fakedhd_SetPose(const double p[3], const double R_rowmajor[9], const double
   state.buttons = buttons;
 }
 
-int fakedhd_IsOpen() { return state.open ? 1 : 0; }
-int fakedhd_ForceEnabled() { return state.force_enabled ? 1 : 0; }
-int fakedhd_OpenCalls() { return state.open_calls; }
-int fakedhd_CloseCalls() { return state.close_calls; }
-int fakedhd_ForceCount() { return state.records; }
+int fakedhd_IsOpen() {
+  return state.open ? 1 : 0;
+}
 
-void fakedhd_Force(int i, double out[6]) { std::memcpy(out, state.forces[i], 6 * sizeof(double)); }
+int fakedhd_ForceEnabled() {
+  return state.force_enabled ? 1 : 0;
+}
+
+int fakedhd_OpenCalls() {
+  return state.open_calls;
+}
+
+int fakedhd_CloseCalls() {
+  return state.close_calls;
+}
+
+int fakedhd_ForceCount() {
+  return state.records;
+}
+
+void fakedhd_Force(int i, double out[6]) {
+  std::memcpy(out, state.forces[i], 6 * sizeof(double));
+}
 
 }  // extern "C"

@@ -1,11 +1,16 @@
 // SPDX-License-Identifier: Apache-2.0
 // A stand-in for OpenHaptics' libHD.so: the HD symbols mrhaptics uses, a servo "scheduler" the
 // test drives by hand (fakehd_RunServoTicks), a scripted transform and recorded forces.
+#include <atomic>
+#include <chrono>
+#include <cstdlib>
 #include <cstring>
+#include <thread>
 
 namespace {
 
 using HDCallback = unsigned int (*)(void*);
+
 struct HDErrorInfo {
   unsigned int errorCode;
   int internalErrorCode;
@@ -37,6 +42,24 @@ struct State {
 
 State state;
 
+// With FAKEHD_THREAD=1 in the environment the "scheduler" is a real thread ticking at ~1 kHz
+// (for smoke runs of `mrh run` / `mrh view`); otherwise tests tick it by hand.
+std::thread scheduler_thread;
+std::atomic<bool> scheduler_quit{false};
+std::atomic<HDCallback> sync_callback{nullptr};  // run once on the scheduler thread, as in HD
+void* sync_data = nullptr;
+
+void SchedulerLoop() {
+  while (!scheduler_quit.load()) {
+    if (HDCallback cb = sync_callback.load()) {
+      (void)cb(sync_data);
+      sync_callback.store(nullptr);
+    }
+    if (state.scheduled && state.callback(state.data) == 0) state.scheduled = false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+}
+
 }  // namespace
 
 extern "C" {
@@ -52,8 +75,13 @@ unsigned int hdInitDevice(const char* name) {
   return 1;
 }
 
-void hdDisableDevice(unsigned int) { state.disabled = true; }
-void hdEnable(unsigned int cap) { state.force_output = state.force_output || cap == 0x4000; }
+void hdDisableDevice(unsigned int) {
+  state.disabled = true;
+}
+
+void hdEnable(unsigned int cap) {
+  state.force_output = state.force_output || cap == 0x4000;
+}
 
 unsigned long hdScheduleAsynchronous(HDCallback cb, void* data, unsigned short) {
   state.callback = cb;
@@ -62,11 +90,39 @@ unsigned long hdScheduleAsynchronous(HDCallback cb, void* data, unsigned short) 
   return 7;
 }
 
-void hdScheduleSynchronous(HDCallback cb, void* data, unsigned short) { (void)cb(data); }
-void hdStartScheduler() { state.scheduler = true; }
-void hdStopScheduler() { state.scheduler = false; }
-void hdUnschedule(unsigned long) { state.scheduled = false; }
-void hdBeginFrame(unsigned int) { ++state.in_frame; }
+void hdScheduleSynchronous(HDCallback cb, void* data, unsigned short) {
+  if (!scheduler_thread.joinable()) {
+    (void)cb(data);
+    return;
+  }
+  sync_data = data;
+  sync_callback.store(cb);
+  while (sync_callback.load() != nullptr)
+    std::this_thread::sleep_for(std::chrono::microseconds(100));
+}
+
+void hdStartScheduler() {
+  state.scheduler = true;
+  const char* threaded = std::getenv("FAKEHD_THREAD");
+  if (threaded != nullptr && threaded[0] == '1' && !scheduler_thread.joinable()) {
+    scheduler_quit.store(false);
+    scheduler_thread = std::thread(SchedulerLoop);
+  }
+}
+
+void hdStopScheduler() {
+  scheduler_quit.store(true);
+  if (scheduler_thread.joinable()) scheduler_thread.join();
+  state.scheduler = false;
+}
+
+void hdUnschedule(unsigned long) {
+  state.scheduled = false;
+}
+
+void hdBeginFrame(unsigned int) {
+  ++state.in_frame;
+}
 
 void hdEndFrame(unsigned int) {
   --state.in_frame;
@@ -95,15 +151,34 @@ HDErrorInfo hdGetError() {
   return info;
 }
 
-const char* hdGetErrorString(unsigned int) { return "fake HD error"; }
+const char* hdGetErrorString(unsigned int) {
+  return "fake HD error";
+}
 
 // Test controls and queries.
-void fakehd_Reset() { state = State{}; }
-void fakehd_FailInit(int on) { state.fail_init = on != 0; }
-void fakehd_FailFrames(int n) { state.fail_frames = n; }
-void fakehd_SetTransform(const double m[16]) { std::memcpy(state.transform, m, sizeof(state.transform)); }
-void fakehd_SetVelocity(const double v[3]) { std::memcpy(state.velocity, v, sizeof(state.velocity)); }
-void fakehd_SetButtons(int b) { state.buttons = b; }
+void fakehd_Reset() {
+  state = State{};
+}
+
+void fakehd_FailInit(int on) {
+  state.fail_init = on != 0;
+}
+
+void fakehd_FailFrames(int n) {
+  state.fail_frames = n;
+}
+
+void fakehd_SetTransform(const double m[16]) {
+  std::memcpy(state.transform, m, sizeof(state.transform));
+}
+
+void fakehd_SetVelocity(const double v[3]) {
+  std::memcpy(state.velocity, v, sizeof(state.velocity));
+}
+
+void fakehd_SetButtons(int b) {
+  state.buttons = b;
+}
 
 // Runs n servo ticks of the scheduled callback on the calling thread; returns how many ran
 // (a callback that returns HD_CALLBACK_DONE is unscheduled, as in HD).
@@ -119,13 +194,36 @@ int fakehd_RunServoTicks(int n) {
   return ran;
 }
 
-int fakehd_ForceCount() { return state.records; }
-void fakehd_Force(int i, double out[3]) { std::memcpy(out, state.forces[i], 3 * sizeof(double)); }
-int fakehd_TorqueWrites() { return state.torque_writes; }
-int fakehd_ForceOutputEnabled() { return state.force_output ? 1 : 0; }
-int fakehd_SchedulerRunning() { return state.scheduler ? 1 : 0; }
-int fakehd_Disabled() { return state.disabled ? 1 : 0; }
-int fakehd_Unbalanced() { return state.in_frame; }
-const char* fakehd_DeviceName() { return state.name; }
+int fakehd_ForceCount() {
+  return state.records;
+}
+
+void fakehd_Force(int i, double out[3]) {
+  std::memcpy(out, state.forces[i], 3 * sizeof(double));
+}
+
+int fakehd_TorqueWrites() {
+  return state.torque_writes;
+}
+
+int fakehd_ForceOutputEnabled() {
+  return state.force_output ? 1 : 0;
+}
+
+int fakehd_SchedulerRunning() {
+  return state.scheduler ? 1 : 0;
+}
+
+int fakehd_Disabled() {
+  return state.disabled ? 1 : 0;
+}
+
+int fakehd_Unbalanced() {
+  return state.in_frame;
+}
+
+const char* fakehd_DeviceName() {
+  return state.name;
+}
 
 }  // extern "C"

@@ -1,0 +1,19 @@
+# SPDX-License-Identifier: Apache-2.0
+# `mrh run` with the real-device types, against the fake vendor libraries built by tests/device.
+if(TARGET mrh_fake_hd)
+  mrh_cli_test(RunMissingVendorLibraryExits2NamingPathAndReason 2 stderr
+               "^mrh: error: .*cannot load the Force Dimension DHD library .*libdhd-missing\\.so.*cannot open shared object"
+               run ${fixtures}/tiny.json --quiet --out ${CMAKE_CURRENT_BINARY_DIR}/run_fd_missing
+               --set "device={\"type\": \"forcedimension\", \"library\": \"libdhd-missing.so\"}")
+  mrh_cli_test(RunForceDimensionThroughTheFakeDhd 0 stdout "^summary: "
+               run ${fixtures}/tiny.json --quiet --duration 0.1
+               --out ${CMAKE_CURRENT_BINARY_DIR}/run_fd
+               --set "device={\"type\": \"forcedimension\", \"model\": \"omega.3\", \"library\": \"$<TARGET_FILE:mrh_fake_dhd>\"}")
+  # The fake HD scheduler runs a thread (FAKEHD_THREAD=1): the engine ticks inside its callback.
+  mrh_cli_test(RunOpenHapticsOnTheVendorsServoThread 0 stdout "^summary: "
+               run ${fixtures}/tiny.json --quiet --mode realtime --duration 0.3
+               --set realtime_priority=false --out ${CMAKE_CURRENT_BINARY_DIR}/run_oh
+               --set "device={\"type\": \"openhaptics\", \"model\": \"touch\", \"library\": \"$<TARGET_FILE:mrh_fake_hd>\"}")
+  set_tests_properties(cli.RunOpenHapticsOnTheVendorsServoThread PROPERTIES
+                       ENVIRONMENT FAKEHD_THREAD=1)
+endif()
