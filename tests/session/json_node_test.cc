@@ -40,8 +40,10 @@ TEST(SessionKeysTest, UnknownNestedKeyIsNamedByItsFullDottedPath) {
       },
       ThrowsInvalidExactly(
           "session.json: rendering.stifness: unknown key; expected one of: stiffness, "
-          "damping, neighbor_distance, neighbor_margin, curved_segments, rot_stiffness, rot_damping, rotation_weight_scale, "
-          "friction, proxy_solver, max_iterations, solver_tolerance, perturbation, perturbation_force, "
+          "damping, neighbor_distance, neighbor_margin, curved_segments, rot_stiffness, "
+          "rot_damping, rotation_weight_scale, "
+          "friction, proxy_solver, max_iterations, solver_tolerance, perturbation, "
+          "perturbation_force, local_model, "
           "rotation_weight (did you mean \"stiffness\"?)"));
 }
 
@@ -149,7 +151,9 @@ TEST(SessionKeysTest, BlockGivenAsNumberListsItsKeys) {
       },
       ThrowsInvalidExactly(
           "session.json: rendering: found a number (5); expected an object with keys: "
-          "stiffness, damping, neighbor_distance, neighbor_margin, curved_segments, rot_stiffness, rot_damping, rotation_weight_scale, friction, proxy_solver, max_iterations, solver_tolerance, perturbation, perturbation_force, rotation_weight"));
+          "stiffness, damping, neighbor_distance, neighbor_margin, curved_segments, rot_stiffness, "
+          "rot_damping, rotation_weight_scale, friction, proxy_solver, max_iterations, "
+          "solver_tolerance, perturbation, perturbation_force, local_model, rotation_weight"));
 }
 
 TEST(SessionKeysTest, WrongArrayElementIsNamedByIndex) {

@@ -128,7 +128,8 @@ TEST(OverridesTest, UnknownKeyFromAnOverrideSaysItCameFromSet) {
           "session.json: rendering.stifness: unknown key (from --set "
           "rendering.stifness=5); expected one of: stiffness, damping, neighbor_distance, "
           "neighbor_margin, curved_segments, rot_stiffness, rot_damping, rotation_weight_scale, "
-          "friction, proxy_solver, max_iterations, solver_tolerance, perturbation, perturbation_force, "
+          "friction, proxy_solver, max_iterations, solver_tolerance, perturbation, "
+          "perturbation_force, local_model, "
           "rotation_weight (did you mean \"stiffness\"?)"));
 }
 
@@ -166,8 +167,10 @@ TEST(OverridesTest, ErrorInAnotherKeyDoesNotBlameTheOverride) {
       },
       ThrowsInvalidExactly(
           "session.json: rendering.stifness: unknown key; expected one of: stiffness, "
-          "damping, neighbor_distance, neighbor_margin, curved_segments, rot_stiffness, rot_damping, rotation_weight_scale, "
-          "friction, proxy_solver, max_iterations, solver_tolerance, perturbation, perturbation_force, "
+          "damping, neighbor_distance, neighbor_margin, curved_segments, rot_stiffness, "
+          "rot_damping, rotation_weight_scale, "
+          "friction, proxy_solver, max_iterations, solver_tolerance, perturbation, "
+          "perturbation_force, local_model, "
           "rotation_weight (did you mean \"stiffness\"?)"));
 }
 

@@ -97,8 +97,10 @@ TEST(PointerBodyTest, MissingPointerNamesBodyAndFix) {
       [&] {
         World::LoadString(xml, {}, "scene.xml");
       },
-      ThrowsMessage<SceneError>(HasSubstr("scene.xml: pointer body 'pointer' not found; add <body "
-                                          "name=\"pointer\" mocap=\"true\"> with a sphere geom")));
+      ThrowsMessage<SceneError>(
+          HasSubstr("scene.xml: pointer body 'pointer' not found; add <body "
+                    "name=\"pointer\" mocap=\"true\"> as a child of <worldbody>, or set "
+                    "pointer.body")));
 }
 
 TEST(PointerBodyTest, PointerThatIsNotMocapIsRejected) {
