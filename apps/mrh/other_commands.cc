@@ -3,12 +3,16 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <fstream>
+#include <iterator>
+#include <nlohmann/json.hpp>
 
 #include "commands.h"
 #include "mrh/core/error.h"
 #include "mrh/engine/engine.h"
 #include "mrh/engine/method.h"
 #include "mrh/experiments/experiments.h"
+#include "mrh/psychophysics/study.h"
 #include "mrh/session/session.h"
 #include "mrh/world/world.h"
 
@@ -84,11 +88,24 @@ CLI::App* AddExperimentCommand(CLI::App& app, ExperimentOptions* o) {
   return experiment;
 }
 
+// True if the session has a `psychophysics` object (in the file or from --set), whose keys only
+// `mrh psychophysics run` reads: `mrh validate` then checks them too.
+bool HasStudy(const ValidateOptions& o) {
+  for (const std::string& set : o.sets) {
+    if (set.rfind("psychophysics", 0) == 0) return true;
+  }
+  std::ifstream in(o.session, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const nlohmann::json json = nlohmann::json::parse(text, nullptr, false);
+  return json.is_object() && json.contains("psychophysics");
+}
+
 // Building the engine (not only the world and device) also checks the method name and the
 // pointer body and radius, which is what a user validating a session wants to know.
 int ValidateCommand(const ValidateOptions& o) {
   const session::Session s = session::LoadSession(o.session, o.sets);
   const std::unique_ptr<engine::Engine> engine = session::MakeEngine(s);
+  if (HasStudy(o)) psychophysics::LoadStudy(o.session, o.sets);
   const int bodies = engine->world().num_bodies() - 1;  // without the world body
   for (const std::string& warning : engine->world().LoadWarnings()) {
     fmt::print(stderr, "mrh: warning: {}\n", warning);

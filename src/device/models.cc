@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// The table of known device models. Values are the vendors' published data sheets; where a
-// sheet gives per-axis values the smallest is taken (the limit holds on every axis).
+// The table of known device models, with figures from the vendors' published data sheets (see
+// the caveat below); where a sheet gives per-axis values the smallest is taken.
 #include "mrh/device/models.h"
 
 #include <array>
@@ -8,7 +8,10 @@
 namespace mrh::device {
 namespace {
 
-// Sources (vendor product data sheets / specification pages, as published):
+// Sources (vendor product data sheets / specification pages, as published). These figures were
+// taken from those sheets as remembered by the author and could not be re-checked against a
+// sheet while writing this table (no data sheet was reachable here): check them against your
+// device's sheet, and override any of them with device.limits.
 // - 3D Systems "Touch" and "Touch X" haptic device specification sheets (formerly Geomagic
 //   Touch / Phantom Omni and Geomagic Touch X / Phantom Desktop): workspace 160 x 120 x 70 mm
 //   (Touch) and 160 x 120 x 120 mm (Touch X), peak force 3.3 N / 7.9 N, stiffness

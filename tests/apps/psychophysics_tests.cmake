@@ -9,6 +9,10 @@ mrh_cli_test(PsychophysicsRunBadStudyKeyExits2NamingIt 2 stderr
              "^mrh: error: .*t4_2\\.json: psychophysics\\.masses\\[0\\]"
              psychophysics run scenes/t4_2.json --subject A --out never --terminal
              --set "psychophysics.masses=[-5]")
+mrh_cli_test(ValidateChecksTheStudyKeys 2 stderr
+             "^mrh: error: .*t4_2\\.json: psychophysics\\.masses\\[0\\]"
+             validate scenes/t4_2.json --set "psychophysics.masses=[-5]")
+mrh_cli_test(ValidateAcceptsTheShippedStudy 0 stdout "^ok: " validate scenes/t4_2.json)
 mrh_cli_test(PsychophysicsRunWithoutTheObjectExits2 2 stderr
              "^mrh: error: .*tiny\\.json: psychophysics = \\(missing\\)"
              psychophysics run ${fixtures}/tiny.json --subject A --out never --terminal)
