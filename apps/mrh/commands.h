@@ -70,6 +70,10 @@ CLI::App* AddExperimentCommand(CLI::App& app, ExperimentOptions* options);
 /// main maps those to exit codes.
 int RunCommand(const RunOptions& options);
 int ValidateCommand(const ValidateOptions& options);
+
+/// Checks the session's `psychophysics` object, if it has one (file or `sets`), as `mrh
+/// psychophysics run` reads it. @throws mrh::InvalidArgument naming the file and key.
+void CheckStudy(const std::filesystem::path& session, const std::vector<std::string>& sets);
 int MethodsCommand();
 int ExperimentCommand(const ExperimentOptions& options);
 int IrCommand(const IrOptions& options);

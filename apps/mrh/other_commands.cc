@@ -88,16 +88,19 @@ CLI::App* AddExperimentCommand(CLI::App& app, ExperimentOptions* o) {
   return experiment;
 }
 
-// True if the session has a `psychophysics` object (in the file or from --set), whose keys only
-// `mrh psychophysics run` reads: `mrh validate` then checks them too.
-bool HasStudy(const ValidateOptions& o) {
-  for (const std::string& set : o.sets) {
-    if (set.rfind("psychophysics", 0) == 0) return true;
+// A session's `psychophysics` object (in the file or from --set) is read only by `mrh
+// psychophysics run`; `mrh validate` and `mrh run` check it too, so that all three accept the same
+// files.
+void CheckStudy(const fs::path& session, const std::vector<std::string>& sets) {
+  bool has_study = false;
+  for (const std::string& set : sets) has_study = has_study || set.rfind("psychophysics", 0) == 0;
+  if (!has_study) {
+    std::ifstream in(session, std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const nlohmann::json json = nlohmann::json::parse(text, nullptr, false);
+    has_study = json.is_object() && json.contains("psychophysics");
   }
-  std::ifstream in(o.session, std::ios::binary);
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const nlohmann::json json = nlohmann::json::parse(text, nullptr, false);
-  return json.is_object() && json.contains("psychophysics");
+  if (has_study) psychophysics::LoadStudy(session, sets);
 }
 
 // Building the engine (not only the world and device) also checks the method name and the
@@ -105,7 +108,7 @@ bool HasStudy(const ValidateOptions& o) {
 int ValidateCommand(const ValidateOptions& o) {
   const session::Session s = session::LoadSession(o.session, o.sets);
   const std::unique_ptr<engine::Engine> engine = session::MakeEngine(s);
-  if (HasStudy(o)) psychophysics::LoadStudy(o.session, o.sets);
+  CheckStudy(o.session, o.sets);
   const int bodies = engine->world().num_bodies() - 1;  // without the world body
   for (const std::string& warning : engine->world().LoadWarnings()) {
     fmt::print(stderr, "mrh: warning: {}\n", warning);

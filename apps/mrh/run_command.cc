@@ -145,6 +145,7 @@ CLI::App* AddRunCommand(CLI::App& app, RunOptions* o) {
 
 int RunCommand(const RunOptions& o) {
   const session::Session s = session::LoadSession(o.session, Overrides(o));
+  CheckStudy(o.session, Overrides(o));
   // The device is built here (not by MakeEngine) to read its fault counters after the run.
   std::unique_ptr<device::Device> owned_device = session::MakeDevice(s);
   device::Device* device = owned_device.get();
