@@ -8,10 +8,9 @@
 
 #include "mrh/core/error.h"
 #include "mrh/engine/method.h"
-#include "local_contact_method.h"
-#include "local_dynamics_method.h"
-#include "point_penalty_method.h"
-#include "proxy_method.h"
+#include "mrh/haptic/methods.h"
+#include "mrh/physics/methods.h"
+#include "mrh/world/world.h"
 
 namespace mrh::engine {
 namespace {
@@ -35,6 +34,42 @@ std::mutex& RegistryMutex() {
 
 namespace {
 
+// Each built-in method is a physics half (mrh_physics) and a haptic half (mrh_haptic) built
+// from plain parameters: they share no object.
+Method PointPenalty(const MethodContext& c, bool single_rate) {
+  const RenderingSettings& r = c.settings->rendering;
+  return Method{single_rate ? "single-rate" : "impulse", single_rate,
+                physics::MakePointPenaltyPhysics(c),
+                haptic::MakePointPenaltyHaptic(physics::PointerRadiusFor3Dof(c), r.stiffness,
+                                               r.damping)};
+}
+
+Method SingleRate(const MethodContext& c) { return PointPenalty(c, true); }
+
+Method Impulse(const MethodContext& c) { return PointPenalty(c, false); }
+
+Method Proxy(const MethodContext& c) {
+  // The renderer settings first: they carry the session-key errors.
+  const render::ProxyRendererSettings settings =
+      physics::ProxySettingsFor(*c.world, c.pointer_body, c.settings->rendering);
+  return Method{"proxy-6dof", false, physics::MakeProxyPhysics(c),
+                haptic::MakeProxyHaptic(settings)};
+}
+
+// rendering.local_model picks the local model: "contact" (default; free-jointed scenes only)
+// or the thesis' "perturbation".
+Method LocalDynamics(const MethodContext& c) {
+  const RenderingSettings& r = c.settings->rendering;
+  if (physics::UsesContactLocalModel(c)) {
+    return Method{"local-dynamics", false, physics::MakeLocalContactPhysics(c),
+                  haptic::MakeLocalContactHaptic(physics::PointerRadiusFor3Dof(c), r.stiffness,
+                                                 r.damping)};
+  }
+  return Method{"local-dynamics", false, physics::MakeLocalDynamicsPhysics(c),
+                haptic::MakeLocalDynamicsHaptic(physics::PointerRadiusFor3Dof(c), r.stiffness,
+                                                r.damping)};
+}
+
 // Built-in methods register on first use: self-registering statics would be dropped by the
 // linker from a static library.
 void RegisterBuiltins() {
@@ -42,18 +77,18 @@ void RegisterBuiltins() {
   std::call_once(once, [] {
     RegisterMethod("single-rate",
                    "B1: world stepped at the haptic rate, 3-DOF penalty force applied every tick",
-                   internal::MakeSingleRateMethod);
+                   SingleRate);
     RegisterMethod("impulse",
                    "B4: conventional multi-rate, reaction impulse sent to the next physics step",
-                   internal::MakeImpulseMethod);
+                   Impulse);
     RegisterMethod("proxy-6dof",
                    "Ch. 3: geometric IR + 6-DOF proxy with friction cones, reaction one step late",
-                   internal::MakeProxyMethod);
+                   Proxy);
     RegisterMethod("local-dynamics",
                    "Ch. 4: neighbors simulated at the haptic rate; rendering.local_model "
                    "\"contact\" (their contact island with friction, default) or "
                    "\"perturbation\" (thesis: accelerance + bias)",
-                   internal::MakeLocalDynamicsAnyModel);
+                   LocalDynamics);
   });
 }
 
@@ -72,7 +107,7 @@ std::vector<std::pair<std::string, std::string>> ListMethods() {
   return out;
 }
 
-std::unique_ptr<Method> MakeMethod(const std::string& name, const MethodContext& context) {
+Method MakeMethod(const std::string& name, const MethodContext& context) {
   RegisterBuiltins();
   MethodFactory factory;
   {

@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
 // The haptic tick: adopt the newest snapshot, render, shape for safety, command, record.
-#include "haptic_side.h"
+#include "mrh/haptic/haptic_side.h"
 
 #include <algorithm>
 
-namespace mrh::engine::internal {
+namespace mrh::haptic {
 
-HapticSide::HapticSide(Method* method, device::Device* device,
+HapticSide::HapticSide(MethodHaptic* method, device::Device* device,
                        const device::Calibration& calibration,
                        const device::SafetySettings& safety, int ticks_per_step, double haptic_dt,
                        const Exchange& exchange)
@@ -116,4 +116,4 @@ void HapticSide::Stop() noexcept {
   counters_.stopped = true;
 }
 
-}  // namespace mrh::engine::internal
+}  // namespace mrh::haptic

@@ -2,15 +2,15 @@
 // Haptic half of local-dynamics: local simulation of the neighbors and 3-DOF penalty rendering.
 #include <algorithm>
 
-#include "local_dynamics_method.h"
+#include "local_dynamics_haptic.h"
 #include "normal_carry.h"
 
-namespace mrh::engine::internal {
+namespace mrh::haptic::internal {
 
 // A body that continues keeps its local state (the local simulation owns it while it stays a
 // neighbor, SPEC §4.4) and gets the correction of eq. 4.18 at its first tick; a new neighbor
 // starts from the global state. Normals blend from the last rendered one (SPEC §4.6).
-void LocalDynamicsMethod::Adopt(const ir::PhysicsSnapshot& snapshot) noexcept {
+void LocalDynamicsHaptic::Adopt(const ir::PhysicsSnapshot& snapshot) noexcept {
   CarryRenderedNormals(snapshot, snapshot_, rendered_n_, &previous_n_);
   const LocalBodies& old = local();
   LocalBodies& next = locals_[1 - current_];
@@ -36,7 +36,7 @@ void LocalDynamicsMethod::Adopt(const ir::PhysicsSnapshot& snapshot) noexcept {
   for (std::size_t i = 0; i < snapshot_.contacts.size(); ++i) rendered_n_[i] = previous_n_[i];
 }
 
-void LocalDynamicsMethod::HapticTick(const TickInput& in, TickOutput* out) noexcept {
+void LocalDynamicsHaptic::HapticTick(const TickInput& in, TickOutput* out) noexcept {
   const double alpha = std::min(1.0, static_cast<double>(in.j + 1) / static_cast<double>(in.n));
   out->w_W = Wrench{};
   out->contacts = 0;
@@ -57,7 +57,7 @@ void LocalDynamicsMethod::HapticTick(const TickInput& in, TickOutput* out) noexc
 
 // Corrected eq. 4.11 against every contact's plane: on a dynamic neighbor the plane moves with
 // its local body; a static or kinematic body is blended between its step poses as in B4.
-void LocalDynamicsMethod::RenderContacts(const TickInput& in, double alpha,
+void LocalDynamicsHaptic::RenderContacts(const TickInput& in, double alpha,
                                          TickOutput* out) noexcept {
   for (std::size_t i = 0; i < snapshot_.contacts.size(); ++i) {
     const ir::PointContact& c = snapshot_.contacts[i];
@@ -97,7 +97,7 @@ void LocalDynamicsMethod::RenderContacts(const TickInput& in, double alpha,
 
 // eq. 4.14–4.15 with this tick's reaction, and the period's impulse bookkeeping: the last
 // reaction force becomes the next perturbation force (SPEC §4.7).
-void LocalDynamicsMethod::StepLocalBodies(const TickInput& in, TickOutput* out) noexcept {
+void LocalDynamicsHaptic::StepLocalBodies(const TickInput& in, TickOutput* out) noexcept {
   for (ir::BodyImpulse& entry : period_.impulses) entry.last_force = Vec3::Zero();
   for (std::size_t b = 0; b < snapshot_.bodies.size(); ++b) {
     if (snapshot_.bodies[b].has_dynamics && !local()[b].Step(tick_force_[b], in.dt)) {
@@ -110,7 +110,7 @@ void LocalDynamicsMethod::StepLocalBodies(const TickInput& in, TickOutput* out) 
   }
 }
 
-void LocalDynamicsMethod::EndPeriod(ir::HapticReport* report) noexcept {
+void LocalDynamicsHaptic::EndPeriod(ir::HapticReport* report) noexcept {
   report->impulses = period_.impulses;
   report->local_states.Clear();
   for (std::size_t b = 0; b < snapshot_.bodies.size(); ++b) {
@@ -126,11 +126,11 @@ void LocalDynamicsMethod::EndPeriod(ir::HapticReport* report) noexcept {
   period_.status = ir::kStatusOk;
 }
 
-const render::LocalBody* LocalDynamicsMethod::local_body(int body) const noexcept {
+const render::LocalBody* LocalDynamicsHaptic::local_body(int body) const noexcept {
   for (std::size_t b = 0; b < snapshot_.bodies.size(); ++b) {
     if (snapshot_.bodies[b].body == body && snapshot_.bodies[b].has_dynamics) return &local()[b];
   }
   return nullptr;
 }
 
-}  // namespace mrh::engine::internal
+}  // namespace mrh::haptic::internal

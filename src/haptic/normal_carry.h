@@ -7,7 +7,7 @@
 #include "mrh/core/spatial.h"
 #include "mrh/ir/snapshot.h"
 
-namespace mrh::engine::internal {
+namespace mrh::haptic::internal {
 
 using ContactNormals = std::array<Vec3, ir::kMaxPointContacts>;
 
@@ -30,4 +30,4 @@ inline void CarryRenderedNormals(const ir::PhysicsSnapshot& next,
   }
 }
 
-}  // namespace mrh::engine::internal
+}  // namespace mrh::haptic::internal

@@ -4,7 +4,7 @@
 
 #include "mrh/world/world.h"
 
-namespace mrh::engine::internal {
+namespace mrh::physics::internal {
 
 BodyMotions::BodyMotions(const world::World& world)
     : previous_X_WB_(static_cast<std::size_t>(world.num_bodies())) {
@@ -37,4 +37,4 @@ int BodyMotions::Add(const world::World& world, int body, ir::PhysicsSnapshot* o
   return static_cast<int>(out->bodies.size() - 1);
 }
 
-}  // namespace mrh::engine::internal
+}  // namespace mrh::physics::internal

@@ -11,7 +11,7 @@ namespace mrh::world {
 class World;
 }
 
-namespace mrh::engine::internal {
+namespace mrh::physics::internal {
 
 /// Remembers every body's pose before a physics step (the start of the haptic side's
 /// interpolation) and adds ir::BodyMotion entries to snapshots. Shared by the point and the
@@ -32,4 +32,4 @@ class BodyMotions {
   std::vector<Pose> previous_X_WB_;
 };
 
-}  // namespace mrh::engine::internal
+}  // namespace mrh::physics::internal

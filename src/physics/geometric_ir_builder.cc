@@ -11,7 +11,7 @@
 #include "mrh/core/error.h"
 #include "mrh/world/world.h"
 
-namespace mrh::engine::internal {
+namespace mrh::physics::internal {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -210,4 +210,4 @@ void GeometricIrBuilder::FillPair(const Neighbor& n, const Pose& X_WP, int motio
 }
 
 
-}  // namespace mrh::engine::internal
+}  // namespace mrh::physics::internal

@@ -18,7 +18,9 @@ namespace mrh::world {
 class World;
 }
 
-namespace mrh::engine::internal {
+namespace mrh::physics::internal {
+
+using engine::RenderingSettings;
 
 /// Work done by the last GeometricIrBuilder::Build, for experiments and benchmarks. Times are
 /// wall-clock seconds of the physics thread.
@@ -108,4 +110,4 @@ class GeometricIrBuilder {
   GeometricIrStats stats_;
 };
 
-}  // namespace mrh::engine::internal
+}  // namespace mrh::physics::internal

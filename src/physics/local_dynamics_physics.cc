@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // Physics half of local-dynamics: synchronization, global step, IR and perturbations (SPEC §4.9).
-#include "local_dynamics_method.h"
+#include "local_dynamics_physics.h"
 
 #include <algorithm>
 #include <chrono>
@@ -9,7 +9,7 @@
 
 #include "mrh/world/world.h"
 
-namespace mrh::engine::internal {
+namespace mrh::physics::internal {
 namespace {
 
 // A user force below this (N) is no usable test force: the perturbed velocities would be
@@ -35,19 +35,16 @@ double MsSince(std::chrono::steady_clock::time_point t0) {
 
 }  // namespace
 
-LocalDynamicsMethod::LocalDynamicsMethod(const MethodContext& context,
-                                         const LocalDynamicsOptions& options)
+LocalDynamicsPhysics::LocalDynamicsPhysics(const MethodContext& context,
+                                           const LocalDynamicsOptions& options)
     : world_(context.world),
       pointer_body_(context.pointer_body),
       physics_dt_(context.settings->physics_dt),
       rendering_(context.settings->rendering),
       correction_(rendering_.perturbation ? options.correction
                                           : CorrectionModel::kVelocityResidual),
-      perturber_(context.world, options.perturber),
-      radius_(PointerRadiusFor3Dof(context)),
-      stiffness_(context.settings->rendering.stiffness),
-      damping_(context.settings->rendering.damping) {
-  builder_.emplace(*world_, pointer_body_, radius_, rendering_);
+      perturber_(context.world, options.perturber) {
+  builder_.emplace(*world_, pointer_body_, PointerRadiusFor3Dof(context), rendering_);
   if (options.reference.has_value() && rendering_.perturbation) {
     reference_.emplace(context.world, *options.reference);
   }
@@ -60,7 +57,7 @@ LocalDynamicsMethod::LocalDynamicsMethod(const MethodContext& context,
   measured_.reserve(capacity);
 }
 
-void LocalDynamicsMethod::PhysicsStart(const ir::HapticReport& initial, ir::PhysicsSnapshot* out) {
+void LocalDynamicsPhysics::PhysicsStart(const ir::HapticReport& initial, ir::PhysicsSnapshot* out) {
   world_->SetMocapPose(pointer_body_, initial.X_WP);
   builder_->CapturePreviousPoses(*world_);
   builder_->Build(*world_, initial.X_WP, out);
@@ -74,7 +71,7 @@ void LocalDynamicsMethod::PhysicsStart(const ir::HapticReport& initial, ir::Phys
 
 // SPEC §4.9, inside physics step k: (0) overwrite, (1) global step recording f_n, (2) neighbor
 // search and IR, (3) perturbations, (4) fill the snapshot.
-void LocalDynamicsMethod::PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot* out) {
+void LocalDynamicsPhysics::PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot* out) {
   LocalDynamicsTiming& last = counters_.last;
   auto t0 = std::chrono::steady_clock::now();
   Overwrite(report);
@@ -97,7 +94,7 @@ void LocalDynamicsMethod::PhysicsStep(const ir::HapticReport& report, ir::Physic
   counters_.total.perturbation_ms += last.perturbation_ms;
 }
 
-const LocalDynamicsMethod::SentBody* LocalDynamicsMethod::FindSent(
+const LocalDynamicsPhysics::SentBody* LocalDynamicsPhysics::FindSent(
     const std::vector<SentBody>& sent, int body) const {
   for (const SentBody& s : sent) {
     if (s.body == body) return &s;
@@ -107,7 +104,7 @@ const LocalDynamicsMethod::SentBody* LocalDynamicsMethod::FindSent(
 
 // (1) The global step, without the user's force (SPEC I10), recording each dynamic neighbor's
 // velocity correction for eq. 4.18 (CorrectionModel).
-void LocalDynamicsMethod::GlobalStep(const ir::HapticReport& report) {
+void LocalDynamicsPhysics::GlobalStep(const ir::HapticReport& report) {
   const bool residual = correction_ == CorrectionModel::kVelocityResidual;
   if (residual) {
     for (SentBody& s : sent_last_) s.u_before = world_->body_state(s.body).V_WCm;
@@ -132,7 +129,7 @@ void LocalDynamicsMethod::GlobalStep(const ir::HapticReport& report) {
 // Every dynamic neighbor with its nearest contact's plane point and the first test force: the
 // reaction the user applied at the end of the last period (SPEC §4.9), or the nominal force
 // into the object (SPEC I8).
-void LocalDynamicsMethod::FindTargets(const ir::HapticReport* report,
+void LocalDynamicsPhysics::FindTargets(const ir::HapticReport* report,
                                       const ir::PhysicsSnapshot& out) {
   targets_.clear();
   for (std::size_t m = 0; m < out.bodies.size(); ++m) {
@@ -165,7 +162,7 @@ void LocalDynamicsMethod::FindTargets(const ir::HapticReport* report,
 }
 
 // (3) Perturbation runs: one shared zero-force run, then three per target (SPEC I9).
-void LocalDynamicsMethod::MeasureTargets(ir::PhysicsSnapshot* out) {
+void LocalDynamicsPhysics::MeasureTargets(ir::PhysicsSnapshot* out) {
   const auto t0 = std::chrono::steady_clock::now();
   measured_.clear();
   if (rendering_.perturbation && !targets_.empty()) {
@@ -203,7 +200,7 @@ void LocalDynamicsMethod::MeasureTargets(ir::PhysicsSnapshot* out) {
 }
 
 // The same measurements by the reference perturber, from the same (restored) state.
-void LocalDynamicsMethod::CheckAgainstReference() {
+void LocalDynamicsPhysics::CheckAgainstReference() {
   reference_->Begin(target_bodies_);
   reference_->ZeroForceRun();
   for (std::size_t i = 0; i < targets_.size(); ++i) {
@@ -220,7 +217,7 @@ void LocalDynamicsMethod::CheckAgainstReference() {
 
 // A = M⁻¹J of the body alone for a force at p_W (eq. 4.1–4.2 without what it touches), b = 0:
 // the "without perturbations" variant, and the fallback for a failed measurement.
-world::DynamicIr LocalDynamicsMethod::OwnAccelerance(int body, const Vec3& p_W) const {
+world::DynamicIr LocalDynamicsPhysics::OwnAccelerance(int body, const Vec3& p_W) const {
   const world::BodyInfo& info = world_->body(body);
   const world::BodyState state = world_->body_state(body);
   const Mat3 R = state.X_WB.q.toRotationMatrix();
@@ -231,7 +228,7 @@ world::DynamicIr LocalDynamicsMethod::OwnAccelerance(int body, const Vec3& p_W) 
 }
 
 // (4) Dynamic IR into the snapshot, and the bookkeeping for the next two steps.
-void LocalDynamicsMethod::FillDynamics(ir::PhysicsSnapshot* out) {
+void LocalDynamicsPhysics::FillDynamics(ir::PhysicsSnapshot* out) {
   sent_before_.swap(sent_last_);
   sent_last_.clear();
   group_before_.swap(group_last_);
@@ -268,8 +265,4 @@ void LocalDynamicsMethod::FillDynamics(ir::PhysicsSnapshot* out) {
   }
 }
 
-std::unique_ptr<Method> MakeLocalDynamicsMethod(const MethodContext& context) {
-  return std::make_unique<LocalDynamicsMethod>(context);
-}
-
-}  // namespace mrh::engine::internal
+}  // namespace mrh::physics::internal

@@ -1,30 +1,26 @@
 // SPDX-License-Identifier: Apache-2.0
-// The proposed method of Chapter 4: local simulation driven by the dynamic IR (accelerance + bias).
+// Physics half of the Chapter-4 method: the dynamic IR (accelerance + bias) per physics step.
 #pragma once
 
-#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
 #include <vector>
 
-#include "mrh/engine/method.h"
-#include "mrh/render/local_body.h"
+#include "mrh/physics/method_physics.h"
 #include "mrh/world/perturbation.h"
-#include "normal_carry.h"
 #include "point_ir_builder.h"
 
-namespace mrh::engine::internal {
+namespace mrh::physics::internal {
 
-/// TickOutput::status bit: a local body's state became non-finite and was stopped.
-inline constexpr std::uint32_t kLocalBodyFault = 1u << 0;
+using engine::RenderingSettings;
 
 /// How the velocity correction of eq. 4.18 (the effect of what A cannot predict) is obtained
 /// (SPEC §4.8.2, I11).
 enum class CorrectionModel {
   /// Springhead's realization (SPEC §4.11): (u_after − u_before) − b_pred Δt over the global
   /// step. Captures new and broken contacts alike. Relies on the group synchronization (see
-  /// LocalDynamicsMethod): without it, a pushed group's catching up in the global step is
+  /// LocalDynamicsPhysics): without it, a pushed group's catching up in the global step is
   /// attributed to the neighbor, and a row of k cubes feels like about k²·m.
   kVelocityResidual,
   /// Impulses of the contacts in the global step whose geom pair did not exist where A was
@@ -33,7 +29,7 @@ enum class CorrectionModel {
   kNewContacts,
 };
 
-/// Options of LocalDynamicsMethod that sessions do not set (tests and experiments do).
+/// Options of LocalDynamicsPhysics that sessions do not set (tests and experiments do).
 struct LocalDynamicsOptions {
   world::PerturberSettings perturber;
   CorrectionModel correction = CorrectionModel::kVelocityResidual;
@@ -63,7 +59,7 @@ struct LocalDynamicsCounters {
   /// applied as a force instead, and the local simulation restarts from the global state.
   std::int64_t overwrite_failures = 0;
   std::int64_t own_accelerance = 0;  ///< bodies given M⁻¹J (perturbation off or non-finite)
-  /// Group bodies moved along with a synchronized neighbor (see LocalDynamicsMethod), and those
+  /// Group bodies moved along with a synchronized neighbor (see LocalDynamicsPhysics), and those
   /// whose joints could not take the move.
   std::int64_t group_syncs = 0;
   std::int64_t group_sync_failures = 0;
@@ -75,13 +71,6 @@ struct LocalDynamicsCounters {
   double reference_max_rel_b = 0.0;
   LocalDynamicsTiming last;   ///< the latest step's phases
   LocalDynamicsTiming total;  ///< summed over all steps
-};
-
-/// Counters of the haptic half (haptic thread; read them after the run).
-struct LocalDynamicsHapticCounters {
-  std::int64_t ticks = 0;
-  std::int64_t local_faults = 0;  ///< local bodies stopped on a non-finite state
-  std::int64_t corrections = 0;   ///< eq. 4.18 velocity corrections applied
 };
 
 /// Method `local-dynamics` (SPEC §4): the physics half overwrites the neighbors with the local
@@ -107,28 +96,19 @@ struct LocalDynamicsHapticCounters {
 /// plus the eq. 4.18 correction sent for that period's first tick. (Writing the bare end state
 /// lets the global and local states drift apart by that correction, and the loop through b then
 /// turns unstable on stiff contacts: a cube resting on a floor starts to bounce.)
-class LocalDynamicsMethod final : public Method {
+///
+/// This is the physics half; the haptic half is haptic::internal::LocalDynamicsHaptic.
+class LocalDynamicsPhysics final : public MethodPhysics {
  public:
-  explicit LocalDynamicsMethod(const MethodContext& context,
-                               const LocalDynamicsOptions& options = {});
-
-  const char* name() const noexcept override { return "local-dynamics"; }
+  explicit LocalDynamicsPhysics(const MethodContext& context,
+                                const LocalDynamicsOptions& options = {});
 
   void PhysicsStart(const ir::HapticReport& initial, ir::PhysicsSnapshot* out) override;
   void PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot* out) override;
-  void Adopt(const ir::PhysicsSnapshot& snapshot) noexcept override;
-  void HapticTick(const TickInput& in, TickOutput* out) noexcept override;
-  void EndPeriod(ir::HapticReport* report) noexcept override;
 
   const LocalDynamicsCounters& counters() const { return counters_; }
 
-  const LocalDynamicsHapticCounters& haptic_counters() const { return haptic_counters_; }
-
   const world::PerturberCounters& perturber_counters() const { return perturber_.counters(); }
-
-  /// The local simulation of world body `body`, or null when it is not simulated locally.
-  /// Haptic thread only (tests read it between ticks). RT-safe.
-  const render::LocalBody* local_body(int body) const noexcept;
 
  private:
   // A dynamic neighbor in a snapshot this half produced.
@@ -151,7 +131,6 @@ class LocalDynamicsMethod final : public Method {
     Vec3 f1 = Vec3::Zero();   // first test force (eq. 4.5–4.7)
   };
 
-  // Physics half.
   void Overwrite(const ir::HapticReport& report);
   void SyncGroup(const SentBody& sent, const world::BodyState& global,
                  const ir::LocalBodyState& local);
@@ -183,36 +162,6 @@ class LocalDynamicsMethod final : public Method {
   std::vector<world::DynamicIr> measured_;
   std::vector<std::uint64_t> known_contacts_;  // contact pairs where the latest A was measured
   LocalDynamicsCounters counters_;
-
-  // Haptic half.
-  void RenderContacts(const TickInput& in, double alpha, TickOutput* out) noexcept;
-  void StepLocalBodies(const TickInput& in, TickOutput* out) noexcept;
-
-  double radius_;
-  double stiffness_;
-  double damping_;
-  ir::PhysicsSnapshot snapshot_;
-  // Two generations of local bodies, indexed like the bodies of the snapshot that made them:
-  // Adopt() builds the new one from the old one.
-  using LocalBodies = std::array<render::LocalBody, ir::kMaxNeighborBodies>;
-
-  LocalBodies& local() noexcept { return locals_[current_]; }
-
-  const LocalBodies& local() const noexcept { return locals_[current_]; }
-
-  std::array<LocalBodies, 2> locals_{};
-  std::size_t current_ = 0;
-  std::array<bool, ir::kMaxNeighborBodies> pending_{};
-  std::array<Twist, ir::kMaxNeighborBodies> pending_dV_{};
-  ContactNormals previous_n_{};
-  ContactNormals rendered_n_{};
-  std::array<Vec3, ir::kMaxNeighborBodies> tick_force_{};
-  std::array<Vec3, ir::kMaxNeighborBodies> tick_torque_{};
-  ir::HapticReport period_;
-  LocalDynamicsHapticCounters haptic_counters_;
 };
 
-/// Factory registered as "local-dynamics".
-std::unique_ptr<Method> MakeLocalDynamicsMethod(const MethodContext& context);
-
-}  // namespace mrh::engine::internal
+}  // namespace mrh::physics::internal

@@ -1,17 +1,17 @@
 // SPDX-License-Identifier: Apache-2.0
 // local-dynamics, physics half, step (0): local → global synchronization (eq. 4.16–4.17) and the
 // group extension.
-#include "local_dynamics_method.h"
+#include "local_dynamics_physics.h"
 #include "mrh/core/spatial.h"
 #include "mrh/world/world.h"
 #include "report_impulses.h"
 
-namespace mrh::engine::internal {
+namespace mrh::physics::internal {
 
 // (0) eq. 4.16–4.17. The report's period rendered the snapshot before the latest one, so only
 // its bodies are written: the physics side's merged report may still hold states of bodies
 // that left the neighborhood earlier (they have been simulated globally since).
-void LocalDynamicsMethod::Overwrite(const ir::HapticReport& report) {
+void LocalDynamicsPhysics::Overwrite(const ir::HapticReport& report) {
   sync_failed_.clear();
   for (const ir::LocalBodyState& state : report.local_states) {
     const SentBody* sent = FindSent(sent_before_, state.body);
@@ -39,7 +39,7 @@ void LocalDynamicsMethod::Overwrite(const ir::HapticReport& report) {
 }
 
 // The extension described at LocalDynamicsMethod: Δ_j = A_jB A_B⁺ Δ for the neighbor's group.
-void LocalDynamicsMethod::SyncGroup(const SentBody& sent, const world::BodyState& global,
+void LocalDynamicsPhysics::SyncGroup(const SentBody& sent, const world::BodyState& global,
                                     const ir::LocalBodyState& local) {
   if (sent.members == 0) return;
   // Columns: the twist discrepancy and the pose discrepancy (COM shift, rotation vector).
@@ -71,4 +71,4 @@ void LocalDynamicsMethod::SyncGroup(const SentBody& sent, const world::BodyState
   }
 }
 
-}  // namespace mrh::engine::internal
+}  // namespace mrh::physics::internal

@@ -6,7 +6,7 @@
 
 #include "mrh/world/world.h"
 
-namespace mrh::engine::internal {
+namespace mrh::physics::internal {
 namespace {
 
 // Below this the witness vector is too short to define a direction (m).
@@ -87,4 +87,4 @@ void PointIrBuilder::Build(const world::World& world, const Pose& X_WP,
   }
 }
 
-}  // namespace mrh::engine::internal
+}  // namespace mrh::physics::internal

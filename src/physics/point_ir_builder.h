@@ -13,7 +13,9 @@ namespace mrh::world {
 class World;
 }
 
-namespace mrh::engine::internal {
+namespace mrh::physics::internal {
+
+using engine::RenderingSettings;
 
 /// Builds PhysicsSnapshot bodies and point contacts for a sphere pointer (SPEC §4.4): a bounding
 /// sphere broad phase inflated by `neighbor_margin`, then an FCL signed-distance narrow phase;
@@ -47,4 +49,4 @@ class PointIrBuilder {
   BodyMotions motions_;
 };
 
-}  // namespace mrh::engine::internal
+}  // namespace mrh::physics::internal

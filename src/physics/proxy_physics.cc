@@ -1,19 +1,18 @@
 // SPDX-License-Identifier: Apache-2.0
-// The chapter-3 method: geometric IR built per physics step, 6-DOF proxy rendered per tick.
-#include "proxy_method.h"
+// Physics half of the chapter-3 method: geometric IR built per physics step.
+#include "proxy_physics.h"
 
 #include <fmt/format.h>
 
-#include <algorithm>
-
 #include "mrh/core/error.h"
+#include "mrh/physics/methods.h"
 #include "mrh/world/world.h"
 #include "report_impulses.h"
 
-namespace mrh::engine::internal {
+namespace mrh::physics {
 
 Mat3 PointerRotationWeight(const world::World& world, int pointer_body,
-                           const RenderingSettings& rendering) {
+                           const engine::RenderingSettings& rendering) {
   if (rendering.rotation_weight) return rendering.rotation_weight->asDiagonal();
   const world::BodyInfo& pointer = world.body(pointer_body);
   if (!(pointer.mass > 0.0)) {
@@ -34,7 +33,7 @@ Mat3 PointerRotationWeight(const world::World& world, int pointer_body,
 }
 
 render::ProxyRendererSettings ProxySettingsFor(const world::World& world, int pointer_body,
-                                               const RenderingSettings& rendering) {
+                                               const engine::RenderingSettings& rendering) {
   if (rendering.max_iterations > render::kMaxProxyIterations) {
     throw InvalidArgument(
         fmt::format("rendering.max_iterations = {}; expected 1..{} for proxy-6dof (the solver's "
@@ -55,30 +54,32 @@ render::ProxyRendererSettings ProxySettingsFor(const world::World& world, int po
   return s;
 }
 
-ProxyMethod::ProxyMethod(const MethodContext& context)
+}  // namespace mrh::physics
+
+namespace mrh::physics::internal {
+
+ProxyPhysics::ProxyPhysics(const MethodContext& context)
     : world_(context.world),
       pointer_body_(context.pointer_body),
-      physics_dt_(context.settings->physics_dt),
-      renderer_(
-          ProxySettingsFor(*context.world, context.pointer_body, context.settings->rendering)) {
+      physics_dt_(context.settings->physics_dt) {
   builder_.emplace(*world_, pointer_body_, context.settings->rendering);
 }
 
-void ProxyMethod::Build(const Pose& X_WP, ir::PhysicsSnapshot* out) {
+void ProxyPhysics::Build(const Pose& X_WP, ir::PhysicsSnapshot* out) {
   builder_->Build(*world_, X_WP, out);
   out->contacts.Clear();  // the 3-DOF plane IR is not used by this method
   out->t = world_->time();
   out->physics_dt = physics_dt_;
 }
 
-void ProxyMethod::PhysicsStart(const ir::HapticReport& initial, ir::PhysicsSnapshot* out) {
+void ProxyPhysics::PhysicsStart(const ir::HapticReport& initial, ir::PhysicsSnapshot* out) {
   world_->SetMocapPose(pointer_body_, initial.X_WP);
   builder_->CapturePreviousPoses(*world_);
   Build(initial.X_WP, out);
   out->step = -1;
 }
 
-void ProxyMethod::PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot* out) {
+void ProxyPhysics::PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot* out) {
   // SPEC §3.6 / I5: what the user pushed during the last period acts as a constant wrench over
   // this whole step, so the objects answer one physics step late (the chapter-3 design).
   ApplyReportImpulses(*world_, report, physics_dt_);
@@ -88,31 +89,4 @@ void ProxyMethod::PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapsho
   Build(report.X_WP, out);
 }
 
-void ProxyMethod::Adopt(const ir::PhysicsSnapshot& snapshot) noexcept {
-  interpolator_.Adopt(snapshot);
-}
-
-void ProxyMethod::HapticTick(const TickInput& in, TickOutput* out) noexcept {
-  const double alpha =
-      std::min(1.0, static_cast<double>(in.j + 1) / static_cast<double>(std::max(in.n, 1)));
-  interpolator_.Evaluate(alpha, in.X_WP, &tick_ir_);
-  renderer_.Tick(tick_ir_, in.X_WP, in.dt, &output_);
-  out->w_W = output_.w_W;
-  out->X_WQ = output_.X_WQ;
-  out->contacts = output_.diagnostics.contacts;
-  out->status = output_.diagnostics.status;
-  render::AddReactionImpulses(output_, in.dt, &period_);
-}
-
-void ProxyMethod::EndPeriod(ir::HapticReport* report) noexcept {
-  report->impulses = period_.impulses;
-  report->status |= period_.status;
-  period_.impulses.Clear();
-  period_.status = ir::kStatusOk;
-}
-
-std::unique_ptr<Method> MakeProxyMethod(const MethodContext& context) {
-  return std::make_unique<ProxyMethod>(context);
-}
-
-}  // namespace mrh::engine::internal
+}  // namespace mrh::physics::internal

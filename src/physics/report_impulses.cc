@@ -4,7 +4,7 @@
 
 #include "mrh/world/world.h"
 
-namespace mrh::engine::internal {
+namespace mrh::physics::internal {
 namespace {
 
 void ApplyImpulse(world::World& world, const ir::BodyImpulse& impulse, double dt) {
@@ -23,4 +23,4 @@ void ApplyReportImpulses(world::World& world, const ir::HapticReport& report, do
   }
 }
 
-}  // namespace mrh::engine::internal
+}  // namespace mrh::physics::internal

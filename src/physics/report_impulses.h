@@ -8,7 +8,7 @@ namespace mrh::world {
 class World;
 }
 
-namespace mrh::engine::internal {
+namespace mrh::physics::internal {
 
 /// Adds each impulse J = (∫f dt, ∫τ dt about the COM) of `report` to `world` as the constant
 /// wrench J/dt (world frame, torque about the body's COM) over the next World::Step, so that
@@ -21,4 +21,4 @@ void ApplyReportImpulses(world::World& world, const ir::HapticReport& report, do
 /// Physics thread only; not RT-safe.
 void ApplyReportImpulses(world::World& world, const ir::HapticReport& report, double dt, int body);
 
-}  // namespace mrh::engine::internal
+}  // namespace mrh::physics::internal

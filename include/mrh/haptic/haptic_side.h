@@ -10,11 +10,11 @@
 #include "mrh/device/calibration.h"
 #include "mrh/device/device.h"
 #include "mrh/device/safety.h"
-#include "mrh/engine/engine.h"
-#include "mrh/engine/method.h"
+#include "mrh/haptic/method_haptic.h"
+#include "mrh/haptic/tick_record.h"
 #include "mrh/ir/snapshot.h"
 
-namespace mrh::engine::internal {
+namespace mrh::haptic {
 
 /// Counters the haptic thread keeps; read by other threads only after it has stopped.
 struct HapticCounters {
@@ -29,7 +29,7 @@ struct HapticCounters {
   bool stopped = false;   ///< Stop() sent the final zero wrench to the device
 };
 
-/// Everything one haptic tick touches. All buffers are sized in the constructor; Tick() is
+/// The haptic thread's side of a run: everything one haptic tick touches. All buffers are sized in the constructor; Tick() is
 /// RT-safe. Single-threaded: only the haptic thread (or the lockstep loop) calls Tick().
 class HapticSide {
  public:
@@ -39,7 +39,7 @@ class HapticSide {
     SpscRing<TickRecord>* tick_records;            ///< haptic → recorder
   };
 
-  HapticSide(Method* method, device::Device* device, const device::Calibration& calibration,
+  HapticSide(MethodHaptic* method, device::Device* device, const device::Calibration& calibration,
              const device::SafetySettings& safety, int ticks_per_step, double haptic_dt,
              const Exchange& exchange);
 
@@ -59,7 +59,7 @@ class HapticSide {
   void EndPeriod(double t) noexcept;
   void Count(const Wrench& displayed, std::uint32_t bits) noexcept;
 
-  Method* method_;
+  MethodHaptic* method_;
   device::Device* device_;
   device::Calibration calibration_;
   device::SafetyFilter safety_;
@@ -77,4 +77,4 @@ class HapticSide {
   HapticCounters counters_;
 };
 
-}  // namespace mrh::engine::internal
+}  // namespace mrh::haptic

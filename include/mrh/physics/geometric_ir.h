@@ -10,7 +10,7 @@ namespace mrh::world {
 class World;
 }
 
-namespace mrh::engine {
+namespace mrh::physics {
 
 /// Builds the geometric IR (SPEC §3.2–3.3) of `pointer_body` at X_WP (world) against the world
 /// in its current state, with the neighbor and tessellation settings of `rendering`, into
@@ -20,7 +20,7 @@ namespace mrh::engine {
 /// @throws mrh::SceneError if the pointer body has no geom, a pointer geom is a plane, or a geom
 /// cannot be represented (the message names the geom). Physics thread; not RT-safe.
 void BuildGeometricIr(const world::World& world, int pointer_body,
-                      const RenderingSettings& rendering, const Pose& X_WP,
+                      const engine::RenderingSettings& rendering, const Pose& X_WP,
                       ir::PhysicsSnapshot* out);
 
-}  // namespace mrh::engine
+}  // namespace mrh::physics

@@ -1,14 +1,13 @@
 // SPDX-License-Identifier: Apache-2.0
 // local-dynamics, contact local model, physics half: synchronization, global step, IR, export.
-#include "local_contact_method.h"
+#include "local_contact_physics.h"
 
 #include <algorithm>
 
-#include "local_dynamics_method.h"
 #include "mrh/world/world.h"
 #include "report_impulses.h"
 
-namespace mrh::engine::internal {
+namespace mrh::physics::internal {
 namespace {
 
 bool Contains(const std::vector<int>& list, int body) {
@@ -17,27 +16,22 @@ bool Contains(const std::vector<int>& list, int body) {
 
 }  // namespace
 
-LocalContactMethod::LocalContactMethod(const MethodContext& context,
-                                       const render::LocalContactSolverSettings& solver)
+LocalContactPhysics::LocalContactPhysics(const MethodContext& context)
     : world_(context.world),
       pointer_body_(context.pointer_body),
       physics_dt_(context.settings->physics_dt),
-      exporter_(context.world),
-      radius_(context.pointer_radius),
-      stiffness_(context.settings->rendering.stiffness),
-      damping_(context.settings->rendering.damping),
-      solver_(solver) {
-  builder_.emplace(*world_, pointer_body_, radius_, context.settings->rendering);
+      exporter_(context.world) {
+  builder_.emplace(*world_, pointer_body_, PointerRadiusFor3Dof(context),
+                   context.settings->rendering);
   const auto capacity = static_cast<std::size_t>(world_->num_bodies());
   seeds_.reserve(capacity);
   motions_.reserve(capacity);
   sent_last_.reserve(capacity);
   sent_before_.reserve(capacity);
   failed_.reserve(capacity);
-  local_of_motion_.fill(-1);
 }
 
-void LocalContactMethod::PhysicsStart(const ir::HapticReport& initial, ir::PhysicsSnapshot* out) {
+void LocalContactPhysics::PhysicsStart(const ir::HapticReport& initial, ir::PhysicsSnapshot* out) {
   world_->SetMocapPose(pointer_body_, initial.X_WP);
   builder_->CapturePreviousPoses(*world_);
   builder_->Build(*world_, initial.X_WP, out);
@@ -48,7 +42,7 @@ void LocalContactMethod::PhysicsStart(const ir::HapticReport& initial, ir::Physi
 }
 
 // (0) overwrite, (1) global step without the user's force, (2) IR, (3) export.
-void LocalContactMethod::PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot* out) {
+void LocalContactPhysics::PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot* out) {
   Overwrite(report);
   world_->SetMocapPose(pointer_body_, report.X_WP);
   builder_->CapturePreviousPoses(*world_);
@@ -62,7 +56,7 @@ void LocalContactMethod::PhysicsStep(const ir::HapticReport& report, ir::Physics
 
 // eq. 4.16–4.17 for every island body of the snapshot the report's period rendered. A touched
 // body outside the island (no free joint) gets the period's reaction as an impulse (B4).
-void LocalContactMethod::Overwrite(const ir::HapticReport& report) {
+void LocalContactPhysics::Overwrite(const ir::HapticReport& report) {
   failed_.clear();
   for (const ir::LocalBodyState& state : report.local_states) {
     if (!Contains(sent_before_, state.body)) continue;
@@ -82,7 +76,7 @@ void LocalContactMethod::Overwrite(const ir::HapticReport& report) {
 }
 
 // The island of the dynamic neighbors the pointer may touch (every body with a plane IR).
-void LocalContactMethod::Export(ir::PhysicsSnapshot* out) {
+void LocalContactPhysics::Export(ir::PhysicsSnapshot* out) {
   seeds_.clear();
   motions_.clear();
   for (const ir::PointContact& c : out->contacts) {
@@ -115,12 +109,13 @@ bool AllMovingBodiesFree(world::World& world) {
 }
 }  // namespace
 
-std::unique_ptr<Method> MakeLocalDynamicsAnyModel(const MethodContext& context) {
-  if (context.settings->rendering.local_model == "perturbation" ||
-      !AllMovingBodiesFree(*context.world)) {
-    return MakeLocalDynamicsMethod(context);
-  }
-  return std::make_unique<LocalContactMethod>(context);
+}  // namespace mrh::physics::internal
+
+namespace mrh::physics {
+
+bool UsesContactLocalModel(const MethodContext& context) {
+  return context.settings->rendering.local_model != "perturbation" &&
+         internal::AllMovingBodiesFree(*context.world);
 }
 
-}  // namespace mrh::engine::internal
+}  // namespace mrh::physics

@@ -3,15 +3,20 @@
 // rendering against planes fixed on its bodies.
 #include <algorithm>
 
-#include "local_contact_method.h"
+#include "local_contact_haptic.h"
 #include "mrh/render/point_penalty.h"
-#include "normal_carry.h"
 
-namespace mrh::engine::internal {
+namespace mrh::haptic::internal {
+
+LocalContactHaptic::LocalContactHaptic(double radius, double stiffness, double damping,
+                                       const render::LocalContactSolverSettings& solver)
+    : radius_(radius), stiffness_(stiffness), damping_(damping), solver_(solver) {
+  local_of_motion_.fill(-1);
+}
 
 // Island bodies that stay in the island keep their local state (LocalContactSolver::Adopt); a
 // plane on an island body keeps its normal in the body frame, so it turns with the local body.
-void LocalContactMethod::Adopt(const ir::PhysicsSnapshot& snapshot) noexcept {
+void LocalContactHaptic::Adopt(const ir::PhysicsSnapshot& snapshot) noexcept {
   CarryRenderedNormals(snapshot, snapshot_, rendered_n_, &previous_n_);
   snapshot_ = snapshot;
   solver_.Adopt(snapshot_.local_model);
@@ -25,7 +30,7 @@ void LocalContactMethod::Adopt(const ir::PhysicsSnapshot& snapshot) noexcept {
   }
 }
 
-void LocalContactMethod::HapticTick(const TickInput& in, TickOutput* out) noexcept {
+void LocalContactHaptic::HapticTick(const TickInput& in, TickOutput* out) noexcept {
   const double alpha = std::min(1.0, static_cast<double>(in.j + 1) / static_cast<double>(in.n));
   out->w_W = Wrench{};
   out->contacts = 0;
@@ -41,7 +46,7 @@ void LocalContactMethod::HapticTick(const TickInput& in, TickOutput* out) noexce
 
 // Corrected eq. 4.11 against every contact's plane; the reaction (eq. 4.12) goes to the island
 // body in this tick, or, for a body outside the island, into the period's impulse.
-void LocalContactMethod::RenderContacts(const TickInput& in, double alpha,
+void LocalContactHaptic::RenderContacts(const TickInput& in, double alpha,
                                         TickOutput* out) noexcept {
   for (std::size_t i = 0; i < snapshot_.contacts.size(); ++i) {
     const ir::PointContact& c = snapshot_.contacts[i];
@@ -79,7 +84,7 @@ void LocalContactMethod::RenderContacts(const TickInput& in, double alpha,
   }
 }
 
-void LocalContactMethod::EndPeriod(ir::HapticReport* report) noexcept {
+void LocalContactHaptic::EndPeriod(ir::HapticReport* report) noexcept {
   report->impulses = period_.impulses;
   report->local_states.Clear();
   for (std::size_t i = 0; i < solver_.size(); ++i) {
@@ -93,4 +98,4 @@ void LocalContactMethod::EndPeriod(ir::HapticReport* report) noexcept {
   period_.status = ir::kStatusOk;
 }
 
-}  // namespace mrh::engine::internal
+}  // namespace mrh::haptic::internal
