@@ -79,6 +79,7 @@ RunStats Engine::Stop() {
   RunStats stats;
   internal::FillPhysicsStats(run.physics, &stats);
   internal::FillHapticStats(s.haptic->counters(), &stats);
+  internal::FillMethodStatus(s.haptic->counters(), s.method, &stats);
   stats.method = s.method.name;
   stats.mode = s.settings.mode;
   stats.physics_dt = s.settings.physics_dt;

@@ -57,6 +57,7 @@ void RunPhysicsThread(PhysicsSide& physics, const std::atomic<bool>& done);
 /// counters' share into `stats` and names the method, mode and rates.
 void FillHapticStats(const HapticCounters& counters, RunStats* stats);
 void FillPhysicsStats(PhysicsSide& physics, RunStats* stats);
+void FillMethodStatus(const HapticCounters& counters, const Method& method, RunStats* stats);
 
 using physics::Percentile;
 

@@ -45,6 +45,7 @@ RunStats RunLockstep(EngineState& state, Recorder* recorder, const Engine::Progr
   RunStats stats;
   FillPhysicsStats(physics, &stats);
   FillHapticStats(state.haptic->counters(), &stats);
+  FillMethodStatus(state.haptic->counters(), state.method, &stats);
   stats.method = state.method.name;
   stats.mode = Mode::kLockstep;
   stats.physics_dt = state.settings.physics_dt;

@@ -41,7 +41,8 @@ Method PointPenalty(const MethodContext& c, bool single_rate) {
   return Method{single_rate ? "single-rate" : "impulse", single_rate,
                 physics::MakePointPenaltyPhysics(c),
                 haptic::MakePointPenaltyHaptic(physics::PointerRadiusFor3Dof(c), r.stiffness,
-                                               r.damping)};
+                                               r.damping),
+                {}};
 }
 
 Method SingleRate(const MethodContext& c) { return PointPenalty(c, true); }
@@ -53,7 +54,9 @@ Method Proxy(const MethodContext& c) {
   const render::ProxyRendererSettings settings =
       physics::ProxySettingsFor(*c.world, c.pointer_body, c.settings->rendering);
   return Method{"proxy-6dof", false, physics::MakeProxyPhysics(c),
-                haptic::MakeProxyHaptic(settings)};
+                haptic::MakeProxyHaptic(settings),
+                // render::ProxyStatusBits
+                {"proxy.rows_full", "proxy.not_converged", "proxy.bad_input"}};
 }
 
 // rendering.local_model picks the local model: "contact" (default; free-jointed scenes only)
@@ -63,11 +66,13 @@ Method LocalDynamics(const MethodContext& c) {
   if (physics::UsesContactLocalModel(c)) {
     return Method{"local-dynamics", false, physics::MakeLocalContactPhysics(c),
                   haptic::MakeLocalContactHaptic(physics::PointerRadiusFor3Dof(c), r.stiffness,
-                                                 r.damping)};
+                                                 r.damping),
+                  {"local_dynamics.local_body_fault"}};  // haptic::LocalDynamicsStatusBits
   }
   return Method{"local-dynamics", false, physics::MakeLocalDynamicsPhysics(c),
                 haptic::MakeLocalDynamicsHaptic(physics::PointerRadiusFor3Dof(c), r.stiffness,
-                                                r.damping)};
+                                                r.damping),
+                {"local_dynamics.local_body_fault"}};  // haptic::LocalDynamicsStatusBits
 }
 
 // Built-in methods register on first use: self-registering statics would be dropped by the

@@ -103,6 +103,7 @@ RunStats RunRealtime(EngineState& s, Recorder* recorder, const Engine::ProgressF
   for (const std::string& w : stats.warnings) spdlog::warn("{}", w);
   FillPhysicsStats(physics, &stats);
   FillHapticStats(s.haptic->counters(), &stats);
+  FillMethodStatus(s.haptic->counters(), s.method, &stats);
   std::vector<double> jitter(timing.jitter_us.begin(),
                              timing.jitter_us.begin() + static_cast<std::ptrdiff_t>(timing.samples));
   stats.jitter_p50_us = Percentile(jitter, 50.0);

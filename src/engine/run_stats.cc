@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // What every scheduler shares: the physics thread's loop and the statistics tail of a run.
+#include <string>
 #include <utility>
 
 #include "engine_impl.h"
@@ -41,6 +42,16 @@ void FillHapticStats(const HapticCounters& c, RunStats* stats) {
   stats->dropped_reports = c.dropped_reports;
 }
 
+void FillMethodStatus(const HapticCounters& c, const Method& method, RunStats* stats) {
+  for (std::size_t i = 0; i < c.method_status_ticks.size(); ++i) {
+    const bool named = i < method.status_bits.size() && !method.status_bits[i].empty();
+    if (!named && c.method_status_ticks[i] == 0) continue;
+    stats->method_status.emplace_back(
+        named ? method.status_bits[i] : method.name + ".bit" + std::to_string(i),
+        c.method_status_ticks[i]);
+  }
+}
+
 
 void FillPhysicsStats(PhysicsSide& physics, RunStats* stats) {
   physics::PhysicsStats p;
@@ -50,6 +61,7 @@ void FillPhysicsStats(PhysicsSide& physics, RunStats* stats) {
   stats->step_ms_p99 = p.step_ms_p99;
   stats->step_ms_max = p.step_ms_max;
   stats->ir_status = p.ir_status;
+  stats->phase_ms = p.phase_total;
   for (std::string& w : p.warnings) stats->warnings.push_back(std::move(w));
   stats->impulses = std::move(p.impulses);
 }

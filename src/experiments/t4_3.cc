@@ -350,7 +350,8 @@ AccuracyResult RunAccuracy(const std::filesystem::path& scene, int cubes, const 
                                std::make_unique<physics::internal::LocalDynamicsPhysics>(context,
                                                                                          o),
                                haptic::MakeLocalDynamicsHaptic(context.pointer_radius,
-                                                               r.stiffness, r.damping)};
+                                                               r.stiffness, r.damping),
+                               {"local_dynamics.local_body_fault"}};
                          });
   const double dt = options.physics_dt;
   const auto steps = static_cast<std::size_t>(options.accuracy_steps);

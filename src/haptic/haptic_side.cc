@@ -78,6 +78,10 @@ void HapticSide::Tick(double t) noexcept {
   record.rendered_W = out.w_W;
   record.contacts = out.contacts;
   record.safety_bits = bits;
+  record.method_status = out.status;
+  for (std::uint32_t s = out.status, i = 0; s != 0; s >>= 1, ++i) {
+    if (s & 1u) ++counters_.method_status_ticks[i];
+  }
   if (!exchange_.tick_records->TryPush(record)) ++counters_.dropped_tick_records;
 
   ++counters_.ticks;

@@ -39,7 +39,7 @@ void LocalContactHaptic::HapticTick(const TickInput& in, TickOutput* out) noexce
   RenderContacts(in, alpha, out);
   if (!solver_.Step(in.dt)) {
     ++counters_.local_faults;
-    out->status |= kLocalIslandFault;
+    out->status |= kLocalBodyFault;
   }
   ++counters_.ticks;
 }

@@ -6,13 +6,14 @@
 #include <cstdint>
 
 #include "mrh/haptic/method_haptic.h"
+#include "mrh/haptic/methods.h"
 #include "mrh/render/local_contact_solver.h"
 #include "normal_carry.h"
 
 namespace mrh::haptic::internal {
 
-/// TickOutput::status bit: a local island body became non-finite and was stopped.
-inline constexpr std::uint32_t kLocalIslandFault = 1u << 0;
+// TickOutput::status: kLocalBodyFault when an island body became non-finite and was stopped.
+using haptic::kLocalBodyFault;
 
 /// Counters of the contact model's haptic half (haptic thread; read them after the run).
 struct LocalContactHapticCounters {

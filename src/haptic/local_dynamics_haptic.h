@@ -6,13 +6,13 @@
 #include <cstdint>
 
 #include "mrh/haptic/method_haptic.h"
+#include "mrh/haptic/methods.h"
 #include "mrh/render/local_body.h"
 #include "normal_carry.h"
 
 namespace mrh::haptic::internal {
 
-/// TickOutput::status bit: a local body's state became non-finite and was stopped.
-inline constexpr std::uint32_t kLocalBodyFault = 1u << 0;
+using haptic::kLocalBodyFault;
 
 /// Counters of the haptic half (haptic thread; read them after the run).
 struct LocalDynamicsHapticCounters {

@@ -3,6 +3,7 @@
 #include "local_contact_physics.h"
 
 #include <algorithm>
+#include <chrono>
 
 #include "mrh/world/world.h"
 #include "report_impulses.h"
@@ -43,12 +44,20 @@ void LocalContactPhysics::PhysicsStart(const ir::HapticReport& initial, ir::Phys
 
 // (0) overwrite, (1) global step without the user's force, (2) IR, (3) export.
 void LocalContactPhysics::PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot* out) {
+  auto t0 = std::chrono::steady_clock::now();
   Overwrite(report);
+  phases_.sync_ms = MsSince(t0);
+  t0 = std::chrono::steady_clock::now();
   world_->SetMocapPose(pointer_body_, report.X_WP);
   builder_->CapturePreviousPoses(*world_);
   world_->Step();
+  phases_.world_step_ms = MsSince(t0);
+  t0 = std::chrono::steady_clock::now();
   builder_->Build(*world_, report.X_WP, out);
+  phases_.ir_ms = MsSince(t0);
+  t0 = std::chrono::steady_clock::now();
   Export(out);
+  phases_.model_ms = MsSince(t0);
   out->t = world_->time();
   out->physics_dt = physics_dt_;
   ++counters_.steps;

@@ -36,6 +36,9 @@ class LocalContactPhysics final : public MethodPhysics {
 
   void PhysicsStart(const ir::HapticReport& initial, ir::PhysicsSnapshot* out) override;
   void PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot* out) override;
+  /// sync_ms: the overwrite (0); world_step_ms: the global step (1); ir_ms: the plane IR (2);
+  /// model_ms: the island export (3).
+  PhaseTimes last_phases() const noexcept override { return phases_; }
 
   const LocalContactCounters& counters() const { return counters_; }
 
@@ -52,6 +55,7 @@ class LocalContactPhysics final : public MethodPhysics {
   std::vector<int> sent_last_, sent_before_;  // island bodies of the latest two snapshots
   std::vector<int> failed_;                   // bodies whose overwrite failed in this step
   LocalContactCounters counters_;
+  PhaseTimes phases_;
 };
 
 }  // namespace mrh::physics::internal

@@ -28,11 +28,6 @@ Mat3 Cross(const Vec3& r) {
   return m;
 }
 
-// Wall-clock milliseconds since `t0`, for the cost counters.
-double MsSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
 }  // namespace
 
 LocalDynamicsPhysics::LocalDynamicsPhysics(const MethodContext& context,

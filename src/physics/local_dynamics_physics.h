@@ -105,6 +105,12 @@ class LocalDynamicsPhysics final : public MethodPhysics {
 
   void PhysicsStart(const ir::HapticReport& initial, ir::PhysicsSnapshot* out) override;
   void PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot* out) override;
+  /// counters().last as the engine's phases: overwrite → sync, global → world_step, ir,
+  /// perturbation → model.
+  PhaseTimes last_phases() const noexcept override {
+    const LocalDynamicsTiming& t = counters_.last;
+    return PhaseTimes{t.global_ms, t.ir_ms, t.perturbation_ms, t.overwrite_ms};
+  }
 
   const LocalDynamicsCounters& counters() const { return counters_; }
 

@@ -50,6 +50,15 @@ void PhysicsSide::Step(std::int64_t k) {
   last_step_.neighbors = static_cast<int>(out.bodies.size());
   last_step_.point_contacts = static_cast<int>(out.contacts.size());
   last_step_.solver_iterations = world_->solver_iterations();
+  const PhaseTimes phases = method_->last_phases();
+  last_step_.world_step_ms = phases.world_step_ms;
+  last_step_.ir_ms = phases.ir_ms;
+  last_step_.model_ms = phases.model_ms;
+  last_step_.sync_ms = phases.sync_ms;
+  phase_total_.world_step_ms += phases.world_step_ms;
+  phase_total_.ir_ms += phases.ir_ms;
+  phase_total_.model_ms += phases.model_ms;
+  phase_total_.sync_ms += phases.sync_ms;
   step_ms_.push_back(last_step_.compute_ms);
   ++steps_;
 }
@@ -93,6 +102,7 @@ void PhysicsSide::Finish(PhysicsStats* stats) {
   stats->step_ms_p99 = Percentile(step_ms_, 99.0);
   stats->step_ms_max = step_ms_.empty() ? 0.0 : *std::max_element(step_ms_.begin(), step_ms_.end());
   stats->ir_status = ir_status_;
+  stats->phase_total = phase_total_;
   for (const std::string& line : world_->LoadWarnings()) stats->warnings.push_back(line);
   for (std::string& line : world_->SimulatorWarnings()) {
     stats->warnings.push_back(std::move(line));

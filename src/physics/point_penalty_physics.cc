@@ -29,8 +29,12 @@ void PointPenaltyPhysics::PhysicsStep(const ir::HapticReport& report, ir::Physic
   ApplyReportImpulses(*world_, report, physics_dt_);
   world_->SetMocapPose(pointer_body_, report.X_WP);
   builder_->CapturePreviousPoses(*world_);
+  auto t0 = std::chrono::steady_clock::now();
   world_->Step();
+  phases_.world_step_ms = MsSince(t0);
+  t0 = std::chrono::steady_clock::now();
   builder_->Build(*world_, report.X_WP, out);
+  phases_.ir_ms = MsSince(t0);
   out->t = world_->time();
   out->physics_dt = physics_dt_;
 }

@@ -19,11 +19,13 @@ class PointPenaltyPhysics final : public MethodPhysics {
 
   void PhysicsStart(const ir::HapticReport& initial, ir::PhysicsSnapshot* out) override;
   void PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot* out) override;
+  PhaseTimes last_phases() const noexcept override { return phases_; }
 
  private:
   world::World* world_;
   int pointer_body_;
   double physics_dt_;
+  PhaseTimes phases_;
   std::optional<PointIrBuilder> builder_;
 };
 

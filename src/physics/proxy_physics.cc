@@ -85,8 +85,12 @@ void ProxyPhysics::PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapsh
   ApplyReportImpulses(*world_, report, physics_dt_);
   world_->SetMocapPose(pointer_body_, report.X_WP);
   builder_->CapturePreviousPoses(*world_);
+  auto t0 = std::chrono::steady_clock::now();
   world_->Step();
+  phases_.world_step_ms = MsSince(t0);
+  t0 = std::chrono::steady_clock::now();
   Build(report.X_WP, out);
+  phases_.ir_ms = MsSince(t0);
 }
 
 }  // namespace mrh::physics::internal

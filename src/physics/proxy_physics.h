@@ -28,6 +28,7 @@ class ProxyPhysics final : public MethodPhysics {
 
   void PhysicsStart(const ir::HapticReport& initial, ir::PhysicsSnapshot* out) override;
   void PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot* out) override;
+  PhaseTimes last_phases() const noexcept override { return phases_; }
 
   /// The work of the last IR build.
   const GeometricIrStats& ir_stats() const { return builder_->stats(); }
@@ -38,6 +39,7 @@ class ProxyPhysics final : public MethodPhysics {
   world::World* world_;
   int pointer_body_;
   double physics_dt_;
+  PhaseTimes phases_;
   std::optional<GeometricIrBuilder> builder_;
 };
 

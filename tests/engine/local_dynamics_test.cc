@@ -189,7 +189,8 @@ TEST_P(RowOfCubesTest, FeltMassIsTheWholeRowAndTheGlobalRowMovesAlong) {
     RegisterMethod(name, "test", [options](const MethodContext& c) {
       return Method{"local-dynamics", false, std::make_unique<LocalDynamicsPhysics>(c, options),
                     haptic::MakeLocalDynamicsHaptic(c.pointer_radius, c.settings->rendering.stiffness,
-                                                    c.settings->rendering.damping)};
+                                                    c.settings->rendering.damping),
+                    {"local_dynamics.local_body_fault"}};
     });
     EngineSettings settings = LocalSettings(kDuration);
     settings.method = name;

@@ -52,7 +52,7 @@ TEST(ScheduleTest, PeriodKRendersStepKMinus1AndStepKConsumesPeriodKMinus1) {
   RegisterMethod("probe", "test probe",
                  [](const MethodContext&) {
                    return Method{"probe", false, std::make_unique<ProbePhysics>(g_log),
-                                 std::make_unique<ProbeHaptic>(g_log)};
+                                 std::make_unique<ProbeHaptic>(g_log), {}};
                  });
   EngineSettings s = T41Settings("probe");
   s.physics_dt = 0.005;

@@ -6,6 +6,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "mrh/core/spatial.h"
@@ -13,6 +14,7 @@
 #include "mrh/device/device.h"
 #include "mrh/engine/settings.h"
 #include "mrh/haptic/tick_record.h"
+#include "mrh/physics/method_physics.h"
 #include "mrh/physics/recorder.h"
 
 namespace mrh::world {
@@ -49,6 +51,12 @@ struct RunStats {
   /// the stop (`stopped`), which commands zero whatever was rendered last.
   Wrench final_wrench;
   bool stopped = false;
+  /// Method status (TickOutput::status), namespaced per method: for each bit the method names
+  /// (Method::status_bits, e.g. "proxy.not_converged"), the ticks on which it was set.
+  std::vector<std::pair<std::string, std::int64_t>> method_status;
+  /// The physics phases (MuJoCo step, IR build, local-model export, sync) summed over the run
+  /// (ms, wall clock); per step in StepRecord / steps.csv.
+  physics::PhaseTimes phase_ms;
   bool realtime_priority = false;            ///< SCHED_FIFO + mlockall granted
   std::vector<BodyImpulseTotal> impulses;
   std::vector<std::string> warnings;

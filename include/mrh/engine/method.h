@@ -28,6 +28,10 @@ struct Method {
   bool single_rate = false;
   std::unique_ptr<physics::MethodPhysics> physics;
   std::unique_ptr<haptic::MethodHaptic> haptic;
+  /// Names of the haptic half's status bits (TickOutput::status), bit i = status_bits[i],
+  /// namespaced by the method ("proxy.rows_full"); empty names are unused bits. They reach
+  /// RunStats::method_status and summary.json.
+  std::vector<std::string> status_bits;
 };
 
 using MethodFactory = std::function<Method(const MethodContext&)>;

@@ -2,6 +2,7 @@
 // The haptic thread's per-tick pipeline: device → method → safety → device, plus exchange.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -27,6 +28,8 @@ struct HapticCounters {
   std::int64_t dropped_tick_records = 0, dropped_reports = 0;
   Wrench last_displayed;  ///< world frame; zero once Stop() commanded the final zero wrench
   bool stopped = false;   ///< Stop() sent the final zero wrench to the device
+  /// Ticks on which method status bit i (TickOutput::status) was set.
+  std::array<std::int64_t, 32> method_status_ticks{};
 };
 
 /// The haptic thread's side of a run: everything one haptic tick touches. All buffers are sized in the constructor; Tick() is

@@ -29,7 +29,9 @@ struct TickOutput {
   /// the call; a method with a proxy (proxy-6dof) overwrites it, the others leave it.
   Pose X_WQ;
   int contacts = 0;               ///< active contacts this tick
-  std::uint32_t status = 0;       ///< method status bits
+  /// Method status bits: their meaning is the method's own (named by engine::Method::
+  /// status_bits); the haptic side records them per tick and counts every bit.
+  std::uint32_t status = 0;
 };
 
 /// The haptic half of a method (single-rate, impulse, local-dynamics, proxy-6dof, ...). Runs on

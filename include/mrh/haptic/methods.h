@@ -2,12 +2,19 @@
 // The built-in methods' haptic halves, built from plain parameters (they never see the world).
 #pragma once
 
+#include <cstdint>
 #include <memory>
 
 #include "mrh/haptic/method_haptic.h"
 #include "mrh/render/proxy_renderer.h"
 
 namespace mrh::haptic {
+
+/// TickOutput::status bits of local-dynamics' haptic half (RunStats::method_status names them
+/// "local_dynamics.<name>"). proxy-6dof reports render::ProxyStatusBits ("proxy.<name>").
+enum LocalDynamicsStatusBits : std::uint32_t {
+  kLocalBodyFault = 1u << 0,  ///< a local body's state became non-finite and was stopped
+};
 
 /// Haptic half of "single-rate" and "impulse": 3-DOF penalty (eq. 4.11) with a pointer sphere
 /// of `radius` (m), stiffness k (N/m) and damping d (N·s/m). Not RT-safe (allocates once).

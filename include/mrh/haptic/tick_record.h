@@ -19,6 +19,9 @@ struct TickRecord {
   Wrench rendered_W;              ///< wrench the method rendered (what the physics saw)
   int contacts = 0;
   std::uint32_t safety_bits = 0;  ///< device::SafetyBits
+  /// The method's status bits this tick (TickOutput::status; their names per method are
+  /// engine::Method::status_bits, e.g. "proxy.not_converged").
+  std::uint32_t method_status = 0;
 };
 
 }  // namespace mrh::haptic

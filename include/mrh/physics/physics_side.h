@@ -25,6 +25,7 @@ struct PhysicsStats {
   std::int64_t steps = 0;
   double step_ms_p50 = 0.0, step_ms_p99 = 0.0, step_ms_max = 0.0;
   std::uint32_t ir_status = 0;  ///< ir::StatusBits seen
+  PhaseTimes phase_total;       ///< MethodPhysics::last_phases summed over the steps (ms)
   std::vector<BodyImpulseTotal> impulses;
   std::vector<std::string> warnings;
 };
@@ -72,6 +73,7 @@ class PhysicsSide {
   std::int64_t steps_ = 0;
   std::vector<double> step_ms_;
   std::uint32_t ir_status_ = 0;
+  PhaseTimes phase_total_;
   std::map<int, BodyImpulseTotal> impulses_;
 };
 

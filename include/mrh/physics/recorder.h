@@ -27,6 +27,8 @@ struct StepRecord {
   int neighbors = 0;              ///< neighbor bodies in the snapshot
   int point_contacts = 0;         ///< IR contacts in the snapshot
   int solver_iterations = 0;
+  /// The method's phases of this step (MethodPhysics::last_phases), ms.
+  double world_step_ms = 0.0, ir_ms = 0.0, model_ms = 0.0, sync_ms = 0.0;
 };
 
 /// Receives records on a non-RT thread (the physics thread, or the lockstep loop), in order.
