@@ -65,8 +65,30 @@ void LocalContactSolver::Adopt(const ir::LocalContactModel& model) noexcept {
     r = Row{};
     r.c = c;
   }
+  HoldRestingPenetration();
   gravity_ = model.gravity;
   active_ = 0;
+}
+
+// MuJoCo's soft contact rests at a penetration (the load over its contact stiffness) and the
+// global step puts it back every period, so pushing it out lifts every pushed body each period
+// and the global step drops it again. A body pair's contacts (consecutive rows: the engine
+// emits them per geom pair) therefore hold the shallowest penetration among them: a body at
+// MuJoCo's rest stays put, while a tilt of the soft contact (deeper rows) is still removed, so a
+// pushed box stays level.
+void LocalContactSolver::HoldRestingPenetration() noexcept {
+  std::size_t first = 0;
+  while (first < rows_count_) {
+    std::size_t end = first + 1;
+    double shallowest = rows_[first].c.dist0;
+    while (end < rows_count_ && rows_[end].c.a == rows_[first].c.a &&
+           rows_[end].c.b == rows_[first].c.b) {
+      shallowest = std::max(shallowest, rows_[end].c.dist0);
+      ++end;
+    }
+    for (std::size_t k = first; k < end; ++k) rows_[k].hold = std::max(0.0, -shallowest);
+    first = end;
+  }
 }
 
 int LocalContactSolver::FindMotion(int motion) const noexcept {
@@ -126,7 +148,7 @@ void LocalContactSolver::PrepareRows(double dt) noexcept {
       }
       r.inv_w[j] = w > 0.0 ? 1.0 / w : 0.0;
     }
-    const double gap = n.dot(pA - pB);
+    const double gap = n.dot(pA - pB) + r.hold;
     r.target = gap >= 0.0 ? -gap / dt : -settings_.baumgarte * gap / dt;
     if (r.lambda[0] > 0.0) {
       ApplyImpulse(r, r.lambda[0] * r.d[0] + r.lambda[1] * r.d[1] + r.lambda[2] * r.d[2]);
