@@ -22,6 +22,12 @@ void Tangents(const Vec3& n, Vec3* t1, Vec3* t2) {
   *t2 = n.cross(*t1);
 }
 
+// The relative velocity change (m/s) an impulse change dl (N·s) makes on a row of inverse
+// effective mass 1 / inv_w.
+double VelocityChange(double dl, double inv_w) {
+  return inv_w > 0.0 ? std::abs(dl) / inv_w : 0.0;
+}
+
 Mat3 InverseOrZero(const Mat3& I) {
   const double det = I.determinant();
   if (!(std::abs(det) > 0.0) || !std::isfinite(det)) return Mat3::Zero();
@@ -31,6 +37,7 @@ Mat3 InverseOrZero(const Mat3& I) {
 }  // namespace
 
 void LocalContactSolver::Adopt(const ir::LocalContactModel& model) noexcept {
+  SaveWarmStart();
   const std::size_t n = std::min(model.bodies.size(), bodies_.size());
   for (std::size_t i = 0; i < n; ++i) {
     const ir::LocalIslandBody& e = model.bodies[i];
@@ -61,13 +68,43 @@ void LocalContactSolver::Adopt(const ir::LocalContactModel& model) noexcept {
   for (const ir::LocalContactRow& c : model.contacts) {
     if (rows_count_ == rows_.size()) break;
     if (c.a < 0 || static_cast<std::size_t>(c.a) >= n || c.b >= static_cast<int>(n)) continue;
-    Row& r = rows_[rows_count_++];
+    Row& r = rows_[rows_count_];
     r = Row{};
     r.c = c;
+    WarmStart(r, rows_count_++);
   }
   HoldRestingPenetration();
   gravity_ = model.gravity;
   active_ = 0;
+}
+
+void LocalContactSolver::SaveWarmStart() noexcept {
+  warm_count_ = rows_count_;
+  for (std::size_t k = 0; k < rows_count_; ++k) {
+    const Row& r = rows_[k];
+    warm_[k].a_body = bodies_[static_cast<std::size_t>(r.c.a)].body;
+    warm_[k].b_body = r.c.b >= 0 ? bodies_[static_cast<std::size_t>(r.c.b)].body : -1;
+    warm_[k].p_A = r.c.p_A;
+    warm_[k].lambda = r.lambda;
+  }
+}
+
+// Warm start across periods: the same contact (same bodies, point on A within kMatch) of the
+// previous period, looked for near the same row index (the engine emits contacts in a stable
+// order), keeps its impulses; the first ticks of a period then need as few sweeps as the others.
+void LocalContactSolver::WarmStart(Row& r, std::size_t k) const noexcept {
+  constexpr double kMatch = 2e-3;     // m
+  constexpr std::size_t kWindow = 8;  // rows either side
+  const int a_body = bodies_[static_cast<std::size_t>(r.c.a)].body;
+  const int b_body = r.c.b >= 0 ? bodies_[static_cast<std::size_t>(r.c.b)].body : -1;
+  const std::size_t lo = k > kWindow ? k - kWindow : 0;
+  const std::size_t hi = std::min(warm_count_, k + kWindow + 1);
+  for (std::size_t o = lo; o < hi; ++o) {
+    const WarmRow& w = warm_[o];
+    if (w.a_body != a_body || w.b_body != b_body || (w.p_A - r.c.p_A).norm() > kMatch) continue;
+    r.lambda = w.lambda;
+    return;
+  }
 }
 
 // MuJoCo's soft contact rests at a penetration (the load over its contact stiffness) and the
@@ -178,11 +215,11 @@ void LocalContactSolver::ApplyImpulse(Row& r, const Vec3& P) noexcept {
 }
 
 // One Gauss–Seidel update of a contact: normal (λ_n >= 0), then both tangents projected on the
-// friction disc. Returns the largest impulse change.
+// friction disc. Returns the largest change of a relative velocity (m/s).
 double LocalContactSolver::SolveRow(Row& r) noexcept {
   const double vn = RelativeVelocity(r, r.d[0]);
   const double ln = std::max(0.0, r.lambda[0] + (r.target - vn) * r.inv_w[0]);
-  double change = std::abs(ln - r.lambda[0]);
+  double change = VelocityChange(ln - r.lambda[0], r.inv_w[0]);
   ApplyImpulse(r, (ln - r.lambda[0]) * r.d[0]);
   r.lambda[0] = ln;
   double l1 = r.lambda[1] - RelativeVelocity(r, r.d[1]) * r.inv_w[1];
@@ -194,7 +231,8 @@ double LocalContactSolver::SolveRow(Row& r) noexcept {
     l1 *= s;
     l2 *= s;
   }
-  change = std::max({change, std::abs(l1 - r.lambda[1]), std::abs(l2 - r.lambda[2])});
+  change = std::max({change, VelocityChange(l1 - r.lambda[1], r.inv_w[1]),
+                     VelocityChange(l2 - r.lambda[2], r.inv_w[2])});
   ApplyImpulse(r, (l1 - r.lambda[1]) * r.d[1] + (l2 - r.lambda[2]) * r.d[2]);
   r.lambda[1] = l1;
   r.lambda[2] = l2;
@@ -229,7 +267,9 @@ bool LocalContactSolver::Step(double dt) noexcept {
   PrepareRows(dt);
   // Symmetric Gauss–Seidel: the sweep direction alternates, so the order of the rows biases
   // no direction (a box pushed straight stays straight).
+  sweeps_ = 0;
   for (int it = 0; it < settings_.iterations; ++it) {
+    ++sweeps_;
     double change = 0.0;
     for (std::size_t i = 0; i < rows_count_; ++i) {
       const std::size_t k = (it % 2 == 0) ? i : rows_count_ - 1 - i;

@@ -14,7 +14,9 @@ namespace mrh::render {
 /// Settings of the local contact solve.
 struct LocalContactSolverSettings {
   int iterations = 30;       ///< projected Gauss–Seidel sweeps per tick at most (>= 1)
-  double tolerance = 1e-9;   ///< stop when no impulse changed more than this in a sweep (N·s)
+  /// Stop when no sweep changed a contact's relative velocity by more than this (m/s): an
+  /// impulse change over the row's effective mass. 1e-6 m/s is 1 nm of motion per tick.
+  double tolerance = 1e-6;
   /// Share of a penetration deeper than the exported one removed per tick (velocity-level
   /// Baumgarte term, dimensionless, 0..1).
   double baumgarte = 0.1;
@@ -68,6 +70,9 @@ class LocalContactSolver {
   /// Contact rows that carried a normal impulse in the latest Step(). RT-safe.
   int active_contacts() const noexcept { return active_; }
 
+  /// Gauss–Seidel sweeps done in the latest Step() (diagnostics, benchmark). RT-safe.
+  int last_sweeps() const noexcept { return sweeps_; }
+
  private:
   struct Body {
     int body = -1;
@@ -92,9 +97,21 @@ class LocalContactSolver {
     Vec3 rB = Vec3::Zero();
     std::array<double, 3> inv_w{};
     double target = 0.0;
+    double hold = 0.0;  // penetration kept, not pushed out (m, >= 0; HoldRestingPenetration)
     std::array<double, 3> lambda{};  // impulses (N·s): normal, t1, t2
   };
 
+  // A previous period's row impulses, kept to warm-start the same contact in the next period.
+  struct WarmRow {
+    int a_body = -1;
+    int b_body = -1;
+    Vec3 p_A = Vec3::Zero();
+    std::array<double, 3> lambda{};
+  };
+
+  void SaveWarmStart() noexcept;
+  void WarmStart(Row& r, std::size_t k) const noexcept;
+  void HoldRestingPenetration() noexcept;
   void Integrate(double dt) noexcept;
   void PrepareRows(double dt) noexcept;
   void ApplyImpulse(Row& r, const Vec3& P) noexcept;
@@ -108,6 +125,9 @@ class LocalContactSolver {
   std::size_t count_ = 0;
   std::array<Row, ir::kMaxLocalContacts> rows_{};
   std::size_t rows_count_ = 0;
+  std::array<WarmRow, ir::kMaxLocalContacts> warm_{};
+  std::size_t warm_count_ = 0;
+  int sweeps_ = 0;
   Vec3 gravity_ = Vec3::Zero();
   int active_ = 0;
 };
