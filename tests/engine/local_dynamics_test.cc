@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "engine/engine_impl.h"
+#include "engine/local_contact_method.h"
 #include "engine/local_dynamics_method.h"
 #include "engine_test_util.h"
 #include "support/alloc_guard.h"
@@ -256,6 +257,91 @@ TEST(LocalDynamicsTest, GlobalStepStartsFromTheLocalStateOfTheLastPeriod) {
   EXPECT_GT(checked, 10);
   EXPECT_GT(MethodOf(state).counters().overwrites, 10);
   EXPECT_GT(last.V_WCm.v.norm(), 0.01);  // the pointer did push the box
+}
+
+// The contact model's island solver of `state` and the local index of world body `body`, or -1.
+const render::LocalContactSolver& ContactSolverOf(EngineState& state) {
+  return static_cast<internal::LocalContactMethod*>(state.method.get())->solver();
+}
+int LocalIndexOf(const render::LocalContactSolver& solver, int body) {
+  for (std::size_t i = 0; i < solver.size(); ++i) {
+    if (solver.world_body(i) == body) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+TEST(LocalDynamicsTest, ContactModelGlobalStepStartsFromTheLocalStateOfTheLastPeriod) {
+  // The contact model, zero gravity, nothing else to touch: step k starts from period k−1's
+  // local end state p (semi-implicit Euler: p' = p + u'·Δt^G, whatever the reaction J/Δt^G
+  // applied in the step made of the end velocity u').
+  constexpr double kTol = 1e-12;
+  const double duration = 1.0;
+  EngineSettings settings = LocalSettings(duration, "contact");
+  world::World world = world::World::LoadString(kFreeBox);
+  const int box = world.FindBody("box");
+  EngineState state(std::move(world), PushingDevice(Vec3(0.09, 0, 0), -0.05, duration),
+                    device::Calibration{}, settings);
+  ir::LocalBodyState last, before;
+  int checked = 0;
+  RunPeriods(state, 16, [&](int k, int j) {
+    const render::LocalContactSolver& solver = ContactSolverOf(state);
+    const int i = LocalIndexOf(solver, box);
+    if (i < 0 || j != state.ticks_per_step - 1) return;
+    const auto l = static_cast<std::size_t>(i);
+    if (k >= 3 && last.body == box && before.body == box) {
+      const world::BodyState global = state.world.body_state(box);
+      const Vec3 u = global.V_WCm.v;
+      EXPECT_LE((global.X_WB.p - (last.X_WB.p + u * settings.physics_dt)).norm(), kTol)
+          << "step " << k;
+
+      ++checked;
+    }
+    before = last;
+    last = ir::LocalBodyState{box, solver.X_WB(l), solver.V_WCm(l)};
+  });
+  EXPECT_GT(checked, 10);
+  EXPECT_GT(last.V_WCm.v.norm(), 0.01);  // the pointer did push the box
+}
+
+// DISABLED: issue 13 open defect. At physics_dt 0.05 (MuJoCo time constant 0.1 s: a deep soft
+// resting penetration) the pushed 1 kg cube is launched over the pointer and leaves the island
+// (17 of 48 pushed periods overwritten); with the resting-penetration hold off it is pushed
+// along but its pose jumps ~1 mm at some ticks. t4.push (physics_dt 0.02) does not show it.
+TEST(LocalDynamicsTest, DISABLED_ContactModelSynchronizationMovesNothingOnTheHapticSide) {
+  // The contact model on a floor with friction: the local simulation owns the pushed cube, so
+  // at every tick, synchronizations included, the pose advances by exactly one tick of the new
+  // velocity (semi-implicit Euler), and the world takes the local end state every period. The
+  // pointer starts 16 cm off and touches at about 1.6 s, once MuJoCo has settled the cube
+  // (pushed during the settling bounce, the contact model launches the cube: see issue 13).
+  constexpr double kTol = 1e-12;
+  const double duration = 4.0;
+  EngineState state(world::World::LoadString(kCubeOnFloor),
+                    PushingDevice(Vec3(-0.23, 0, 0.05), 0.1, duration), device::Calibration{},
+                    LocalSettings(duration, "contact"));
+  const int cube = state.world.FindBody("cube");
+  const double dt = state.settings.haptic_dt;
+  Vec3 previous_p = Vec3::Constant(std::nan(""));
+  int across_syncs = 0;
+  RunPeriods(state, 80, [&](int k, int j) {
+    const render::LocalContactSolver& solver = ContactSolverOf(state);
+    const int i = LocalIndexOf(solver, cube);
+    if (i < 0) {  // not in the island (pointer farther than the neighbor margin)
+      previous_p = Vec3::Constant(std::nan(""));
+      return;
+    }
+    const auto l = static_cast<std::size_t>(i);
+    // Before the first push the island restarts from the world every period.
+    if (!std::isnan(previous_p.x()) && k >= 36) {
+      const Vec3 step = solver.p_WCm(l) - previous_p;
+      EXPECT_LE((step - solver.V_WCm(l).v * dt).norm(), kTol) << k << "," << j;
+      if (j == 0) ++across_syncs;
+    }
+    previous_p = solver.p_WCm(l);
+  });
+  EXPECT_GT(across_syncs, 30);
+  EXPECT_GT(static_cast<internal::LocalContactMethod*>(state.method.get())->counters().overwrites,
+            30);
+  EXPECT_GT(previous_p.x(), 0.05);  // the cube was pushed along
 }
 
 // Keeps every snapshot the physics side makes: [0] from PhysicsStart, [k + 1] from step k.
