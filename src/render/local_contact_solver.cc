@@ -53,8 +53,8 @@ void LocalContactSolver::Adopt(const ir::LocalContactModel& model) noexcept {
     b.q = e.X_WB.q.normalized();
     b.v = e.V_WCm.v;
     b.w = e.V_WCm.w;
-    for (std::size_t o = 0; !e.reset && o < count_; ++o) {
-      if (bodies_[o].body != e.body) continue;
+    for (std::size_t o = 0; o < count_; ++o) {
+      if (bodies_[o].body != e.body || (e.reset && !bodies_[o].pushed)) continue;
       b.p = bodies_[o].p;
       b.q = bodies_[o].q;
       b.v = bodies_[o].v;
@@ -142,6 +142,7 @@ Pose LocalContactSolver::X_WB(std::size_t i) const noexcept {
 
 void LocalContactSolver::AddForce(std::size_t i, const Vec3& f_W, const Vec3& p_W) noexcept {
   Body& b = bodies_[i];
+  b.pushed = true;
   b.f += f_W;
   b.tau += (p_W - b.p).cross(f_W);
 }

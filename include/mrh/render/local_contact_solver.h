@@ -37,7 +37,9 @@ class LocalContactSolver {
 
   /// Takes a new period's model. A body that was in the current model (same world id, not
   /// flagged reset) keeps its local state (the local simulation owns it while it stays in the
-  /// island); the others start from the exported state. RT-safe.
+  /// island); the others start from the exported state. A reset body that was pushed
+  /// (AddForce) since the latest Adopt keeps its local state too: the snapshot was exported
+  /// before that push reached the world, and the next synchronization writes it. RT-safe.
   void Adopt(const ir::LocalContactModel& model) noexcept;
 
   /// Drops every body (e.g. a method that stopped using the model). RT-safe.
@@ -88,6 +90,7 @@ class LocalContactSolver {
     Mat3 I_W_inv = Mat3::Zero();  // this tick
     Vec3 f = Vec3::Zero();        // accumulated this tick
     Vec3 tau = Vec3::Zero();      // about the COM
+    bool pushed = false;          // AddForce was called since the latest Adopt
   };
   struct Row {
     ir::LocalContactRow c;
