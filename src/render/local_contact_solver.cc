@@ -36,9 +36,8 @@ Mat3 InverseOrZero(const Mat3& I) {
 
 }  // namespace
 
-void LocalContactSolver::Adopt(const ir::LocalContactModel& model) noexcept {
-  SaveWarmStart();
-  const std::size_t n = std::min(model.bodies.size(), bodies_.size());
+// The model's bodies into scratch_, each from its local state when it keeps one (see Adopt).
+void LocalContactSolver::AdoptBodies(const ir::LocalContactModel& model, std::size_t n) noexcept {
   for (std::size_t i = 0; i < n; ++i) {
     const ir::LocalIslandBody& e = model.bodies[i];
     Body& b = scratch_[i];
@@ -62,6 +61,12 @@ void LocalContactSolver::Adopt(const ir::LocalContactModel& model) noexcept {
       break;
     }
   }
+}
+
+void LocalContactSolver::Adopt(const ir::LocalContactModel& model) noexcept {
+  SaveWarmStart();
+  const std::size_t n = std::min(model.bodies.size(), bodies_.size());
+  AdoptBodies(model, n);
   for (std::size_t i = 0; i < n; ++i) bodies_[i] = scratch_[i];
   count_ = n;
   rows_count_ = 0;

@@ -112,6 +112,7 @@ class LocalContactSolver {
     std::array<double, 3> lambda{};
   };
 
+  void AdoptBodies(const ir::LocalContactModel& model, std::size_t n) noexcept;
   void SaveWarmStart() noexcept;
   void WarmStart(Row& r, std::size_t k) const noexcept;
   void HoldRestingPenetration() noexcept;
