@@ -30,6 +30,8 @@ LocalContactPhysics::LocalContactPhysics(const MethodContext& context)
   sent_last_.reserve(capacity);
   sent_before_.reserve(capacity);
   failed_.reserve(capacity);
+  owned_.reserve(capacity);
+  owned_before_.reserve(capacity);
 }
 
 void LocalContactPhysics::PhysicsStart(const ir::HapticReport& initial, ir::PhysicsSnapshot* out) {
@@ -67,8 +69,21 @@ void LocalContactPhysics::PhysicsStep(const ir::HapticReport& report, ir::Physic
 // body outside the island (no free joint) gets the period's reaction as an impulse (B4).
 void LocalContactPhysics::Overwrite(const ir::HapticReport& report) {
   failed_.clear();
+  // The local simulation owns an island body from the first period in which the pointer pushed
+  // the island until the body leaves the island; a never-pushed island is left to MuJoCo and
+  // restarts from the world (reset) each period. The local contacts are hard and MuJoCo's are
+  // soft, so writing an untouched body's local state into the world moved it off MuJoCo's own
+  // resting state every period (a 0.25 mm, 2 mm/s drift of an untouched resting cube).
+  const bool touched = !report.impulses.empty();
+  owned_before_.swap(owned_);
+  owned_.clear();
   for (const ir::LocalBodyState& state : report.local_states) {
     if (!Contains(sent_before_, state.body)) continue;
+    if (!touched && !Contains(owned_before_, state.body)) {
+      failed_.push_back(state.body);
+      continue;
+    }
+    owned_.push_back(state.body);
     if (world_->SetBodyState(state.body, state.X_WB, state.V_WCm)) {
       ++counters_.overwrites;
     } else {

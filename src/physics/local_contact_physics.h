@@ -53,7 +53,8 @@ class LocalContactPhysics final : public MethodPhysics {
   world::ContactExporter exporter_;
   std::vector<int> seeds_, motions_;
   std::vector<int> sent_last_, sent_before_;  // island bodies of the latest two snapshots
-  std::vector<int> failed_;                   // bodies whose overwrite failed in this step
+  std::vector<int> failed_;                   // bodies the world did not take in this step
+  std::vector<int> owned_, owned_before_;     // bodies owned by the local simulation (Overwrite)
   LocalContactCounters counters_;
   PhaseTimes phases_;
 };

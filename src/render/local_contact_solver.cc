@@ -22,6 +22,12 @@ void Tangents(const Vec3& n, Vec3* t1, Vec3* t2) {
   *t2 = n.cross(*t1);
 }
 
+// The relative velocity change (m/s) an impulse change dl (N·s) makes on a row of inverse
+// effective mass 1 / inv_w.
+double VelocityChange(double dl, double inv_w) {
+  return inv_w > 0.0 ? std::abs(dl) / inv_w : 0.0;
+}
+
 Mat3 InverseOrZero(const Mat3& I) {
   const double det = I.determinant();
   if (!(std::abs(det) > 0.0) || !std::isfinite(det)) return Mat3::Zero();
@@ -30,8 +36,8 @@ Mat3 InverseOrZero(const Mat3& I) {
 
 }  // namespace
 
-void LocalContactSolver::Adopt(const ir::LocalContactModel& model) noexcept {
-  const std::size_t n = std::min(model.bodies.size(), bodies_.size());
+// The model's bodies into scratch_, each from its local state when it keeps one (see Adopt).
+void LocalContactSolver::AdoptBodies(const ir::LocalContactModel& model, std::size_t n) noexcept {
   for (std::size_t i = 0; i < n; ++i) {
     const ir::LocalIslandBody& e = model.bodies[i];
     Body& b = scratch_[i];
@@ -46,8 +52,8 @@ void LocalContactSolver::Adopt(const ir::LocalContactModel& model) noexcept {
     b.q = e.X_WB.q.normalized();
     b.v = e.V_WCm.v;
     b.w = e.V_WCm.w;
-    for (std::size_t o = 0; !e.reset && o < count_; ++o) {
-      if (bodies_[o].body != e.body) continue;
+    for (std::size_t o = 0; o < count_; ++o) {
+      if (bodies_[o].body != e.body || (e.reset && !bodies_[o].pushed)) continue;
       b.p = bodies_[o].p;
       b.q = bodies_[o].q;
       b.v = bodies_[o].v;
@@ -55,18 +61,76 @@ void LocalContactSolver::Adopt(const ir::LocalContactModel& model) noexcept {
       break;
     }
   }
+}
+
+void LocalContactSolver::Adopt(const ir::LocalContactModel& model) noexcept {
+  SaveWarmStart();
+  const std::size_t n = std::min(model.bodies.size(), bodies_.size());
+  AdoptBodies(model, n);
   for (std::size_t i = 0; i < n; ++i) bodies_[i] = scratch_[i];
   count_ = n;
   rows_count_ = 0;
   for (const ir::LocalContactRow& c : model.contacts) {
     if (rows_count_ == rows_.size()) break;
     if (c.a < 0 || static_cast<std::size_t>(c.a) >= n || c.b >= static_cast<int>(n)) continue;
-    Row& r = rows_[rows_count_++];
+    Row& r = rows_[rows_count_];
     r = Row{};
     r.c = c;
+    WarmStart(r, rows_count_++);
   }
+  HoldRestingPenetration();
   gravity_ = model.gravity;
   active_ = 0;
+}
+
+void LocalContactSolver::SaveWarmStart() noexcept {
+  warm_count_ = rows_count_;
+  for (std::size_t k = 0; k < rows_count_; ++k) {
+    const Row& r = rows_[k];
+    warm_[k].a_body = bodies_[static_cast<std::size_t>(r.c.a)].body;
+    warm_[k].b_body = r.c.b >= 0 ? bodies_[static_cast<std::size_t>(r.c.b)].body : -1;
+    warm_[k].p_A = r.c.p_A;
+    warm_[k].lambda = r.lambda;
+  }
+}
+
+// Warm start across periods: the same contact (same bodies, point on A within kMatch) of the
+// previous period, looked for near the same row index (the engine emits contacts in a stable
+// order), keeps its impulses; the first ticks of a period then need as few sweeps as the others.
+void LocalContactSolver::WarmStart(Row& r, std::size_t k) const noexcept {
+  constexpr double kMatch = 2e-3;     // m
+  constexpr std::size_t kWindow = 8;  // rows either side
+  const int a_body = bodies_[static_cast<std::size_t>(r.c.a)].body;
+  const int b_body = r.c.b >= 0 ? bodies_[static_cast<std::size_t>(r.c.b)].body : -1;
+  const std::size_t lo = k > kWindow ? k - kWindow : 0;
+  const std::size_t hi = std::min(warm_count_, k + kWindow + 1);
+  for (std::size_t o = lo; o < hi; ++o) {
+    const WarmRow& w = warm_[o];
+    if (w.a_body != a_body || w.b_body != b_body || (w.p_A - r.c.p_A).norm() > kMatch) continue;
+    r.lambda = w.lambda;
+    return;
+  }
+}
+
+// MuJoCo's soft contact rests at a penetration (the load over its contact stiffness) and the
+// global step puts it back every period, so pushing it out lifts every pushed body each period
+// and the global step drops it again. A body pair's contacts (consecutive rows: the engine
+// emits them per geom pair) therefore hold the shallowest penetration among them: a body at
+// MuJoCo's rest stays put, while a tilt of the soft contact (deeper rows) is still removed, so a
+// pushed box stays level.
+void LocalContactSolver::HoldRestingPenetration() noexcept {
+  std::size_t first = 0;
+  while (first < rows_count_) {
+    std::size_t end = first + 1;
+    double shallowest = rows_[first].c.dist0;
+    while (end < rows_count_ && rows_[end].c.a == rows_[first].c.a &&
+           rows_[end].c.b == rows_[first].c.b) {
+      shallowest = std::max(shallowest, rows_[end].c.dist0);
+      ++end;
+    }
+    for (std::size_t k = first; k < end; ++k) rows_[k].hold = std::max(0.0, -shallowest);
+    first = end;
+  }
 }
 
 int LocalContactSolver::FindMotion(int motion) const noexcept {
@@ -83,6 +147,7 @@ Pose LocalContactSolver::X_WB(std::size_t i) const noexcept {
 
 void LocalContactSolver::AddForce(std::size_t i, const Vec3& f_W, const Vec3& p_W) noexcept {
   Body& b = bodies_[i];
+  b.pushed = true;
   b.f += f_W;
   b.tau += (p_W - b.p).cross(f_W);
 }
@@ -126,7 +191,7 @@ void LocalContactSolver::PrepareRows(double dt) noexcept {
       }
       r.inv_w[j] = w > 0.0 ? 1.0 / w : 0.0;
     }
-    const double gap = n.dot(pA - pB);
+    const double gap = n.dot(pA - pB) + r.hold;
     r.target = gap >= 0.0 ? -gap / dt : -settings_.baumgarte * gap / dt;
     if (r.lambda[0] > 0.0) {
       ApplyImpulse(r, r.lambda[0] * r.d[0] + r.lambda[1] * r.d[1] + r.lambda[2] * r.d[2]);
@@ -156,11 +221,11 @@ void LocalContactSolver::ApplyImpulse(Row& r, const Vec3& P) noexcept {
 }
 
 // One Gauss–Seidel update of a contact: normal (λ_n >= 0), then both tangents projected on the
-// friction disc. Returns the largest impulse change.
+// friction disc. Returns the largest change of a relative velocity (m/s).
 double LocalContactSolver::SolveRow(Row& r) noexcept {
   const double vn = RelativeVelocity(r, r.d[0]);
   const double ln = std::max(0.0, r.lambda[0] + (r.target - vn) * r.inv_w[0]);
-  double change = std::abs(ln - r.lambda[0]);
+  double change = VelocityChange(ln - r.lambda[0], r.inv_w[0]);
   ApplyImpulse(r, (ln - r.lambda[0]) * r.d[0]);
   r.lambda[0] = ln;
   double l1 = r.lambda[1] - RelativeVelocity(r, r.d[1]) * r.inv_w[1];
@@ -172,7 +237,8 @@ double LocalContactSolver::SolveRow(Row& r) noexcept {
     l1 *= s;
     l2 *= s;
   }
-  change = std::max({change, std::abs(l1 - r.lambda[1]), std::abs(l2 - r.lambda[2])});
+  change = std::max({change, VelocityChange(l1 - r.lambda[1], r.inv_w[1]),
+                     VelocityChange(l2 - r.lambda[2], r.inv_w[2])});
   ApplyImpulse(r, (l1 - r.lambda[1]) * r.d[1] + (l2 - r.lambda[2]) * r.d[2]);
   r.lambda[1] = l1;
   r.lambda[2] = l2;
@@ -207,7 +273,9 @@ bool LocalContactSolver::Step(double dt) noexcept {
   PrepareRows(dt);
   // Symmetric Gauss–Seidel: the sweep direction alternates, so the order of the rows biases
   // no direction (a box pushed straight stays straight).
+  sweeps_ = 0;
   for (int it = 0; it < settings_.iterations; ++it) {
+    ++sweeps_;
     double change = 0.0;
     for (std::size_t i = 0; i < rows_count_; ++i) {
       const std::size_t k = (it % 2 == 0) ? i : rows_count_ - 1 - i;

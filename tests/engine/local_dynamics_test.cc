@@ -10,8 +10,10 @@
 #include <vector>
 
 #include "engine/engine_impl.h"
+#include "haptic/local_contact_haptic.h"
 #include "haptic/local_dynamics_haptic.h"
 #include "mrh/haptic/methods.h"
+#include "physics/local_contact_physics.h"
 #include "physics/local_dynamics_physics.h"
 #include "engine_test_util.h"
 #include "support/alloc_guard.h"
@@ -59,7 +61,7 @@ constexpr double kRowZ = 0.0499;         // m, COM height of the row (and of the
 constexpr double kRowPointerX = -0.075;  // m, pointer start, 5 mm from the first cube
 constexpr double kPushSpeed = 0.05;      // m/s, scripted pointer speed into the row
 
-EngineSettings LocalSettings(double duration) {
+EngineSettings LocalSettings(double duration, const char* model = "perturbation") {
   EngineSettings s;
   s.method = "local-dynamics";
   s.physics_dt = 0.05;
@@ -67,9 +69,9 @@ EngineSettings LocalSettings(double duration) {
   s.duration = duration;
   s.pointer.radius = 0.02;
   s.rendering.stiffness = 1000.0;
-  // These tests check the thesis model (eq. 4.16–4.18 with A, b). Issue 13: the contact model
-  // does not yet keep an untouched resting cube at rest to 1e-6 (0.25 mm, 2 mm/s drift).
-  s.rendering.local_model = "perturbation";
+  // Most tests check the thesis model (eq. 4.16–4.18 with A, b); the rest and synchronization
+  // tests also run the contact model (issue 13).
+  s.rendering.local_model = model;
   s.safety.ramp = false;
   s.realtime_priority = false;
   return s;
@@ -269,6 +271,94 @@ TEST(LocalDynamicsTest, GlobalStepStartsFromTheLocalStateOfTheLastPeriod) {
   EXPECT_GT(last.V_WCm.v.norm(), 0.01);  // the pointer did push the box
 }
 
+// The contact model's island solver of `state` and the local index of world body `body`, or -1.
+const render::LocalContactSolver& ContactSolverOf(EngineState& state) {
+  return static_cast<haptic::internal::LocalContactHaptic*>(state.method.haptic.get())->solver();
+}
+int LocalIndexOf(const render::LocalContactSolver& solver, int body) {
+  for (std::size_t i = 0; i < solver.size(); ++i) {
+    if (solver.world_body(i) == body) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+TEST(LocalDynamicsTest, ContactModelGlobalStepStartsFromTheLocalStateOfTheLastPeriod) {
+  // The contact model, zero gravity, nothing else to touch: step k starts from period k−1's
+  // local end state p (semi-implicit Euler: p' = p + u'·Δt^G, whatever the reaction J/Δt^G
+  // applied in the step made of the end velocity u').
+  constexpr double kTol = 1e-12;
+  const double duration = 1.0;
+  EngineSettings settings = LocalSettings(duration, "contact");
+  world::World world = world::World::LoadString(kFreeBox);
+  const int box = world.FindBody("box");
+  EngineState state(std::move(world), PushingDevice(Vec3(0.09, 0, 0), -0.05, duration),
+                    device::Calibration{}, settings);
+  ir::LocalBodyState last, before;
+  int checked = 0;
+  RunPeriods(state, 16, [&](int k, int j) {
+    const render::LocalContactSolver& solver = ContactSolverOf(state);
+    const int i = LocalIndexOf(solver, box);
+    if (i < 0 || j != state.ticks_per_step - 1) return;
+    const auto l = static_cast<std::size_t>(i);
+    if (k >= 3 && last.body == box && before.body == box) {
+      const world::BodyState global = state.world.body_state(box);
+      const Vec3 u = global.V_WCm.v;
+      EXPECT_LE((global.X_WB.p - (last.X_WB.p + u * settings.physics_dt)).norm(), kTol)
+          << "step " << k;
+
+      ++checked;
+    }
+    before = last;
+    last = ir::LocalBodyState{box, solver.X_WB(l), solver.V_WCm(l)};
+  });
+  EXPECT_GT(checked, 10);
+  EXPECT_GT(last.V_WCm.v.norm(), 0.01);  // the pointer did push the box
+}
+
+// DISABLED: issue 13 open defect. At physics_dt 0.05 (MuJoCo time constant 0.1 s: a deep soft
+// resting penetration) the pushed 1 kg cube is launched over the pointer and leaves the island
+// (17 of 48 pushed periods overwritten); with the resting-penetration hold off it is pushed
+// along but its pose jumps ~1 mm at some ticks. t4.push (physics_dt 0.02) does not show it.
+TEST(LocalDynamicsTest, DISABLED_ContactModelSynchronizationMovesNothingOnTheHapticSide) {
+  // The contact model on a floor with friction: the local simulation owns the pushed cube, so
+  // at every tick, synchronizations included, the pose advances by exactly one tick of the new
+  // velocity (semi-implicit Euler), and the world takes the local end state every period. The
+  // pointer starts 16 cm off and touches at about 1.6 s, once MuJoCo has settled the cube
+  // (pushed during the settling bounce, the contact model launches the cube: see issue 13).
+  constexpr double kTol = 1e-12;
+  const double duration = 4.0;
+  EngineState state(world::World::LoadString(kCubeOnFloor),
+                    PushingDevice(Vec3(-0.23, 0, 0.05), 0.1, duration), device::Calibration{},
+                    LocalSettings(duration, "contact"));
+  const int cube = state.world.FindBody("cube");
+  const double dt = state.settings.haptic_dt;
+  Vec3 previous_p = Vec3::Constant(std::nan(""));
+  int across_syncs = 0;
+  RunPeriods(state, 80, [&](int k, int j) {
+    const render::LocalContactSolver& solver = ContactSolverOf(state);
+    const int i = LocalIndexOf(solver, cube);
+    if (i < 0) {  // not in the island (pointer farther than the neighbor margin)
+      previous_p = Vec3::Constant(std::nan(""));
+      return;
+    }
+    const auto l = static_cast<std::size_t>(i);
+    // Before the first push the island restarts from the world every period.
+    if (!std::isnan(previous_p.x()) && k >= 36) {
+      const Vec3 step = solver.p_WCm(l) - previous_p;
+      EXPECT_LE((step - solver.V_WCm(l).v * dt).norm(), kTol) << k << "," << j;
+      if (j == 0) ++across_syncs;
+    }
+    previous_p = solver.p_WCm(l);
+  });
+  EXPECT_GT(across_syncs, 30);
+  EXPECT_GT(
+      static_cast<physics::internal::LocalContactPhysics*>(state.method.physics.get())
+          ->counters()
+          .overwrites,
+      30);
+  EXPECT_GT(previous_p.x(), 0.05);  // the cube was pushed along
+}
+
 // Keeps every snapshot the physics side makes: [0] from PhysicsStart, [k + 1] from step k.
 // Period p renders snapshots[p].
 class SnapshotKeeper final : public Recorder {
@@ -374,7 +464,9 @@ class NeighborCounter final : public Recorder {
   int steps = 0, with_neighbor = 0;
 };
 
-TEST(LocalDynamicsTest, PointerNearButNotTouchingFeelsNothing) {
+class RestTest : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(RestTest, PointerNearButNotTouchingFeelsNothing) {
   // The pointer glides past the cube's −x face with a 2 cm gap, inside the 5 cm neighbor
   // margin: the cube is a neighbor every step (simulated locally, perturbed with the nominal
   // force into it, overwritten), yet nothing touches, so no force may be displayed or applied.
@@ -387,7 +479,7 @@ TEST(LocalDynamicsTest, PointerNearButNotTouchingFeelsNothing) {
   auto device = device::MakeScriptedDevice({{0.0, Pose{Vec3(x, -0.04, 0.05), Quat::Identity()}},
                                             {duration, Pose{Vec3(x, 0.04, 0.05), Quat::Identity()}}},
                                            specs);
-  EngineSettings settings = LocalSettings(duration);
+  EngineSettings settings = LocalSettings(duration, GetParam());
   ASSERT_GT(settings.rendering.neighbor_margin, kGap);
   Engine engine(world::World::LoadString(kCubeOnFloor), std::move(device), device::Calibration{},
                 settings);
@@ -408,7 +500,7 @@ TEST(LocalDynamicsTest, PointerNearButNotTouchingFeelsNothing) {
   EXPECT_LE((cube.V_WCm.v - reference.body_state(id).V_WCm.v).norm(), kRestTol);
 }
 
-TEST(LocalDynamicsTest, UntouchedRestingNeighborStaysAtRest) {
+TEST_P(RestTest, UntouchedRestingNeighborStaysAtRest) {
   // The cube is a neighbor (pointer 1 cm away, never touching): it is simulated locally,
   // perturbed every step and overwritten every step, and must not move more than MuJoCo's own
   // resting contact does.
@@ -416,7 +508,7 @@ TEST(LocalDynamicsTest, UntouchedRestingNeighborStaysAtRest) {
   const double duration = 5.0;
   Engine engine(world::World::LoadString(kCubeOnFloor),
                 PushingDevice(Vec3(-0.08, 0, 0.05), 0.0, duration), device::Calibration{},
-                LocalSettings(duration));
+                LocalSettings(duration, GetParam()));
   world::World reference = world::World::LoadString(kCubeOnFloor);
   reference.set_timestep(0.05);
   for (int i = 0; i < 100; ++i) reference.Step();
@@ -428,6 +520,8 @@ TEST(LocalDynamicsTest, UntouchedRestingNeighborStaysAtRest) {
   EXPECT_LE(state.V_WCm.v.norm(), kRestTol);
   EXPECT_LE(state.V_WCm.w.norm(), kRestTol);
 }
+
+INSTANTIATE_TEST_SUITE_P(Models, RestTest, ::testing::Values("perturbation", "contact"));
 
 TEST(LocalDynamicsTest, T41ImpulseMatchesTheElasticBounceAndTheCubeMomentum) {
   // SPEC T4.1: the proposed method's impulse is within a few percent of B1's (2.0466 N·s here)

@@ -40,9 +40,10 @@ struct LocalContactRow {
   Vec3 p_A = Vec3::Zero();     ///< contact point on A's surface, A's body frame (m)
   Vec3 p_B = Vec3::Zero();     ///< contact point on B's surface, B's body frame or world (m)
   Vec3 n_B = Vec3::UnitZ();    ///< unit normal from B toward A, B's body frame or world
-  /// Signed distance when exported (m, < 0: penetration), for diagnostics: the local solve
-  /// uses the gap at the local poses (holding the exported one tilts the local body whenever
-  /// the global pose differs from it, and the loop through the synchronization then rocks).
+  /// Signed distance when exported (m, < 0: penetration). The local solve uses the gap at the
+  /// local poses, less the shallowest exported penetration of the body pair's rows (MuJoCo's
+  /// soft resting depth, held rather than pushed out; holding each row's own depth would hold
+  /// a tilt, and the loop through the synchronization then rocks).
   double dist0 = 0.0;
   double mu = 0.0;             ///< Coulomb friction coefficient (0: frictionless, condim 1)
 };

@@ -14,7 +14,9 @@ namespace mrh::render {
 /// Settings of the local contact solve.
 struct LocalContactSolverSettings {
   int iterations = 30;       ///< projected Gauss–Seidel sweeps per tick at most (>= 1)
-  double tolerance = 1e-9;   ///< stop when no impulse changed more than this in a sweep (N·s)
+  /// Stop when no sweep changed a contact's relative velocity by more than this (m/s): an
+  /// impulse change over the row's effective mass. 1e-6 m/s is 1 nm of motion per tick.
+  double tolerance = 1e-6;
   /// Share of a penetration deeper than the exported one removed per tick (velocity-level
   /// Baumgarte term, dimensionless, 0..1).
   double baumgarte = 0.1;
@@ -35,7 +37,9 @@ class LocalContactSolver {
 
   /// Takes a new period's model. A body that was in the current model (same world id, not
   /// flagged reset) keeps its local state (the local simulation owns it while it stays in the
-  /// island); the others start from the exported state. RT-safe.
+  /// island); the others start from the exported state. A reset body that was pushed
+  /// (AddForce) since the latest Adopt keeps its local state too: the snapshot was exported
+  /// before that push reached the world, and the next synchronization writes it. RT-safe.
   void Adopt(const ir::LocalContactModel& model) noexcept;
 
   /// Drops every body (e.g. a method that stopped using the model). RT-safe.
@@ -68,6 +72,9 @@ class LocalContactSolver {
   /// Contact rows that carried a normal impulse in the latest Step(). RT-safe.
   int active_contacts() const noexcept { return active_; }
 
+  /// Gauss–Seidel sweeps done in the latest Step() (diagnostics, benchmark). RT-safe.
+  int last_sweeps() const noexcept { return sweeps_; }
+
  private:
   struct Body {
     int body = -1;
@@ -83,6 +90,7 @@ class LocalContactSolver {
     Mat3 I_W_inv = Mat3::Zero();  // this tick
     Vec3 f = Vec3::Zero();        // accumulated this tick
     Vec3 tau = Vec3::Zero();      // about the COM
+    bool pushed = false;          // AddForce was called since the latest Adopt
   };
   struct Row {
     ir::LocalContactRow c;
@@ -92,9 +100,22 @@ class LocalContactSolver {
     Vec3 rB = Vec3::Zero();
     std::array<double, 3> inv_w{};
     double target = 0.0;
+    double hold = 0.0;  // penetration kept, not pushed out (m, >= 0; HoldRestingPenetration)
     std::array<double, 3> lambda{};  // impulses (N·s): normal, t1, t2
   };
 
+  // A previous period's row impulses, kept to warm-start the same contact in the next period.
+  struct WarmRow {
+    int a_body = -1;
+    int b_body = -1;
+    Vec3 p_A = Vec3::Zero();
+    std::array<double, 3> lambda{};
+  };
+
+  void AdoptBodies(const ir::LocalContactModel& model, std::size_t n) noexcept;
+  void SaveWarmStart() noexcept;
+  void WarmStart(Row& r, std::size_t k) const noexcept;
+  void HoldRestingPenetration() noexcept;
   void Integrate(double dt) noexcept;
   void PrepareRows(double dt) noexcept;
   void ApplyImpulse(Row& r, const Vec3& P) noexcept;
@@ -108,6 +129,9 @@ class LocalContactSolver {
   std::size_t count_ = 0;
   std::array<Row, ir::kMaxLocalContacts> rows_{};
   std::size_t rows_count_ = 0;
+  std::array<WarmRow, ir::kMaxLocalContacts> warm_{};
+  std::size_t warm_count_ = 0;
+  int sweeps_ = 0;
   Vec3 gravity_ = Vec3::Zero();
   int active_ = 0;
 };
