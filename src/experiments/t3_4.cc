@@ -10,7 +10,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "haptic/proxy_haptic.h"
+#include "mrh/haptic/methods.h"
 #include "mrh/engine/method.h"
 #include "experiment_util.h"
 #include "experiments_impl.h"
@@ -105,7 +105,7 @@ Result RunPrism(int sides, bool friction, double duration) {
   const engine::MethodContext context{&world, &settings, world.pointer_body(), kRadius};
   engine::Method pair = engine::MakeMethod("proxy-6dof", context);
   physics::MethodPhysics& physics = *pair.physics;
-  auto& method = dynamic_cast<haptic::internal::ProxyHaptic&>(*pair.haptic);
+  haptic::MethodHaptic& method = *pair.haptic;
   const int n = settings.ticks_per_step();
   auto current = std::make_unique<ir::PhysicsSnapshot>();
   auto next = std::make_unique<ir::PhysicsSnapshot>();
@@ -147,7 +147,7 @@ Result RunPrism(int sides, bool friction, double duration) {
       const Vec3 expected =
           settings.rendering.stiffness * kDepth * Vec3(-settings.rendering.friction, 0.0, 1.0);
       r.force_error = std::max(r.force_error, (out.w_W.f - expected).norm());
-      const render::ProxyDiagnostics& d = method.last_output().diagnostics;
+      const render::ProxyDiagnostics& d = haptic::ProxyLastOutput(method)->diagnostics;
       const double seconds = std::chrono::duration<double>(t1 - t0).count();
       times.push_back(seconds);
       (j == 0 ? switch_times : steady_times).push_back(seconds);

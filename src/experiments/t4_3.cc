@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "mrh/haptic/methods.h"
-#include "physics/local_dynamics_physics.h"
+#include "mrh/physics/local_dynamics.h"
 #include "experiment_util.h"
 #include "experiments_impl.h"
 #include "mrh/engine/engine.h"
@@ -205,9 +205,9 @@ struct PerturbationWork {
 std::function<void(const physics::MethodPhysics&)> WorkRecorder(
     std::vector<PerturbationWork>* work) {
   return [work, last = world::PerturberCounters{}](const physics::MethodPhysics& method) mutable {
-    const auto* ld = dynamic_cast<const physics::internal::LocalDynamicsPhysics*>(&method);
-    if (ld == nullptr) return;
-    const world::PerturberCounters& c = ld->perturber_counters();
+    const world::PerturberCounters* counters = physics::PerturberCountersOf(method);
+    if (counters == nullptr) return;
+    const world::PerturberCounters& c = *counters;
     work->push_back(
         {static_cast<int>(c.zero_force_solver_iterations - last.zero_force_solver_iterations),
          static_cast<int>(c.force_run_solver_iterations - last.force_run_solver_iterations),
@@ -341,14 +341,13 @@ AccuracyResult RunAccuracy(const std::filesystem::path& scene, int cubes, const 
   const std::string method = "t4.3:accuracy:" + name;
   engine::RegisterMethod(method, "t4.3: local-dynamics, measurements repeated by a reference",
                          [used, reference](const engine::MethodContext& context) {
-                           physics::internal::LocalDynamicsOptions o;
+                           physics::LocalDynamicsOptions o;
                            o.perturber = used;
                            o.reference = reference;
                            const engine::RenderingSettings& r = context.settings->rendering;
                            return engine::Method{
                                "local-dynamics", false,
-                               std::make_unique<physics::internal::LocalDynamicsPhysics>(context,
-                                                                                         o),
+                               physics::MakeLocalDynamicsPhysics(context, o),
                                haptic::MakeLocalDynamicsHaptic(context.pointer_radius,
                                                                r.stiffness, r.damping),
                                {"local_dynamics.local_body_fault"}};
@@ -356,10 +355,10 @@ AccuracyResult RunAccuracy(const std::filesystem::path& scene, int cubes, const 
   const double dt = options.physics_dt;
   const auto steps = static_cast<std::size_t>(options.accuracy_steps);
   const auto timings = std::make_shared<MethodTimings>();
-  physics::internal::LocalDynamicsCounters counters;
+  physics::LocalDynamicsCounters counters;
   timings->on_step = [&counters](const physics::MethodPhysics& m) {
-    if (const auto* ld = dynamic_cast<const physics::internal::LocalDynamicsPhysics*>(&m)) {
-      counters = ld->counters();
+    if (const physics::LocalDynamicsCounters* c = physics::LocalDynamicsCountersOf(m)) {
+      counters = *c;
     }
   };
   const std::string timed = RegisterTimedMethod(
