@@ -9,6 +9,7 @@
 #include <chrono>
 #include <vector>
 
+#include "mrh/core/stats.h"
 #include "mrh/render/local_contact_solver.h"
 
 namespace mrh::render {
@@ -62,11 +63,6 @@ ir::LocalContactModel Grid() {
   return m;
 }
 
-double Percentile(std::vector<double> v, double q) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v[static_cast<std::size_t>(q * static_cast<double>(v.size() - 1))];
-}
 
 void BM_LocalContactTick16(benchmark::State& state) {
   const ir::LocalContactModel model = Grid();
@@ -87,9 +83,9 @@ void BM_LocalContactTick16(benchmark::State& state) {
     if (samples_us.size() < samples_us.capacity()) samples_us.push_back(us);
   }
   state.counters["rows"] = static_cast<double>(model.contacts.size());
-  state.counters["p50_us"] = Percentile(samples_us, 0.50);
-  state.counters["p99_us"] = Percentile(samples_us, 0.99);
-  state.counters["max_us"] = Percentile(samples_us, 1.0);
+  state.counters["p50_us"] = Percentile(samples_us, 50.0);
+  state.counters["p99_us"] = Percentile(samples_us, 99.0);
+  state.counters["max_us"] = Percentile(samples_us, 100.0);
 }
 BENCHMARK(BM_LocalContactTick16);
 

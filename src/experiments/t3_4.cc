@@ -10,6 +10,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "mrh/core/stats.h"
 #include "mrh/haptic/methods.h"
 #include "mrh/engine/method.h"
 #include "experiment_util.h"
@@ -84,13 +85,6 @@ struct Result {
   bool finite = true;
 };
 
-double Percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0.0;
-  const auto k = static_cast<std::size_t>(std::ceil(p / 100.0 * static_cast<double>(v.size())));
-  const std::size_t i = std::min(v.size() - 1, k == 0 ? 0 : k - 1);
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(i), v.end());
-  return v[i];
-}
 
 // The engine's lockstep schedule on the method alone: period k renders step k−1's snapshot.
 // Each tick is timed as the haptic thread runs it (Adopt on a period's first tick, HapticTick,

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "mrh/core/stats.h"
 #include "mrh/haptic/methods.h"
 #include "mrh/physics/local_dynamics.h"
 #include "experiment_util.h"
@@ -246,12 +247,6 @@ struct RunResult {
   int max_test_iterations_per_step = 0;
 };
 
-double Percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const double rank = p / 100.0 * static_cast<double>(v.size() - 1);
-  return v[static_cast<std::size_t>(std::llround(rank))];
-}
 
 RunResult RunOne(const std::filesystem::path& scene, const std::string& variant, int cubes,
                  int condim, const T43Options& options) {
