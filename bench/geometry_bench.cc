@@ -9,6 +9,7 @@
 #include <random>
 #include <vector>
 
+#include "mrh/core/stats.h"
 #include "mrh/geometry/contact_region.h"
 #include "mrh/geometry/distance.h"
 #include "mrh/geometry/polyhedron.h"
@@ -85,12 +86,6 @@ std::unique_ptr<Scene> MakeScene(const Shape& pointer, const Shape& object, doub
   return scene;
 }
 
-double Percentile(std::vector<double> v, double q) {
-  if (v.empty()) return 0.0;
-  const auto k = static_cast<std::size_t>(q * static_cast<double>(v.size() - 1));
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
-  return v[k];
-}
 
 // Times one pair's IR per iteration; arg "distance": 1 includes SignedDistance, 0 times
 // ComputeContactRegion alone on precomputed distance results.
@@ -115,8 +110,8 @@ void RunPair(benchmark::State& state, const Scene& scene) {
     if (samples_us.size() < kMaxSamples) samples_us.push_back(1e6 * seconds);
     points += static_cast<double>(r.points_W.size());
   }
-  state.counters["p50_us"] = Percentile(samples_us, 0.50);
-  state.counters["p99_us"] = Percentile(samples_us, 0.99);
+  state.counters["p50_us"] = Percentile(samples_us, 50.0);
+  state.counters["p99_us"] = Percentile(samples_us, 99.0);
   state.counters["points"] = points / static_cast<double>(state.iterations());
 }
 

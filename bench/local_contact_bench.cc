@@ -11,6 +11,7 @@
 #include <ctime>
 #include <vector>
 
+#include "mrh/core/stats.h"
 #include "mrh/render/local_contact_solver.h"
 
 namespace mrh::render {
@@ -72,11 +73,6 @@ double ThreadCpuUs() {
   return static_cast<double>(ts.tv_sec) * 1e6 + static_cast<double>(ts.tv_nsec) * 1e-3;
 }
 
-double Percentile(std::vector<double> v, double q) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v[static_cast<std::size_t>(q * static_cast<double>(v.size() - 1))];
-}
 
 void BM_LocalContactTick16(benchmark::State& state) {
   const ir::LocalContactModel model = Grid();
@@ -103,12 +99,12 @@ void BM_LocalContactTick16(benchmark::State& state) {
     if (cpu_us.size() < cpu_us.capacity()) cpu_us.push_back(cpu);
   }
   state.counters["rows"] = static_cast<double>(model.contacts.size());
-  state.counters["p50_us"] = Percentile(samples_us, 0.50);
-  state.counters["p99_us"] = Percentile(samples_us, 0.99);
-  state.counters["max_us"] = Percentile(samples_us, 1.0);
+  state.counters["p50_us"] = Percentile(samples_us, 50.0);
+  state.counters["p99_us"] = Percentile(samples_us, 99.0);
+  state.counters["max_us"] = Percentile(samples_us, 100.0);
   state.counters["sweeps"] = sweeps / static_cast<double>(std::max<std::int64_t>(1, tick));
-  state.counters["cpu_p50_us"] = Percentile(cpu_us, 0.50);
-  state.counters["cpu_p99_us"] = Percentile(cpu_us, 0.99);
+  state.counters["cpu_p50_us"] = Percentile(cpu_us, 50.0);
+  state.counters["cpu_p99_us"] = Percentile(cpu_us, 99.0);
 }
 BENCHMARK(BM_LocalContactTick16);
 

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "mrh/core/stats.h"
 #include "mrh/device/external.h"
 #include "mrh/engine/engine.h"
 #include "mrh/world/world.h"
@@ -93,11 +94,6 @@ void BM_LocalDynamicsStep500Friction(benchmark::State& state) {
   }
 }
 
-double Percentile(const std::vector<double>& v, double p) {
-  std::vector<double> s = v;
-  std::sort(s.begin(), s.end());
-  return s[static_cast<std::size_t>(p * static_cast<double>(s.size() - 1) + 0.5)];
-}
 
 // 100 steps: the pointer reaches the first cube after ~0.02 s and pushes it for 2 s.
 BENCHMARK(BM_LocalDynamicsStep500Friction)
@@ -106,8 +102,8 @@ BENCHMARK(BM_LocalDynamicsStep500Friction)
     ->Iterations(1)
     ->Repetitions(100)
     ->ReportAggregatesOnly(true)
-    ->ComputeStatistics("p50", [](const std::vector<double>& v) { return Percentile(v, 0.50); })
-    ->ComputeStatistics("p99", [](const std::vector<double>& v) { return Percentile(v, 0.99); });
+    ->ComputeStatistics("p50", [](const std::vector<double>& v) { return Percentile(v, 50.0); })
+    ->ComputeStatistics("p99", [](const std::vector<double>& v) { return Percentile(v, 99.0); });
 
 }  // namespace
 }  // namespace mrh::engine

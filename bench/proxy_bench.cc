@@ -9,6 +9,7 @@
 #include <numbers>
 #include <vector>
 
+#include "mrh/core/stats.h"
 #include "mrh/render/proxy_renderer.h"
 
 namespace mrh::render {
@@ -67,12 +68,6 @@ Pose PointerAt(int i) {
   return Pose{Vec3(kSpeed * t, 0.0, kHalfHeight - depth), Quat::Identity()};
 }
 
-double Percentile(std::vector<double> v, double q) {
-  if (v.empty()) return 0.0;
-  const auto k = static_cast<std::size_t>(q * static_cast<double>(v.size() - 1));
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
-  return v[k];
-}
 
 // Args: contacts N, friction (0/1), solver mode (see kModeTolerance).
 void BM_ProxyTick(benchmark::State& state) {
@@ -108,9 +103,9 @@ void BM_ProxyTick(benchmark::State& state) {
     rows += out->diagnostics.rows;
   }
   const auto iterations = static_cast<double>(state.iterations());
-  state.counters["p50_us"] = Percentile(samples_us, 0.50);
-  state.counters["p99_us"] = Percentile(samples_us, 0.99);
-  state.counters["max_us"] = Percentile(samples_us, 1.0);
+  state.counters["p50_us"] = Percentile(samples_us, 50.0);
+  state.counters["p99_us"] = Percentile(samples_us, 99.0);
+  state.counters["max_us"] = Percentile(samples_us, 100.0);
   state.counters["sweeps"] = sweeps / iterations;
   state.counters["rows"] = rows / iterations;
 }

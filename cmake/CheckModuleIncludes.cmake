@@ -2,7 +2,10 @@
 # cmake -DROOT=<source dir> -P cmake/CheckModuleIncludes.cmake
 # The thread boundary in the sources (docs/architecture.md): fails when
 #  - a file of the haptic module (src/haptic, include/mrh/haptic) includes anything but the
-#    standard library, Eigen and mrh/{core,ir,render,device,haptic} headers or its own folder.
+#    standard library, Eigen and mrh/{core,ir,render,device,haptic} headers or its own folder;
+#  - a file of src/ or apps/ outside src/engine, src/physics and src/haptic includes one of those
+#    modules' private headers ("engine/...", "physics/...", "haptic/..."): everything else uses
+#    the public headers under include/mrh (tests and benchmarks of internals may include them).
 file(GLOB_RECURSE haptic_files ${ROOT}/src/haptic/*.h ${ROOT}/src/haptic/*.cc
      ${ROOT}/include/mrh/haptic/*.h)
 set(errors "")
@@ -18,6 +21,16 @@ foreach(f ${haptic_files})
   if(angle)
     list(APPEND errors "${f}: includes MuJoCo")
   endif()
+endforeach()
+file(GLOB_RECURSE other_files ${ROOT}/src/*.h ${ROOT}/src/*.cc ${ROOT}/apps/*.h ${ROOT}/apps/*.cc)
+foreach(f ${other_files})
+  if(f MATCHES "/src/(engine|physics|haptic)/")
+    continue()
+  endif()
+  file(STRINGS ${f} lines REGEX "^#include \"(engine|physics|haptic)/")
+  foreach(line ${lines})
+    list(APPEND errors "${f}: ${line} (a private header; use the public one under include/mrh)")
+  endforeach()
 endforeach()
 if(errors)
   list(JOIN errors "\n" text)

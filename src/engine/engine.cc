@@ -93,6 +93,12 @@ const EngineSettings& Engine::settings() const { return impl_->state->settings; 
 
 double Engine::pointer_radius() const { return impl_->state->pointer_radius; }
 
+const haptic::MethodHaptic& Engine::haptic_method() const { return *impl_->state->method.haptic; }
+
+const physics::MethodPhysics& Engine::physics_method() const {
+  return *impl_->state->method.physics;
+}
+
 RunStats Engine::Run(Recorder* recorder, const ProgressFn& progress) {
   internal::EngineState& s = *impl_->state;
   if (s.has_run) {

@@ -7,6 +7,7 @@
 #include <optional>
 #include <vector>
 
+#include "mrh/core/stats.h"
 #include "mrh/core/spsc_ring.h"
 #include "mrh/core/triple_buffer.h"
 #include "mrh/engine/engine.h"
@@ -59,7 +60,7 @@ void FillHapticStats(const HapticCounters& counters, RunStats* stats);
 void FillPhysicsStats(PhysicsSide& physics, RunStats* stats);
 void FillMethodStatus(const HapticCounters& counters, const Method& method, RunStats* stats);
 
-using physics::Percentile;
+using mrh::Percentile;
 
 /// State of an embedded run (Engine::Start / Tick / Stop).
 struct EmbeddedRun;

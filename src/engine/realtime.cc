@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "engine_impl.h"
+#include "mrh/core/stats.h"
 #include "mrh/engine/rt_clock.h"
 
 namespace mrh::engine::internal {

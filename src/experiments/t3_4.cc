@@ -10,7 +10,8 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "haptic/proxy_haptic.h"
+#include "mrh/core/stats.h"
+#include "mrh/haptic/methods.h"
 #include "mrh/engine/method.h"
 #include "experiment_util.h"
 #include "experiments_impl.h"
@@ -84,13 +85,6 @@ struct Result {
   bool finite = true;
 };
 
-double Percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0.0;
-  const auto k = static_cast<std::size_t>(std::ceil(p / 100.0 * static_cast<double>(v.size())));
-  const std::size_t i = std::min(v.size() - 1, k == 0 ? 0 : k - 1);
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(i), v.end());
-  return v[i];
-}
 
 // The engine's lockstep schedule on the method alone: period k renders step k−1's snapshot.
 // Each tick is timed as the haptic thread runs it (Adopt on a period's first tick, HapticTick,
@@ -105,7 +99,7 @@ Result RunPrism(int sides, bool friction, double duration) {
   const engine::MethodContext context{&world, &settings, world.pointer_body(), kRadius};
   engine::Method pair = engine::MakeMethod("proxy-6dof", context);
   physics::MethodPhysics& physics = *pair.physics;
-  auto& method = dynamic_cast<haptic::internal::ProxyHaptic&>(*pair.haptic);
+  haptic::MethodHaptic& method = *pair.haptic;
   const int n = settings.ticks_per_step();
   auto current = std::make_unique<ir::PhysicsSnapshot>();
   auto next = std::make_unique<ir::PhysicsSnapshot>();
@@ -147,7 +141,7 @@ Result RunPrism(int sides, bool friction, double duration) {
       const Vec3 expected =
           settings.rendering.stiffness * kDepth * Vec3(-settings.rendering.friction, 0.0, 1.0);
       r.force_error = std::max(r.force_error, (out.w_W.f - expected).norm());
-      const render::ProxyDiagnostics& d = method.last_output().diagnostics;
+      const render::ProxyDiagnostics& d = haptic::ProxyLastOutput(method)->diagnostics;
       const double seconds = std::chrono::duration<double>(t1 - t0).count();
       times.push_back(seconds);
       (j == 0 ? switch_times : steady_times).push_back(seconds);

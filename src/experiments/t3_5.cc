@@ -237,7 +237,7 @@ int RunT35(const std::filesystem::path& out, bool quiet, const T35Options& optio
                                  {"unconverged_ticks", p.unconverged}});
   }
   summary["checks"] = CheckT35(points, session.engine.rendering);
-  bool ok = true;
+  bool ok = !summary["checks"].empty();  // no checks is a failure, not a pass
   for (const auto& [name, pass] : summary["checks"].items()) ok = ok && pass.get<bool>();
   WriteText(out / "summary.json", summary.dump(2) + "\n");
   if (!quiet) {

@@ -10,8 +10,9 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "mrh/core/stats.h"
 #include "mrh/haptic/methods.h"
-#include "physics/local_dynamics_physics.h"
+#include "mrh/physics/local_dynamics.h"
 #include "experiment_util.h"
 #include "experiments_impl.h"
 #include "mrh/engine/engine.h"
@@ -205,9 +206,9 @@ struct PerturbationWork {
 std::function<void(const physics::MethodPhysics&)> WorkRecorder(
     std::vector<PerturbationWork>* work) {
   return [work, last = world::PerturberCounters{}](const physics::MethodPhysics& method) mutable {
-    const auto* ld = dynamic_cast<const physics::internal::LocalDynamicsPhysics*>(&method);
-    if (ld == nullptr) return;
-    const world::PerturberCounters& c = ld->perturber_counters();
+    const world::PerturberCounters* counters = physics::PerturberCountersOf(method);
+    if (counters == nullptr) return;
+    const world::PerturberCounters& c = *counters;
     work->push_back(
         {static_cast<int>(c.zero_force_solver_iterations - last.zero_force_solver_iterations),
          static_cast<int>(c.force_run_solver_iterations - last.force_run_solver_iterations),
@@ -246,12 +247,6 @@ struct RunResult {
   int max_test_iterations_per_step = 0;
 };
 
-double Percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const double rank = p / 100.0 * static_cast<double>(v.size() - 1);
-  return v[static_cast<std::size_t>(std::llround(rank))];
-}
 
 RunResult RunOne(const std::filesystem::path& scene, const std::string& variant, int cubes,
                  int condim, const T43Options& options) {
@@ -341,14 +336,13 @@ AccuracyResult RunAccuracy(const std::filesystem::path& scene, int cubes, const 
   const std::string method = "t4.3:accuracy:" + name;
   engine::RegisterMethod(method, "t4.3: local-dynamics, measurements repeated by a reference",
                          [used, reference](const engine::MethodContext& context) {
-                           physics::internal::LocalDynamicsOptions o;
+                           physics::LocalDynamicsOptions o;
                            o.perturber = used;
                            o.reference = reference;
                            const engine::RenderingSettings& r = context.settings->rendering;
                            return engine::Method{
                                "local-dynamics", false,
-                               std::make_unique<physics::internal::LocalDynamicsPhysics>(context,
-                                                                                         o),
+                               physics::MakeLocalDynamicsPhysics(context, o),
                                haptic::MakeLocalDynamicsHaptic(context.pointer_radius,
                                                                r.stiffness, r.damping),
                                {"local_dynamics.local_body_fault"}};
@@ -356,10 +350,10 @@ AccuracyResult RunAccuracy(const std::filesystem::path& scene, int cubes, const 
   const double dt = options.physics_dt;
   const auto steps = static_cast<std::size_t>(options.accuracy_steps);
   const auto timings = std::make_shared<MethodTimings>();
-  physics::internal::LocalDynamicsCounters counters;
+  physics::LocalDynamicsCounters counters;
   timings->on_step = [&counters](const physics::MethodPhysics& m) {
-    if (const auto* ld = dynamic_cast<const physics::internal::LocalDynamicsPhysics*>(&m)) {
-      counters = ld->counters();
+    if (const physics::LocalDynamicsCounters* c = physics::LocalDynamicsCountersOf(m)) {
+      counters = *c;
     }
   };
   const std::string timed = RegisterTimedMethod(

@@ -10,6 +10,7 @@
 
 #include "experiment_util.h"
 #include "experiments_impl.h"
+#include "mrh/core/stats.h"
 #include "mrh/engine/engine.h"
 #include "mrh/report/report.h"
 #include "mrh/session/session.h"
@@ -110,11 +111,6 @@ class StepTap final : public engine::Recorder {
   std::vector<int> neighbors;
 };
 
-double Percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v[static_cast<std::size_t>(std::llround(p / 100.0 * static_cast<double>(v.size() - 1)))];
-}
 
 struct Result {
   std::string method;

@@ -31,7 +31,7 @@ void LocalContactHaptic::Adopt(const ir::PhysicsSnapshot& snapshot) noexcept {
 }
 
 void LocalContactHaptic::HapticTick(const TickInput& in, TickOutput* out) noexcept {
-  const double alpha = std::min(1.0, static_cast<double>(in.j + 1) / static_cast<double>(in.n));
+  const double alpha = in.alpha();
   out->w_W = Wrench{};
   out->contacts = 0;
   out->status = 0;
@@ -53,34 +53,33 @@ void LocalContactHaptic::RenderContacts(const TickInput& in, double alpha,
     const auto motion = static_cast<std::size_t>(c.motion);
     const ir::BodyMotion& body = snapshot_.bodies[motion];
     const int local = local_of_motion_[motion];
-    render::PlaneContactState s;
-    Vec3 p_WCm;
+    Vec3 n_W, p_WO, v_WO, p_WCm;
     if (local >= 0) {
       const auto l = static_cast<std::size_t>(local);
       const Pose X_WB = solver_.X_WB(l);
-      s.n_W = X_WB.q * n_B_[i];
-      s.p_WO = X_WB * c.p_BC;
-      s.v_WO = solver_.PointVelocity(l, s.p_WO);
+      n_W = X_WB.q * n_B_[i];
+      p_WO = X_WB * c.p_BC;
+      v_WO = solver_.PointVelocity(l, p_WO);
       p_WCm = solver_.p_WCm(l);
     } else {
-      s.n_W = ((1.0 - alpha) * previous_n_[i] + alpha * c.n_W).normalized();
-      const Pose X_WB = Interpolate(body.X_WB_prev, body.X_WB, alpha);
-      p_WCm = X_WB * body.p_BCm;
-      s.p_WO = X_WB * c.p_BC;
-      s.v_WO = body.V_WCm.v + body.V_WCm.w.cross(s.p_WO - p_WCm);
+      n_W = render::BlendNormal(previous_n_[i], c.n_W, alpha);
+      const render::BlendedPoint o = render::BlendBodyPoint(body, c.p_BC, alpha);
+      p_WO = o.p_WO;
+      v_WO = o.v_WO;
+      p_WCm = o.p_WCm;
     }
-    rendered_n_[i] = s.n_W;
-    s.p_WC = in.X_WP.p - radius_ * s.n_W;
-    s.v_WC = in.V_WP.v + in.V_WP.w.cross(s.p_WC - in.X_WP.p);
-    const render::PointPenaltyResult r = render::RenderPointPenalty(s, stiffness_, damping_);
-    if (r.magnitude <= 0.0) continue;
+    rendered_n_[i] = n_W;
+    const render::SphereContact contact = render::TouchSpherePlane(
+        p_WO, v_WO, n_W, in.X_WP.p, in.V_WP, radius_, stiffness_, damping_);
+    if (contact.result.magnitude <= 0.0) continue;
+    const Vec3& f_d = contact.result.f_W;
     ++out->contacts;
-    out->w_W.f += r.f_W;
-    out->w_W.tau += (s.p_WC - in.X_WP.p).cross(r.f_W);
+    const Wrench w = render::PointerWrench(contact, in.X_WP.p);
+    out->w_W.f += w.f;
+    out->w_W.tau += w.tau;
     if (body.is_static) continue;
-    if (local >= 0) solver_.AddForce(static_cast<std::size_t>(local), -r.f_W, s.p_WO);
-    period_.AddImpulse(body.body, -r.f_W * in.dt, (s.p_WO - p_WCm).cross(-r.f_W) * in.dt,
-                       -r.f_W);
+    if (local >= 0) solver_.AddForce(static_cast<std::size_t>(local), -f_d, p_WO);
+    period_.AddImpulse(body.body, -f_d * in.dt, (p_WO - p_WCm).cross(-f_d) * in.dt, -f_d);
   }
 }
 

@@ -37,7 +37,7 @@ void LocalDynamicsHaptic::Adopt(const ir::PhysicsSnapshot& snapshot) noexcept {
 }
 
 void LocalDynamicsHaptic::HapticTick(const TickInput& in, TickOutput* out) noexcept {
-  const double alpha = std::min(1.0, static_cast<double>(in.j + 1) / static_cast<double>(in.n));
+  const double alpha = in.alpha();
   out->w_W = Wrench{};
   out->contacts = 0;
   out->status = 0;
@@ -63,8 +63,7 @@ void LocalDynamicsHaptic::RenderContacts(const TickInput& in, double alpha,
     const ir::PointContact& c = snapshot_.contacts[i];
     const auto motion = static_cast<std::size_t>(c.motion);
     const ir::BodyMotion& body = snapshot_.bodies[motion];
-    Vec3 n = (1.0 - alpha) * previous_n_[i] + alpha * c.n_W;
-    n.normalize();
+    const Vec3 n = render::BlendNormal(previous_n_[i], c.n_W, alpha);
     rendered_n_[i] = n;
     render::SphereContact contact;
     Vec3 p_WCm;
@@ -73,20 +72,17 @@ void LocalDynamicsHaptic::RenderContacts(const TickInput& in, double alpha,
           local()[motion].TouchSphere(c.p_BC, n, in.X_WP.p, in.V_WP, radius_, stiffness_, damping_);
       p_WCm = local()[motion].p_WCm();
     } else {
-      const Pose X_WB = Interpolate(body.X_WB_prev, body.X_WB, alpha);
-      p_WCm = X_WB * body.p_BCm;
-      contact.state.p_WO = X_WB * c.p_BC;
-      contact.state.n_W = n;
-      contact.state.v_WO = body.V_WCm.v + body.V_WCm.w.cross(contact.state.p_WO - p_WCm);
-      contact.state.p_WC = in.X_WP.p - radius_ * n;
-      contact.state.v_WC = in.V_WP.v + in.V_WP.w.cross(contact.state.p_WC - in.X_WP.p);
-      contact.result = render::RenderPointPenalty(contact.state, stiffness_, damping_);
+      const render::BlendedPoint o = render::BlendBodyPoint(body, c.p_BC, alpha);
+      p_WCm = o.p_WCm;
+      contact = render::TouchSpherePlane(o.p_WO, o.v_WO, n, in.X_WP.p, in.V_WP, radius_,
+                                         stiffness_, damping_);
     }
     if (contact.result.magnitude <= 0.0) continue;
     const Vec3& f_d = contact.result.f_W;
     ++out->contacts;
-    out->w_W.f += f_d;
-    out->w_W.tau += (contact.state.p_WC - in.X_WP.p).cross(f_d);
+    const Wrench w = render::PointerWrench(contact, in.X_WP.p);
+    out->w_W.f += w.f;
+    out->w_W.tau += w.tau;
     if (!body.is_static) {
       // eq. 4.12: the object receives −f_d at its plane point.
       tick_force_[motion] -= f_d;

@@ -28,4 +28,14 @@ std::unique_ptr<MethodHaptic> MakeLocalContactHaptic(double radius, double stiff
   return std::make_unique<internal::LocalContactHaptic>(radius, stiffness, damping);
 }
 
+const render::ProxyOutput* ProxyLastOutput(const MethodHaptic& method) noexcept {
+  const auto* proxy = dynamic_cast<const internal::ProxyHaptic*>(&method);
+  return proxy == nullptr ? nullptr : &proxy->last_output();
+}
+
+const render::TickIr* ProxyLastTickIr(const MethodHaptic& method) noexcept {
+  const auto* proxy = dynamic_cast<const internal::ProxyHaptic*>(&method);
+  return proxy == nullptr ? nullptr : &proxy->last_tick_ir();
+}
+
 }  // namespace mrh::haptic

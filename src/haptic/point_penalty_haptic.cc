@@ -18,7 +18,7 @@ void PointPenaltyHaptic::Adopt(const ir::PhysicsSnapshot& snapshot) noexcept {
 }
 
 void PointPenaltyHaptic::HapticTick(const TickInput& in, TickOutput* out) noexcept {
-  const double alpha = std::min(1.0, static_cast<double>(in.j + 1) / static_cast<double>(in.n));
+  const double alpha = in.alpha();
   out->w_W = Wrench{};
   out->contacts = 0;
   for (std::size_t b = 0; b < snapshot_.bodies.size(); ++b) {
@@ -29,26 +29,20 @@ void PointPenaltyHaptic::HapticTick(const TickInput& in, TickOutput* out) noexce
     const ir::PointContact& c = snapshot_.contacts[i];
     const auto motion = static_cast<std::size_t>(c.motion);
     const ir::BodyMotion& body = snapshot_.bodies[motion];
-    const Pose X_WB = Interpolate(body.X_WB_prev, body.X_WB, alpha);
-    Vec3 n = (1.0 - alpha) * previous_n_[i] + alpha * c.n_W;
-    n.normalize();
+    const Vec3 n = render::BlendNormal(previous_n_[i], c.n_W, alpha);
     rendered_n_[i] = n;
-    render::PlaneContactState s;
-    s.p_WO = X_WB * c.p_BC;
-    s.n_W = n;
-    const Vec3 p_WCm = X_WB * body.p_BCm;
-    s.v_WO = body.V_WCm.v + body.V_WCm.w.cross(s.p_WO - p_WCm);
-    s.p_WC = in.X_WP.p - radius_ * n;
-    s.v_WC = in.V_WP.v + in.V_WP.w.cross(s.p_WC - in.X_WP.p);
-    const render::PointPenaltyResult r = render::RenderPointPenalty(s, stiffness_, damping_);
-    if (r.magnitude <= 0.0) continue;
+    const render::BlendedPoint o = render::BlendBodyPoint(body, c.p_BC, alpha);
+    const render::SphereContact contact = render::TouchSpherePlane(
+        o.p_WO, o.v_WO, n, in.X_WP.p, in.V_WP, radius_, stiffness_, damping_);
+    if (contact.result.magnitude <= 0.0) continue;
     ++out->contacts;
-    out->w_W.f += r.f_W;
-    out->w_W.tau += (s.p_WC - in.X_WP.p).cross(r.f_W);
+    const Wrench w = render::PointerWrench(contact, in.X_WP.p);
+    out->w_W.f += w.f;
+    out->w_W.tau += w.tau;
     if (!body.is_static) {
       // eq. 4.12: the object receives −f_d at the plane point.
-      tick_force_[motion] -= r.f_W;
-      tick_torque_[motion] += (s.p_WO - p_WCm).cross(-r.f_W);
+      tick_force_[motion] -= contact.result.f_W;
+      tick_torque_[motion] += (o.p_WO - o.p_WCm).cross(-contact.result.f_W);
     }
   }
   for (ir::BodyImpulse& entry : period_.impulses) entry.last_force = Vec3::Zero();

@@ -11,8 +11,7 @@ void ProxyHaptic::Adopt(const ir::PhysicsSnapshot& snapshot) noexcept {
 }
 
 void ProxyHaptic::HapticTick(const TickInput& in, TickOutput* out) noexcept {
-  const double alpha =
-      std::min(1.0, static_cast<double>(in.j + 1) / static_cast<double>(std::max(in.n, 1)));
+  const double alpha = in.alpha();
   interpolator_.Evaluate(alpha, in.X_WP, &tick_ir_);
   renderer_.Tick(tick_ir_, in.X_WP, in.dt, &output_);
   out->w_W = output_.w_W;

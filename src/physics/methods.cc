@@ -7,6 +7,7 @@
 #include "local_contact_physics.h"
 #include "local_dynamics_physics.h"
 #include "mrh/core/error.h"
+#include "mrh/physics/local_dynamics.h"
 #include "mrh/world/world.h"
 #include "point_penalty_physics.h"
 #include "proxy_physics.h"
@@ -33,6 +34,21 @@ std::unique_ptr<MethodPhysics> MakeProxyPhysics(const MethodContext& context) {
 
 std::unique_ptr<MethodPhysics> MakeLocalDynamicsPhysics(const MethodContext& context) {
   return std::make_unique<internal::LocalDynamicsPhysics>(context);
+}
+
+std::unique_ptr<MethodPhysics> MakeLocalDynamicsPhysics(const MethodContext& context,
+                                                        const LocalDynamicsOptions& options) {
+  return std::make_unique<internal::LocalDynamicsPhysics>(context, options);
+}
+
+const LocalDynamicsCounters* LocalDynamicsCountersOf(const MethodPhysics& method) noexcept {
+  const auto* ld = dynamic_cast<const internal::LocalDynamicsPhysics*>(&method);
+  return ld == nullptr ? nullptr : &ld->counters();
+}
+
+const world::PerturberCounters* PerturberCountersOf(const MethodPhysics& method) noexcept {
+  const auto* ld = dynamic_cast<const internal::LocalDynamicsPhysics*>(&method);
+  return ld == nullptr ? nullptr : &ld->perturber_counters();
 }
 
 std::unique_ptr<MethodPhysics> MakeLocalContactPhysics(const MethodContext& context) {

@@ -6,6 +6,7 @@
 #include <string>
 #include <utility>
 
+#include "mrh/core/stats.h"
 #include "mrh/physics/physics_side.h"
 #include "mrh/world/world.h"
 
@@ -113,13 +114,5 @@ void PhysicsSide::Finish(PhysicsStats* stats) {
   }
 }
 
-double Percentile(std::vector<double> values, double p) {
-  if (values.empty()) return 0.0;
-  const double rank = p / 100.0 * static_cast<double>(values.size() - 1);
-  const auto index = static_cast<std::size_t>(std::llround(rank));
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(index),
-                   values.end());
-  return values[index];
-}
 
 }  // namespace mrh::physics

@@ -63,14 +63,8 @@ bool LocalBody::Step(const Vec3& f_W, double dt) noexcept {
 SphereContact LocalBody::TouchSphere(const Vec3& p_BC, const Vec3& n_W, const Vec3& p_WP,
                                      const Twist& V_WP, double radius, double k,
                                      double d) const noexcept {
-  SphereContact c;
-  c.state.p_WO = p_WCm_ + q_WB_ * (p_BC - p_BCm_);
-  c.state.n_W = n_W;
-  c.state.v_WO = PointVelocity(c.state.p_WO);
-  c.state.p_WC = p_WP - radius * n_W;
-  c.state.v_WC = V_WP.v + V_WP.w.cross(c.state.p_WC - p_WP);
-  c.result = RenderPointPenalty(c.state, k, d);
-  return c;
+  const Vec3 p_WO = p_WCm_ + q_WB_ * (p_BC - p_BCm_);
+  return TouchSpherePlane(p_WO, PointVelocity(p_WO), n_W, p_WP, V_WP, radius, k, d);
 }
 
 }  // namespace mrh::render

@@ -25,6 +25,18 @@ inline nlohmann::json ReadSummary(const std::filesystem::path& out) {
   return nlohmann::json::parse(in);
 }
 
+/// Expects summary["checks"] to be a non-empty object whose every value is true: a summary
+/// without checks, or with none, fails (a loop over zero checks would pass silently).
+inline void ExpectAllChecksPass(const nlohmann::json& summary) {
+  ASSERT_TRUE(summary.contains("checks")) << "summary.json has no \"checks\"";
+  const nlohmann::json& checks = summary["checks"];
+  ASSERT_TRUE(checks.is_object()) << checks.dump();
+  EXPECT_FALSE(checks.empty()) << "summary.json \"checks\" is empty";
+  for (const auto& [name, pass] : checks.items()) {
+    EXPECT_TRUE(pass.is_boolean() && pass.get<bool>()) << name << " = " << pass.dump();
+  }
+}
+
 /// Fixture for a suite whose tests all check one run of an experiment. The suite's
 /// SetUpTestSuite calls RunExperiment once; TearDownTestSuite removes the output folder.
 /// `Suite` is the deriving fixture itself, so that every suite has its own run.

@@ -31,7 +31,7 @@ nlohmann::json RunAndRead(const std::filesystem::path& out) {
 TEST(T31ExperimentTest, EdgeRollFaceMatchesTheAnalyticProxy) {
   const std::filesystem::path out = testing::TempDir("mrh_experiments_test_t3_1_");
   const nlohmann::json s = RunAndRead(out);
-  for (const auto& [name, pass] : s["checks"].items()) EXPECT_TRUE(pass.get<bool>()) << name;
+  testing::ExpectAllChecksPass(s);
   // Just before the face lands one edge carries the load at lever h: |τ| = k_r δ h/(R_w + h²).
   const double peak = kKr * kEdgeDepth * kHalf / (kRw + kHalf * kHalf);
   EXPECT_NEAR(s["numbers"]["torque_peak_Nm"].get<double>(), peak, 0.01 * peak);

@@ -13,6 +13,7 @@
 #include "mrh/device/calibration.h"
 #include "mrh/device/device.h"
 #include "mrh/engine/settings.h"
+#include "mrh/haptic/method_haptic.h"
 #include "mrh/haptic/tick_record.h"
 #include "mrh/physics/method_physics.h"
 #include "mrh/physics/recorder.h"
@@ -98,6 +99,13 @@ class Engine {
   const world::World& world() const;
   const EngineSettings& settings() const;
   double pointer_radius() const;
+
+  /// The method's two halves, for observers (experiments, tests) that read a method's own
+  /// details through the public accessors of mrh/haptic/methods.h and mrh/physics/*.h. Read the
+  /// haptic half only from the haptic thread (in lockstep: the calling thread, e.g. inside the
+  /// device's SetWrench) and the physics half only between steps or after the run.
+  const haptic::MethodHaptic& haptic_method() const;
+  const physics::MethodPhysics& physics_method() const;
 
  private:
   struct Impl;

@@ -34,4 +34,10 @@ std::unique_ptr<MethodHaptic> MakeLocalDynamicsHaptic(double radius, double stif
 std::unique_ptr<MethodHaptic> MakeLocalContactHaptic(double radius, double stiffness,
                                                      double damping);
 
+/// proxy-6dof's haptic half: the renderer's output of its latest tick, and the tick IR it
+/// rendered against; null when `method` is not proxy-6dof's. Haptic thread (or between
+/// lockstep ticks). RT-safe.
+const render::ProxyOutput* ProxyLastOutput(const MethodHaptic& method) noexcept;
+const render::TickIr* ProxyLastTickIr(const MethodHaptic& method) noexcept;
+
 }  // namespace mrh::haptic

@@ -77,7 +77,4 @@ class PhysicsSide {
   std::map<int, BodyImpulseTotal> impulses_;
 };
 
-/// p-th percentile (0..100) of `values` (copied and partially sorted). 0 for an empty input.
-double Percentile(std::vector<double> values, double p);
-
 }  // namespace mrh::physics

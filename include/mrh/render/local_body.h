@@ -9,10 +9,6 @@
 namespace mrh::render {
 
 /// A sphere pointer against a plane fixed on a local body, as evaluated for one tick.
-struct SphereContact {
-  PlaneContactState state;    ///< plane point and velocity on the body, pointer point, normal
-  PointPenaltyResult result;  ///< f_W acts on the pointer; the body receives −f_W at state.p_WO
-};
 
 /// A neighbor object simulated locally at the haptic rate (SPEC §4.7). Its state is the COM
 /// position, a unit orientation quaternion (body → world) and the COM twist, all in the world
