@@ -10,6 +10,7 @@
 #include "mrh/engine/method.h"
 #include "local_contact_method.h"
 #include "local_dynamics_method.h"
+#include "penalty_sum_method.h"
 #include "point_penalty_method.h"
 #include "proxy_method.h"
 
@@ -49,6 +50,10 @@ void RegisterBuiltins() {
     RegisterMethod("proxy-6dof",
                    "Ch. 3: geometric IR + 6-DOF proxy with friction cones, reaction one step late",
                    internal::MakeProxyMethod);
+    RegisterMethod("penalty-sum",
+                   "B5: proxy-6dof's geometric IR, wrench = sum of per-contact springs k·depth·n "
+                   "(stiffness grows with the contact count)",
+                   internal::MakePenaltySumMethod);
     RegisterMethod("local-dynamics",
                    "Ch. 4: neighbors simulated at the haptic rate; rendering.local_model "
                    "\"contact\" (their contact island with friction, default) or "
