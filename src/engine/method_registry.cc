@@ -13,6 +13,7 @@
 #include "penalty_sum_method.h"
 #include "point_penalty_method.h"
 #include "proxy_method.h"
+#include "virtual_coupling_method.h"
 
 namespace mrh::engine {
 namespace {
@@ -54,6 +55,10 @@ void RegisterBuiltins() {
                    "B5: proxy-6dof's geometric IR, wrench = sum of per-contact springs k·depth·n "
                    "(stiffness grows with the contact count)",
                    internal::MakePenaltySumMethod);
+    RegisterMethod("virtual-coupling",
+                   "B3: pointer as a dynamic tool in MuJoCo at the haptic rate, spring-damper to "
+                   "the device (the tool's inertia is felt)",
+                   internal::MakeVirtualCouplingMethod);
     RegisterMethod("local-dynamics",
                    "Ch. 4: neighbors simulated at the haptic rate; rendering.local_model "
                    "\"contact\" (their contact island with friction, default) or "
