@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/geometric_ir_builder.h"
+#include "physics/geometric_ir_builder.h"
 #include "mrh/geometry/broadphase.h"
 #include "mrh/world/world.h"
 
@@ -52,7 +52,7 @@ void BM_NeighborSearchAndIr(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   world::World world = world::World::LoadString(GridScene(n));
   const int pointer = world.pointer_body();
-  engine::internal::GeometricIrBuilder builder(world, pointer, engine::RenderingSettings{});
+  physics::internal::GeometricIrBuilder builder(world, pointer, engine::RenderingSettings{});
   auto snapshot = std::make_unique<ir::PhysicsSnapshot>();
   std::int64_t iteration = 0;
   double broad = 0.0, narrow = 0.0, region = 0.0, pairs = 0.0, points = 0.0, candidates = 0.0;
@@ -61,7 +61,7 @@ void BM_NeighborSearchAndIr(benchmark::State& state) {
     builder.CapturePreviousPoses(world);
     builder.Build(world, X_WP, snapshot.get());
     benchmark::DoNotOptimize(snapshot->pairs.size());
-    const engine::internal::GeometricIrStats& s = builder.stats();
+    const physics::internal::GeometricIrStats& s = builder.stats();
     broad += s.broad_phase_s;
     narrow += s.narrow_phase_s;
     region += s.region_s;

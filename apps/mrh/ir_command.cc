@@ -11,7 +11,7 @@
 #include "commands.h"
 #include "mrh/core/error.h"
 #include "mrh/core/validate.h"
-#include "mrh/engine/geometric_ir.h"
+#include "mrh/physics/geometric_ir.h"
 #include "mrh/ir/snapshot.h"
 #include "mrh/session/session.h"
 #include "mrh/world/world.h"
@@ -139,7 +139,7 @@ int IrCommand(const IrOptions& o) {
   }
   world.SetMocapPose(pointer, X_WP);
   const auto snapshot = std::make_unique<ir::PhysicsSnapshot>();
-  engine::BuildGeometricIr(world, pointer, s.engine.rendering, X_WP, snapshot.get());
+  physics::BuildGeometricIr(world, pointer, s.engine.rendering, X_WP, snapshot.get());
 
   Json pairs = Json::array();
   for (const ir::GeometricPair& pair : snapshot->pairs) {

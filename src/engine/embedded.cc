@@ -12,7 +12,8 @@
 namespace mrh::engine {
 namespace internal {
 struct EmbeddedRun {
-  EmbeddedRun(EngineState* state, Recorder* recorder) : physics(state, recorder) {}
+  EmbeddedRun(EngineState* state, Recorder* recorder)
+      : physics(state->MakePhysicsSide(recorder)) {}
   PhysicsSide physics;
   device::ExternalDevice* device = nullptr;
   std::int64_t period = 0;
@@ -41,13 +42,13 @@ void Engine::Start(Recorder* recorder) {
   impl_->embedded.reset(new internal::EmbeddedRun(&s, recorder));
   internal::EmbeddedRun& run = *impl_->embedded;
   run.device = external;
-  run.physics.Start();
+  run.physics.Start(s.haptic->InitialReport(0.0));
   if (s.settings.mode == Mode::kRealtime) {
-    run.physics_thread = std::thread([&run] { run.physics.RunThread(run.done); });
+    run.physics_thread = std::thread([&run] { internal::RunPhysicsThread(run.physics, run.done); });
   }
 }
 
-Wrench Engine::Tick(double t, const device::DeviceState& reading) {
+Wrench Engine::Tick(double t, const device::DeviceState& reading) noexcept {
   internal::EngineState& s = *impl_->state;
   MRH_DEMAND(impl_->embedded != nullptr);
   internal::EmbeddedRun& run = *impl_->embedded;
@@ -76,9 +77,10 @@ RunStats Engine::Stop() {
   if (run.physics_thread.joinable()) run.physics_thread.join();
   s.device->Close();
   RunStats stats;
-  run.physics.Finish(&stats);
+  internal::FillPhysicsStats(run.physics, &stats);
   internal::FillHapticStats(s.haptic->counters(), &stats);
-  stats.method = s.method->name();
+  internal::FillMethodStatus(s.haptic->counters(), s.method, &stats);
+  stats.method = s.method.name;
   stats.mode = s.settings.mode;
   stats.physics_dt = s.settings.physics_dt;
   stats.haptic_dt = s.settings.haptic_dt;

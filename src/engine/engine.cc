@@ -12,14 +12,6 @@
 #include "mrh/world/world.h"
 
 namespace mrh::engine {
-double PointerRadiusFor3Dof(const MethodContext& context) {
-  if (context.pointer_radius > 0.0) return context.pointer_radius;
-  const std::string& body = context.settings->pointer.body;
-  throw SceneError(fmt::format(
-      "{}: pointer.body = '{}' has no sphere geom and pointer.radius is not set, which method "
-      "'{}' (3-DOF) needs; set pointer.radius (m) in the session or add a sphere geom to the body",
-      context.world->origin(), body, context.settings->method));
-}
 
 namespace internal {
 namespace {
@@ -68,7 +60,7 @@ EngineState::EngineState(world::World w, std::unique_ptr<device::Device> d,
         settings.safety.watchdog_timeout, 2.0 * settings.physics_dt));
   }
   ticks_per_step = settings.ticks_per_step();
-  haptic.emplace(method.get(), device.get(), calibration, settings.safety, ticks_per_step,
+  haptic.emplace(method.haptic.get(), device.get(), calibration, settings.safety, ticks_per_step,
                  settings.haptic_dt,
                  HapticSide::Exchange{&snapshots, &reports, &tick_records});
 }
@@ -77,7 +69,7 @@ void EngineState::MakeMethodForSettings() {
   MethodContext context{&world, &settings, pointer_body, pointer_radius};
   world.set_timestep(settings.physics_dt);
   method = MakeMethod(settings.method, context);
-  if (method->single_rate() && settings.physics_dt != settings.haptic_dt) {
+  if (method.single_rate && settings.physics_dt != settings.haptic_dt) {
     // The single-rate baseline steps the world at the haptic rate whatever physics_dt says.
     settings.physics_dt = settings.haptic_dt;
     world.set_timestep(settings.physics_dt);

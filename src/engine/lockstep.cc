@@ -24,8 +24,8 @@ RunStats RunLockstep(EngineState& state, Recorder* recorder, const Engine::Progr
       static_cast<std::int64_t>(std::llround(state.settings.duration / dt));
   const std::int64_t periods = (total_ticks + n - 1) / n;
 
-  PhysicsSide physics(&state, recorder);
-  physics.Start();
+  PhysicsSide physics = state.MakePhysicsSide(recorder);
+  physics.Start(state.haptic->InitialReport(0.0));
   auto last_progress = wall0;
   std::int64_t tick = 0;
   for (std::int64_t k = 0; k < periods; ++k) {
@@ -43,9 +43,10 @@ RunStats RunLockstep(EngineState& state, Recorder* recorder, const Engine::Progr
   state.haptic->Stop();
 
   RunStats stats;
-  physics.Finish(&stats);
+  FillPhysicsStats(physics, &stats);
   FillHapticStats(state.haptic->counters(), &stats);
-  stats.method = state.method->name();
+  FillMethodStatus(state.haptic->counters(), state.method, &stats);
+  stats.method = state.method.name;
   stats.mode = Mode::kLockstep;
   stats.physics_dt = state.settings.physics_dt;
   stats.haptic_dt = dt;

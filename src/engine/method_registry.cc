@@ -8,12 +8,9 @@
 
 #include "mrh/core/error.h"
 #include "mrh/engine/method.h"
-#include "local_contact_method.h"
-#include "local_dynamics_method.h"
-#include "penalty_sum_method.h"
-#include "point_penalty_method.h"
-#include "proxy_method.h"
-#include "virtual_coupling_method.h"
+#include "mrh/haptic/methods.h"
+#include "mrh/physics/methods.h"
+#include "mrh/world/world.h"
 
 namespace mrh::engine {
 namespace {
@@ -37,6 +34,66 @@ std::mutex& RegistryMutex() {
 
 namespace {
 
+// Each built-in method is a physics half (mrh_physics) and a haptic half (mrh_haptic) built
+// from plain parameters: they share no object.
+Method PointPenalty(const MethodContext& c, bool single_rate) {
+  const RenderingSettings& r = c.settings->rendering;
+  return Method{single_rate ? "single-rate" : "impulse", single_rate,
+                physics::MakePointPenaltyPhysics(c),
+                haptic::MakePointPenaltyHaptic(physics::PointerRadiusFor3Dof(c), r.stiffness,
+                                               r.damping),
+                {}};
+}
+
+Method SingleRate(const MethodContext& c) { return PointPenalty(c, true); }
+
+Method Impulse(const MethodContext& c) { return PointPenalty(c, false); }
+
+Method Proxy(const MethodContext& c) {
+  // The renderer settings first: they carry the session-key errors.
+  const render::ProxyRendererSettings settings =
+      physics::ProxySettingsFor(*c.world, c.pointer_body, c.settings->rendering);
+  return Method{"proxy-6dof", false, physics::MakeProxyPhysics(c),
+                haptic::MakeProxyHaptic(settings),
+                // render::ProxyStatusBits
+                {"proxy.rows_full", "proxy.not_converged", "proxy.bad_input"}};
+}
+
+// B5: proxy-6dof's physics half (reaction one step late, geometric IR), per-contact springs.
+Method PenaltySum(const MethodContext& c) {
+  const RenderingSettings& r = c.settings->rendering;
+  return Method{"penalty-sum", false, physics::MakeProxyPhysics(c),
+                haptic::MakePenaltySumHaptic(render::PenaltySumSettings{.k = r.stiffness,
+                                                                        .d = r.damping}),
+                {"", "", "penalty_sum.bad_input"}};  // render::kProxyStatusBadInput
+}
+
+// B3: single-rate; the tool is a free body of the world (session::LoadWorld).
+Method VirtualCoupling(const MethodContext& c) {
+  const RenderingSettings& r = c.settings->rendering;
+  return Method{"virtual-coupling", true, physics::MakeVirtualCouplingPhysics(c),
+                haptic::MakeVirtualCouplingHaptic(render::CouplingGains{
+                    r.coupling_stiffness, r.coupling_damping, r.coupling_rot_stiffness,
+                    r.coupling_rot_damping}),
+                {"virtual_coupling.bad_input"}};  // haptic::kVirtualCouplingBadInput
+}
+
+// rendering.local_model picks the local model: "contact" (default; free-jointed scenes only)
+// or the thesis' "perturbation".
+Method LocalDynamics(const MethodContext& c) {
+  const RenderingSettings& r = c.settings->rendering;
+  if (physics::UsesContactLocalModel(c)) {
+    return Method{"local-dynamics", false, physics::MakeLocalContactPhysics(c),
+                  haptic::MakeLocalContactHaptic(physics::PointerRadiusFor3Dof(c), r.stiffness,
+                                                 r.damping),
+                  {"local_dynamics.local_body_fault"}};  // haptic::LocalDynamicsStatusBits
+  }
+  return Method{"local-dynamics", false, physics::MakeLocalDynamicsPhysics(c),
+                haptic::MakeLocalDynamicsHaptic(physics::PointerRadiusFor3Dof(c), r.stiffness,
+                                                r.damping),
+                {"local_dynamics.local_body_fault"}};  // haptic::LocalDynamicsStatusBits
+}
+
 // Built-in methods register on first use: self-registering statics would be dropped by the
 // linker from a static library.
 void RegisterBuiltins() {
@@ -44,26 +101,26 @@ void RegisterBuiltins() {
   std::call_once(once, [] {
     RegisterMethod("single-rate",
                    "B1: world stepped at the haptic rate, 3-DOF penalty force applied every tick",
-                   internal::MakeSingleRateMethod);
+                   SingleRate);
     RegisterMethod("impulse",
                    "B4: conventional multi-rate, reaction impulse sent to the next physics step",
-                   internal::MakeImpulseMethod);
+                   Impulse);
     RegisterMethod("proxy-6dof",
                    "Ch. 3: geometric IR + 6-DOF proxy with friction cones, reaction one step late",
-                   internal::MakeProxyMethod);
+                   Proxy);
     RegisterMethod("penalty-sum",
                    "B5: proxy-6dof's geometric IR, wrench = sum of per-contact springs k·depth·n "
                    "(stiffness grows with the contact count)",
-                   internal::MakePenaltySumMethod);
+                   PenaltySum);
     RegisterMethod("virtual-coupling",
                    "B3: pointer as a dynamic tool in MuJoCo at the haptic rate, spring-damper to "
                    "the device (the tool's inertia is felt)",
-                   internal::MakeVirtualCouplingMethod);
+                   VirtualCoupling);
     RegisterMethod("local-dynamics",
                    "Ch. 4: neighbors simulated at the haptic rate; rendering.local_model "
                    "\"contact\" (their contact island with friction, default) or "
                    "\"perturbation\" (thesis: accelerance + bias)",
-                   internal::MakeLocalDynamicsAnyModel);
+                   LocalDynamics);
   });
 }
 
@@ -82,7 +139,7 @@ std::vector<std::pair<std::string, std::string>> ListMethods() {
   return out;
 }
 
-std::unique_ptr<Method> MakeMethod(const std::string& name, const MethodContext& context) {
+Method MakeMethod(const std::string& name, const MethodContext& context) {
   RegisterBuiltins();
   MethodFactory factory;
   {

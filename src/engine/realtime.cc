@@ -69,8 +69,8 @@ RunStats RunRealtime(EngineState& s, Recorder* recorder, const Engine::ProgressF
   HapticTiming timing;
   timing.jitter_us.resize(static_cast<std::size_t>(s.settings.duration / s.settings.haptic_dt) +
                           kJitterSlack);
-  PhysicsSide physics(&s, recorder);
-  physics.Start();
+  PhysicsSide physics = s.MakePhysicsSide(recorder);
+  physics.Start(s.haptic->InitialReport(0.0));
 
   std::atomic<bool> done{false};
   std::atomic<bool> fifo_ok{false};
@@ -80,7 +80,7 @@ RunStats RunRealtime(EngineState& s, Recorder* recorder, const Engine::ProgressF
   std::exception_ptr physics_error;
   std::thread physics_thread([&] {
     try {
-      physics.RunThread(done);
+      RunPhysicsThread(physics, done);
     } catch (...) {
       physics_error = std::current_exception();
     }
@@ -101,8 +101,9 @@ RunStats RunRealtime(EngineState& s, Recorder* recorder, const Engine::ProgressF
     stats.warnings.push_back("SCHED_FIFO refused for the haptic thread; running at normal priority");
   }
   for (const std::string& w : stats.warnings) spdlog::warn("{}", w);
-  physics.Finish(&stats);
+  FillPhysicsStats(physics, &stats);
   FillHapticStats(s.haptic->counters(), &stats);
+  FillMethodStatus(s.haptic->counters(), s.method, &stats);
   std::vector<double> jitter(timing.jitter_us.begin(),
                              timing.jitter_us.begin() + static_cast<std::ptrdiff_t>(timing.samples));
   stats.jitter_p50_us = Percentile(jitter, 50.0);
@@ -110,7 +111,7 @@ RunStats RunRealtime(EngineState& s, Recorder* recorder, const Engine::ProgressF
   stats.jitter_max_us = jitter.empty() ? 0.0 : *std::max_element(jitter.begin(), jitter.end());
   stats.overruns = timing.overruns;
   stats.realtime_priority = locked && fifo_ok.load();
-  stats.method = s.method->name();
+  stats.method = s.method.name;
   stats.mode = Mode::kRealtime;
   stats.physics_dt = s.settings.physics_dt;
   stats.haptic_dt = s.settings.haptic_dt;

@@ -14,6 +14,7 @@
 
 #include "mrh/core/spatial.h"
 #include "mrh/engine/engine.h"
+#include "mrh/physics/method_physics.h"
 #include "mrh/render/proxy_renderer.h"
 
 namespace mrh::session {
@@ -63,7 +64,7 @@ struct MethodTimings {
   std::function<void(const ir::PhysicsSnapshot&)> on_snapshot;
   /// Called on the physics side after each PhysicsStep with the wrapped method (optional), to
   /// read its counters.
-  std::function<void(const engine::Method&)> on_step;
+  std::function<void(const physics::MethodPhysics&)> on_step;
   std::vector<double> step_wall_ms;  ///< PhysicsStep wall time (ms)
   std::vector<double> step_cpu_ms;   ///< PhysicsStep thread CPU time (ms): immune to preemption
   std::vector<double> tick_wall_us;  ///< HapticTick wall time (µs)

@@ -9,7 +9,7 @@
 #include <optional>
 
 #include "engine/engine_impl.h"
-#include "engine/proxy_method.h"
+#include "haptic/proxy_haptic.h"
 #include "experiment_util.h"
 #include "experiments_impl.h"
 #include "mrh/core/error.h"
@@ -39,7 +39,7 @@ class SamplingDevice final : public device::Device {
     if (method != nullptr) Sample();
   }
 
-  const engine::internal::ProxyMethod* method = nullptr;
+  const haptic::internal::ProxyHaptic* method = nullptr;
   std::vector<ProxyTick> samples;
 
  private:
@@ -97,7 +97,7 @@ ProxyRun RunProxySession(const session::Session& session, const std::filesystem:
   SamplingDevice* device = sampler.get();
   engine::internal::EngineState state(session::LoadWorld(session), std::move(sampler),
                                       session.device.calibration, settings);
-  device->method = dynamic_cast<const engine::internal::ProxyMethod*>(state.method.get());
+  device->method = dynamic_cast<const haptic::internal::ProxyHaptic*>(state.method.haptic.get());
   device->samples.reserve(static_cast<std::size_t>(settings.duration / settings.haptic_dt) + 2);
   std::optional<report::CsvRecorder> csv;
   if (!dir.empty()) csv.emplace(dir);

@@ -10,7 +10,8 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "engine/proxy_method.h"
+#include "haptic/proxy_haptic.h"
+#include "mrh/engine/method.h"
 #include "experiment_util.h"
 #include "experiments_impl.h"
 #include "mrh/report/report.h"
@@ -102,13 +103,15 @@ Result RunPrism(int sides, bool friction, double duration) {
   world.set_timestep(kPhysicsDt);
   const engine::EngineSettings settings = PrismSettings(friction);
   const engine::MethodContext context{&world, &settings, world.pointer_body(), kRadius};
-  engine::internal::ProxyMethod method(context);
+  engine::Method pair = engine::MakeMethod("proxy-6dof", context);
+  physics::MethodPhysics& physics = *pair.physics;
+  auto& method = dynamic_cast<haptic::internal::ProxyHaptic&>(*pair.haptic);
   const int n = settings.ticks_per_step();
   auto current = std::make_unique<ir::PhysicsSnapshot>();
   auto next = std::make_unique<ir::PhysicsSnapshot>();
   ir::HapticReport report;
   report.X_WP = PrismPose(0.0);
-  method.PhysicsStart(report, current.get());
+  physics.PhysicsStart(report, current.get());
   Result r;
   r.sides = sides;
   r.friction = friction;
@@ -118,7 +121,7 @@ Result RunPrism(int sides, bool friction, double duration) {
   const auto periods = static_cast<int>(std::lround(duration / kPhysicsDt));
   std::int64_t tick = 0;
   for (int k = 0; k < periods; ++k) {
-    method.PhysicsStep(report, next.get());
+    physics.PhysicsStep(report, next.get());
     for (int j = 0; j < n; ++j, ++tick) {
       engine::TickInput in;
       in.tick = tick;

@@ -165,8 +165,8 @@ ir::Mat63 MeasureAccelerance() {
   ir::HapticReport report;
   report.X_WP = s.device.calibration.ToWorld(s.device.pose);
   auto snapshot = std::make_unique<ir::PhysicsSnapshot>();
-  method->PhysicsStart(report, snapshot.get());
-  method->PhysicsStep(report, snapshot.get());
+  method.physics->PhysicsStart(report, snapshot.get());
+  method.physics->PhysicsStep(report, snapshot.get());
   const int cube = world.FindBody("cube");
   for (const ir::BodyMotion& body : snapshot->bodies) {
     if (body.body == cube && body.has_dynamics) return body.A;

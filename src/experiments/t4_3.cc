@@ -10,7 +10,8 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
-#include "engine/local_dynamics_method.h"
+#include "mrh/haptic/methods.h"
+#include "physics/local_dynamics_physics.h"
 #include "experiment_util.h"
 #include "experiments_impl.h"
 #include "mrh/engine/engine.h"
@@ -43,25 +44,29 @@ double StartX() {
   return -kHalf - kRadius - kStartGap;
 }
 
-// Forwards to an inner method and records how long each call took (see RegisterTimedMethod).
-class TimedMethod final : public engine::Method {
+using Clock = std::chrono::steady_clock;
+
+double Us(Clock::time_point t0) noexcept {
+  return std::chrono::duration<double, std::micro>(Clock::now() - t0).count();
+}
+
+double ThreadCpuMs() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) * 1e3 + static_cast<double>(ts.tv_nsec) * 1e-6;
+}
+
+// Appends within the reserved capacity only, so the haptic half never allocates.
+void Keep(std::vector<double>* v, double value, std::size_t cap) noexcept {
+  if (v->size() < v->capacity() && v->size() < cap) v->push_back(value);
+}
+
+// Forwards to an inner method's physics half and records how long each step took (see
+// RegisterTimedMethod).
+class TimedPhysics final : public physics::MethodPhysics {
  public:
-  TimedMethod(std::unique_ptr<engine::Method> inner, std::shared_ptr<MethodTimings> sink,
-              std::size_t max_ticks, std::size_t max_steps)
-      : inner_(std::move(inner)),
-        sink_(std::move(sink)),
-        max_ticks_(max_ticks),
-        max_steps_(max_steps) {
-    sink_->tick_wall_us.reserve(sink_->tick_wall_us.size() + max_ticks);
-    sink_->tick_j.reserve(sink_->tick_j.size() + max_ticks);
-    sink_->tick_contacts.reserve(sink_->tick_contacts.size() + max_ticks);
-    sink_->adopt_wall_us.reserve(sink_->adopt_wall_us.size() + max_steps + 1);
-    sink_->end_period_wall_us.reserve(sink_->end_period_wall_us.size() + max_steps + 1);
-  }
-
-  const char* name() const noexcept override { return inner_->name(); }
-
-  bool single_rate() const noexcept override { return inner_->single_rate(); }
+  TimedPhysics(std::unique_ptr<physics::MethodPhysics> inner, std::shared_ptr<MethodTimings> sink)
+      : inner_(std::move(inner)), sink_(std::move(sink)) {}
 
   void PhysicsStart(const ir::HapticReport& initial, ir::PhysicsSnapshot* out) override {
     inner_->PhysicsStart(initial, out);
@@ -76,6 +81,28 @@ class TimedMethod final : public engine::Method {
     sink_->step_wall_ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
     if (sink_->on_snapshot) sink_->on_snapshot(*out);
     if (sink_->on_step) sink_->on_step(*inner_);
+  }
+
+ private:
+  std::unique_ptr<physics::MethodPhysics> inner_;
+  std::shared_ptr<MethodTimings> sink_;
+};
+
+// Forwards to an inner method's haptic half and records how long each call took, into buffers
+// reserved here (the haptic half never allocates).
+class TimedHaptic final : public haptic::MethodHaptic {
+ public:
+  TimedHaptic(std::unique_ptr<haptic::MethodHaptic> inner, std::shared_ptr<MethodTimings> sink,
+              std::size_t max_ticks, std::size_t max_steps)
+      : inner_(std::move(inner)),
+        sink_(std::move(sink)),
+        max_ticks_(max_ticks),
+        max_steps_(max_steps) {
+    sink_->tick_wall_us.reserve(sink_->tick_wall_us.size() + max_ticks);
+    sink_->tick_j.reserve(sink_->tick_j.size() + max_ticks);
+    sink_->tick_contacts.reserve(sink_->tick_contacts.size() + max_ticks);
+    sink_->adopt_wall_us.reserve(sink_->adopt_wall_us.size() + max_steps + 1);
+    sink_->end_period_wall_us.reserve(sink_->end_period_wall_us.size() + max_steps + 1);
   }
 
   void Adopt(const ir::PhysicsSnapshot& snapshot) noexcept override {
@@ -101,24 +128,7 @@ class TimedMethod final : public engine::Method {
   }
 
  private:
-  using Clock = std::chrono::steady_clock;
-
-  static double Us(Clock::time_point t0) noexcept {
-    return std::chrono::duration<double, std::micro>(Clock::now() - t0).count();
-  }
-
-  static double ThreadCpuMs() {
-    timespec ts{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return static_cast<double>(ts.tv_sec) * 1e3 + static_cast<double>(ts.tv_nsec) * 1e-6;
-  }
-
-  // Appends within the reserved capacity only, so the haptic half never allocates.
-  static void Keep(std::vector<double>* v, double value, std::size_t cap) noexcept {
-    if (v->size() < v->capacity() && v->size() < cap) v->push_back(value);
-  }
-
-  std::unique_ptr<engine::Method> inner_;
+  std::unique_ptr<haptic::MethodHaptic> inner_;
   std::shared_ptr<MethodTimings> sink_;
   std::size_t max_ticks_, max_steps_;
   std::size_t ticks_ = 0;
@@ -192,9 +202,10 @@ struct PerturbationWork {
 };
 
 // Records PerturbationWork per step of a local-dynamics run (MethodTimings::on_step).
-std::function<void(const engine::Method&)> WorkRecorder(std::vector<PerturbationWork>* work) {
-  return [work, last = world::PerturberCounters{}](const engine::Method& method) mutable {
-    const auto* ld = dynamic_cast<const engine::internal::LocalDynamicsMethod*>(&method);
+std::function<void(const physics::MethodPhysics&)> WorkRecorder(
+    std::vector<PerturbationWork>* work) {
+  return [work, last = world::PerturberCounters{}](const physics::MethodPhysics& method) mutable {
+    const auto* ld = dynamic_cast<const physics::internal::LocalDynamicsPhysics*>(&method);
     if (ld == nullptr) return;
     const world::PerturberCounters& c = ld->perturber_counters();
     work->push_back(
@@ -330,18 +341,24 @@ AccuracyResult RunAccuracy(const std::filesystem::path& scene, int cubes, const 
   const std::string method = "t4.3:accuracy:" + name;
   engine::RegisterMethod(method, "t4.3: local-dynamics, measurements repeated by a reference",
                          [used, reference](const engine::MethodContext& context) {
-                           engine::internal::LocalDynamicsOptions o;
+                           physics::internal::LocalDynamicsOptions o;
                            o.perturber = used;
                            o.reference = reference;
-                           return std::make_unique<engine::internal::LocalDynamicsMethod>(context,
-                                                                                          o);
+                           const engine::RenderingSettings& r = context.settings->rendering;
+                           return engine::Method{
+                               "local-dynamics", false,
+                               std::make_unique<physics::internal::LocalDynamicsPhysics>(context,
+                                                                                         o),
+                               haptic::MakeLocalDynamicsHaptic(context.pointer_radius,
+                                                               r.stiffness, r.damping),
+                               {"local_dynamics.local_body_fault"}};
                          });
   const double dt = options.physics_dt;
   const auto steps = static_cast<std::size_t>(options.accuracy_steps);
   const auto timings = std::make_shared<MethodTimings>();
-  engine::internal::LocalDynamicsCounters counters;
-  timings->on_step = [&counters](const engine::Method& m) {
-    if (const auto* ld = dynamic_cast<const engine::internal::LocalDynamicsMethod*>(&m)) {
+  physics::internal::LocalDynamicsCounters counters;
+  timings->on_step = [&counters](const physics::MethodPhysics& m) {
+    if (const auto* ld = dynamic_cast<const physics::internal::LocalDynamicsPhysics*>(&m)) {
       counters = ld->counters();
     }
   };
@@ -571,8 +588,11 @@ std::string RegisterTimedMethod(const std::string& inner, std::shared_ptr<Method
   const std::string name = "timed:" + inner;
   engine::RegisterMethod(name, "experiments: " + inner + " with per-call timing",
                          [inner, sink, max_ticks, max_steps](const engine::MethodContext& context) {
-                           return std::make_unique<TimedMethod>(engine::MakeMethod(inner, context),
-                                                                sink, max_ticks, max_steps);
+                           engine::Method m = engine::MakeMethod(inner, context);
+                           m.physics = std::make_unique<TimedPhysics>(std::move(m.physics), sink);
+                           m.haptic = std::make_unique<TimedHaptic>(std::move(m.haptic), sink,
+                                                                    max_ticks, max_steps);
+                           return m;
                          });
   return name;
 }

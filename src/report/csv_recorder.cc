@@ -21,7 +21,8 @@ constexpr std::size_t kFlushBytes = std::size_t{1} << 20;
 constexpr std::string_view kTicksHeader = "t,px,py,pz,qw,qx,qy,qz,fx,fy,fz,tx,ty,tz,contacts\n";
 constexpr std::string_view kBodiesHeader = "t,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n";
 constexpr std::string_view kStepsHeader =
-    "t,step,compute_ms,sim_contacts,neighbors,point_contacts,solver_iterations\n";
+    "t,step,compute_ms,sim_contacts,neighbors,point_contacts,solver_iterations,"
+    "world_step_ms,ir_ms,model_ms,sync_ms\n";
 
 // One output file with its write buffer. fmt's default `{}` for doubles prints the shortest text
 // that parses back to the same value, so the CSV is lossless.
@@ -144,9 +145,10 @@ void CsvRecorder::OnTick(const engine::TickRecord& tick) {
 }
 
 void CsvRecorder::OnStep(const engine::StepRecord& step, const world::World& world) {
-  fmt::format_to(std::back_inserter(impl_->steps.buffer()), "{},{},{},{},{},{},{}\n", step.t,
-                 step.step, step.compute_ms, step.sim_contacts, step.neighbors, step.point_contacts,
-                 step.solver_iterations);
+  fmt::format_to(std::back_inserter(impl_->steps.buffer()), "{},{},{},{},{},{},{},{},{},{},{}\n",
+                 step.t, step.step, step.compute_ms, step.sim_contacts, step.neighbors,
+                 step.point_contacts, step.solver_iterations, step.world_step_ms, step.ir_ms,
+                 step.model_ms, step.sync_ms);
   impl_->steps.MaybeFlush();
 
   fmt::memory_buffer& out = impl_->bodies.buffer();

@@ -42,6 +42,13 @@ json Impulses(const engine::RunStats& s) {
   return out;
 }
 
+// Ticks per named method status bit, e.g. {"proxy.not_converged": 12}.
+json MethodStatus(const engine::RunStats& s) {
+  json out = json::object();
+  for (const auto& [name, ticks] : s.method_status) out[name] = ticks;
+  return out;
+}
+
 // Keys mirror the RunStats fields; the three percentile groups are nested objects so that
 // scripts read e.g. summary["jitter_us"]["p99"].
 json ToJson(const engine::RunStats& s, const std::string& session, const std::string& scene) {
@@ -69,6 +76,12 @@ json ToJson(const engine::RunStats& s, const std::string& session, const std::st
         {"stopped", s.stopped}}},
       {"realtime_priority", s.realtime_priority},
       {"impulses", Impulses(s)},
+      {"method_status", MethodStatus(s)},
+      {"step_phases_ms",
+       {{"world_step", s.phase_ms.world_step_ms},
+        {"ir", s.phase_ms.ir_ms},
+        {"model", s.phase_ms.model_ms},
+        {"sync", s.phase_ms.sync_ms}}},
       {"warnings", s.warnings}};
 }
 

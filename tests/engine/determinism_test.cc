@@ -54,6 +54,8 @@ TEST(DeterminismTest, LockstepTraceMatchesGoldenHash) {
   // Debian MuJoCo 2.2.2). A change here means the simulation changed: review it, then update.
   EXPECT_EQ(RunAndHash("impulse"), 11173333966864450744ull);
   EXPECT_EQ(RunAndHash("single-rate"), 11100527457005068796ull);
+  EXPECT_EQ(RunAndHash("proxy-6dof"), 5953774388721870096ull);
+  EXPECT_EQ(RunAndHash("local-dynamics"), 15579156835783394508ull);
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // Tests of the 6-DOF neighbor search and geometric IR: the SPEC §3.3.3 cases, fallbacks,
 // capacities, errors, and the neighbor set against brute force on random scenes.
-#include "engine/geometric_ir_builder.h"
+#include "physics/geometric_ir_builder.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -20,7 +20,7 @@
 #include "mrh/core/error.h"
 #include "mrh/world/world.h"
 
-namespace mrh::engine::internal {
+namespace mrh::physics::internal {
 namespace {
 
 using ::testing::HasSubstr;
@@ -347,4 +347,4 @@ TEST(GeometricIrBuilderTest, NeighborsEqualBruteForceOnRandomMovingScenes) {
 }
 
 }  // namespace
-}  // namespace mrh::engine::internal
+}  // namespace mrh::physics::internal

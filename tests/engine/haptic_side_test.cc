@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // The tick records the haptic side fills: the proxy pose is the method's own, or the pointer's.
-#include "engine/haptic_side.h"
+#include "mrh/haptic/haptic_side.h"
 
 #include <gtest/gtest.h>
 

@@ -10,18 +10,21 @@
 #include <vector>
 
 #include "engine/engine_impl.h"
-#include "engine/local_dynamics_method.h"
+#include "haptic/local_dynamics_haptic.h"
+#include "mrh/haptic/methods.h"
+#include "physics/local_dynamics_physics.h"
 #include "engine_test_util.h"
 #include "support/alloc_guard.h"
 
 namespace mrh::engine::testing {
 namespace {
 
-using internal::CorrectionModel;
+using haptic::internal::LocalDynamicsHaptic;
 using internal::EngineState;
-using internal::LocalDynamicsMethod;
-using internal::LocalDynamicsOptions;
 using internal::PhysicsSide;
+using physics::internal::CorrectionModel;
+using physics::internal::LocalDynamicsOptions;
+using physics::internal::LocalDynamicsPhysics;
 
 // A free 2 kg box, turned, in zero gravity, with a pointer 1 cm off its +x face, away from the
 // face centre so that a push also turns it.
@@ -107,7 +110,7 @@ Mat3 Cross(const Vec3& r) {
 ir::PhysicsSnapshot InitialSnapshot(world::World* world, const EngineSettings& settings,
                                     const Pose& X_WP) {
   const MethodContext context{world, &settings, world->pointer_body(), settings.pointer.radius};
-  LocalDynamicsMethod method(context);
+  LocalDynamicsPhysics method(context);
   ir::HapticReport initial;
   initial.X_WP = X_WP;
   auto snapshot = std::make_unique<ir::PhysicsSnapshot>();
@@ -184,7 +187,10 @@ TEST_P(RowOfCubesTest, FeltMassIsTheWholeRowAndTheGlobalRowMovesAlong) {
     LocalDynamicsOptions options;
     options.correction = model;
     RegisterMethod(name, "test", [options](const MethodContext& c) {
-      return std::make_unique<LocalDynamicsMethod>(c, options);
+      return Method{"local-dynamics", false, std::make_unique<LocalDynamicsPhysics>(c, options),
+                    haptic::MakeLocalDynamicsHaptic(c.pointer_radius, c.settings->rendering.stiffness,
+                                                    c.settings->rendering.damping),
+                    {"local_dynamics.local_body_fault"}};
     });
     EngineSettings settings = LocalSettings(kDuration);
     settings.method = name;
@@ -208,8 +214,8 @@ INSTANTIATE_TEST_SUITE_P(Cubes, RowOfCubesTest, ::testing::Values(1, 2, 3, 4, 5)
 // haptic tick.
 template <typename OnTick>
 void RunPeriods(EngineState& state, int periods, OnTick on_tick) {
-  PhysicsSide physics(&state, nullptr);
-  physics.Start();
+  PhysicsSide physics = state.MakePhysicsSide(nullptr);
+  physics.Start(state.haptic->InitialReport(0.0));
   std::int64_t tick = 0;
   for (int k = 0; k < periods; ++k) {
     physics.Step(k);
@@ -223,8 +229,13 @@ void RunPeriods(EngineState& state, int periods, OnTick on_tick) {
   }
 }
 
-LocalDynamicsMethod& MethodOf(EngineState& state) {
-  return *static_cast<LocalDynamicsMethod*>(state.method.get());
+// The two halves of the state's local-dynamics method.
+const LocalDynamicsPhysics& PhysicsOf(EngineState& state) {
+  return *static_cast<const LocalDynamicsPhysics*>(state.method.physics.get());
+}
+
+const LocalDynamicsHaptic& HapticOf(EngineState& state) {
+  return *static_cast<const LocalDynamicsHaptic*>(state.method.haptic.get());
 }
 
 TEST(LocalDynamicsTest, GlobalStepStartsFromTheLocalStateOfTheLastPeriod) {
@@ -241,7 +252,7 @@ TEST(LocalDynamicsTest, GlobalStepStartsFromTheLocalStateOfTheLastPeriod) {
   ir::LocalBodyState last;
   int checked = 0;
   RunPeriods(state, 16, [&](int k, int j) {
-    const render::LocalBody* local = MethodOf(state).local_body(box);
+    const render::LocalBody* local = HapticOf(state).local_body(box);
     if (local == nullptr || j != state.ticks_per_step - 1) return;
     if (k >= 2 && last.body == box) {
       // Step k started from period k−1's local end state (recorded at its last tick).
@@ -254,7 +265,7 @@ TEST(LocalDynamicsTest, GlobalStepStartsFromTheLocalStateOfTheLastPeriod) {
     last = ir::LocalBodyState{box, local->X_WB(), local->V_WCm()};
   });
   EXPECT_GT(checked, 10);
-  EXPECT_GT(MethodOf(state).counters().overwrites, 10);
+  EXPECT_GT(PhysicsOf(state).counters().overwrites, 10);
   EXPECT_GT(last.V_WCm.v.norm(), 0.01);  // the pointer did push the box
 }
 
@@ -294,8 +305,8 @@ TEST(LocalDynamicsTest, SynchronizationKeepsGlobalAndLocalStatesConsistent) {
   const int cube = state.world.FindBody("cube");
   const double dt = state.settings.haptic_dt;
   SnapshotKeeper keeper;
-  PhysicsSide physics(&state, &keeper);
-  physics.Start();
+  PhysicsSide physics = state.MakePhysicsSide(&keeper);
+  physics.Start(state.haptic->InitialReport(0.0));
   std::vector<Twist> end_velocity(periods);
   std::vector<double> jump_residual(periods, 0.0), jump_bound(periods, 0.0);
   Vec3 previous_p = Vec3::Constant(std::nan(""));
@@ -306,7 +317,7 @@ TEST(LocalDynamicsTest, SynchronizationKeepsGlobalAndLocalStatesConsistent) {
     physics.Step(k);
     for (int j = 0; j < state.ticks_per_step; ++j, ++tick) {
       state.haptic->Tick(static_cast<double>(tick) * dt);
-      const render::LocalBody* local = MethodOf(state).local_body(cube);
+      const render::LocalBody* local = HapticOf(state).local_body(cube);
       ASSERT_NE(local, nullptr);
       if (!std::isnan(previous_p.x())) {
         const Vec3 step = local->p_WCm() - previous_p;
@@ -348,7 +359,7 @@ TEST(LocalDynamicsTest, SynchronizationKeepsGlobalAndLocalStatesConsistent) {
   }
   EXPECT_EQ(checked, periods - 2);
   EXPECT_GT(largest_correction, 1e-4);  // the corrections are not trivially zero
-  EXPECT_GT(MethodOf(state).haptic_counters().corrections, 30);
+  EXPECT_GT(HapticOf(state).haptic_counters().corrections, 30);
   EXPECT_GT(previous_p.x(), 0.05);  // the cube was pushed along
 }
 
@@ -440,7 +451,7 @@ TEST(LocalDynamicsTest, CountsOneMeasuredNeighborAndFourForwardSkipRunsPerStepIn
   state.world.ApplyKeyframe("approach");
   const int periods = 10;
   RunPeriods(state, periods, [](int, int) {});
-  const LocalDynamicsMethod& method = MethodOf(state);
+  const LocalDynamicsPhysics& method = PhysicsOf(state);
   // PhysicsStart and every step measure the cube: one zero-force and three test-force runs,
   // all by forward skipping (slide joints on the world).
   const std::int64_t measurements = periods + 1;
@@ -511,8 +522,8 @@ TEST(LocalDynamicsTest, HapticTicksNeverAllocateInContact) {
     auto device = scene == 0 ? device::MakeFixedDevice(Pose{})
                              : PushingDevice(Vec3(kRowPointerX, 0, kRowZ), kPushSpeed, duration);
     EngineState state(std::move(world), std::move(device), device::Calibration{}, settings);
-    PhysicsSide physics(&state, nullptr);
-    physics.Start();
+    PhysicsSide physics = state.MakePhysicsSide(nullptr);
+    physics.Start(state.haptic->InitialReport(0.0));
     std::int64_t allocations = 0;
     std::int64_t tick = 0;
     for (int k = 0; k < 20; ++k) {

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // The proxy-6dof method through the engine: forces, reactions one step late, RT, closed loop.
-#include "engine/proxy_method.h"
+#include "haptic/proxy_haptic.h"
+#include "mrh/physics/methods.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -202,9 +203,9 @@ TEST(ProxyMethodTest, HapticTicksNeverAllocateWithFrictionAndAMovingBox) {
   auto device = device::MakeScriptedDevice(
       Keys({{0.0, At(0.0, 0, kHalf - 0.002)}, {1.0, At(0.16, 0.01, kHalf - 0.002)}}));
   internal::EngineState state(std::move(w), std::move(device), device::Calibration{}, s);
-  internal::PhysicsSide physics(&state, nullptr);
-  physics.Start();
-  const auto* method = dynamic_cast<const internal::ProxyMethod*>(state.method.get());
+  internal::PhysicsSide physics = state.MakePhysicsSide(nullptr);
+  physics.Start(state.haptic->InitialReport(0.0));
+  const auto* method = dynamic_cast<const haptic::internal::ProxyHaptic*>(state.method.haptic.get());
   ASSERT_NE(method, nullptr);
   std::int64_t allocations = 0;
   int sliding = 0;
@@ -308,7 +309,7 @@ TEST(ProxyMethodTest, RotationWeightDefaultsToScaledUnitMassInertia) {
   s.rendering.rotation_weight.reset();
   s.rendering.rotation_weight_scale = 500.0;
   const world::World w = FloorWorld();
-  const Mat3 R_w = internal::PointerRotationWeight(w, w.FindBody("pointer"), s.rendering);
+  const Mat3 R_w = physics::PointerRotationWeight(w, w.FindBody("pointer"), s.rendering);
   // SPEC §3.10: 0.2 m cube, unit mass: 0.2²/6 = 6.67e-3 m²; × 500 = 3.33 m² (the T3.1 value).
   const double kTol = 1e-12;
   EXPECT_TRUE(R_w.isApprox(Mat3::Identity() * 500.0 * 0.04 / 6.0, kTol)) << R_w;
@@ -318,7 +319,7 @@ TEST(ProxyMethodTest, RotationWeightGivenIsTheDiagonal) {
   EngineSettings s = T31Settings(0.1);
   s.rendering.rotation_weight = Vec3(8420.0, 8420.0, 1670.0);
   const world::World w = FloorWorld();
-  const Mat3 R_w = internal::PointerRotationWeight(w, w.FindBody("pointer"), s.rendering);
+  const Mat3 R_w = physics::PointerRotationWeight(w, w.FindBody("pointer"), s.rendering);
   EXPECT_EQ(R_w, Mat3(Vec3(8420.0, 8420.0, 1670.0).asDiagonal()));
 }
 

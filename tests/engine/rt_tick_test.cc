@@ -17,8 +17,8 @@ using internal::PhysicsSide;
 
 // Runs `periods` lockstep periods, counting heap allocations made inside haptic ticks only.
 std::int64_t HapticAllocations(EngineState& state, int periods) {
-  PhysicsSide physics(&state, nullptr);
-  physics.Start();
+  PhysicsSide physics = state.MakePhysicsSide(nullptr);
+  physics.Start(state.haptic->InitialReport(0.0));
   std::int64_t allocations = 0;
   std::int64_t tick = 0;
   for (int k = 0; k < periods; ++k) {

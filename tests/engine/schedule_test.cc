@@ -17,14 +17,21 @@ struct ProbeLog {
   std::vector<std::int64_t> step_input_period;  // per step: newest period in its report
 };
 
-class ProbeMethod final : public Method {
+class ProbePhysics final : public physics::MethodPhysics {
  public:
-  explicit ProbeMethod(ProbeLog* log) : log_(log) {}
-  const char* name() const noexcept override { return "probe"; }
+  explicit ProbePhysics(ProbeLog* log) : log_(log) {}
   void PhysicsStart(const ir::HapticReport&, ir::PhysicsSnapshot* out) override { out->step = -1; }
   void PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot*) override {
     log_->step_input_period.push_back(report.period);
   }
+
+ private:
+  ProbeLog* log_;
+};
+
+class ProbeHaptic final : public haptic::MethodHaptic {
+ public:
+  explicit ProbeHaptic(ProbeLog* log) : log_(log) {}
   void Adopt(const ir::PhysicsSnapshot& snapshot) noexcept override { step_ = snapshot.step; }
   void HapticTick(const TickInput& in, TickOutput*) noexcept override {
     log_->tick_snapshot.push_back(step_);
@@ -43,7 +50,10 @@ TEST(ScheduleTest, PeriodKRendersStepKMinus1AndStepKConsumesPeriodKMinus1) {
   ProbeLog log;
   g_log = &log;
   RegisterMethod("probe", "test probe",
-                 [](const MethodContext&) { return std::make_unique<ProbeMethod>(g_log); });
+                 [](const MethodContext&) {
+                   return Method{"probe", false, std::make_unique<ProbePhysics>(g_log),
+                                 std::make_unique<ProbeHaptic>(g_log), {}};
+                 });
   EngineSettings s = T41Settings("probe");
   s.physics_dt = 0.005;
   s.duration = 0.05;  // 10 periods of n = 5 ticks

@@ -48,7 +48,8 @@ TEST(CsvRecorderTest, WritesExactHeadersInAllThreeFiles) {
             std::vector<std::string>{"t,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz"});
   EXPECT_EQ(ReadLines(dir.path() / "steps.csv"),
             std::vector<std::string>{
-                "t,step,compute_ms,sim_contacts,neighbors,point_contacts,solver_iterations"});
+                "t,step,compute_ms,sim_contacts,neighbors,point_contacts,solver_iterations,"
+                "world_step_ms,ir_ms,model_ms,sync_ms"});
 }
 
 TEST(CsvRecorderTest, CreatesMissingNestedFolder) {
@@ -81,12 +82,16 @@ TEST(CsvRecorderTest, StepRowHoldsEveryStepField) {
                                      .sim_contacts = 4,
                                      .neighbors = 5,
                                      .point_contacts = 6,
-                                     .solver_iterations = 7},
+                                     .solver_iterations = 7,
+                                     .world_step_ms = 0.125,
+                                     .ir_ms = 0.5,
+                                     .model_ms = 2,
+                                     .sync_ms = 0.0625},
                   world);
   recorder.Close();
   const std::vector<std::string> lines = ReadLines(dir.path() / "steps.csv");
   ASSERT_EQ(lines.size(), 2u);
-  EXPECT_EQ(lines[1], "0.15,3,0.25,4,5,6,7");
+  EXPECT_EQ(lines[1], "0.15,3,0.25,4,5,6,7,0.125,0.5,2,0.0625");
 }
 
 // Two free bodies (one named, one not) above a static floor; the floor and the world body

@@ -6,66 +6,27 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "mrh/core/spatial.h"
 #include "mrh/device/calibration.h"
 #include "mrh/device/device.h"
 #include "mrh/engine/settings.h"
+#include "mrh/haptic/tick_record.h"
+#include "mrh/physics/method_physics.h"
+#include "mrh/physics/recorder.h"
 
 namespace mrh::world {
 class World;
 }
 
-namespace mrh::ir {
-struct PhysicsSnapshot;
-}
-
 namespace mrh::engine {
 
-/// One haptic tick as recorded (world frame).
-struct TickRecord {
-  std::int64_t tick = 0;
-  double t = 0.0;                 ///< s
-  Pose X_WP;                      ///< pointer (device tool) pose
-  Pose X_WQ;                      ///< proxy pose; equals X_WP when the method has no proxy
-  Wrench displayed_W;             ///< wrench sent to the device, after the safety layer
-  Wrench rendered_W;              ///< wrench the method rendered (what the physics saw)
-  int contacts = 0;
-  std::uint32_t safety_bits = 0;  ///< device::SafetyBits
-};
-
-/// One physics step as recorded.
-struct StepRecord {
-  std::int64_t step = 0;
-  double t = 0.0;                 ///< simulation time at the end of the step (s)
-  double compute_ms = 0.0;        ///< wall time of the physics step (ms)
-  int sim_contacts = 0;           ///< MuJoCo contacts
-  int neighbors = 0;              ///< neighbor bodies in the snapshot
-  int point_contacts = 0;         ///< IR contacts in the snapshot
-  int solver_iterations = 0;
-};
-
-/// Receives records on a non-RT thread (the physics thread, or the lockstep loop), in order.
-class Recorder {
- public:
-  virtual ~Recorder() = default;
-  virtual void OnTick(const TickRecord& tick) = 0;
-  /// Called after each physics step with the world in its post-step state.
-  virtual void OnStep(const StepRecord& step, const world::World& world) = 0;
-  /// Called with each snapshot the physics side produces for the haptic thread (the initial one,
-  /// then one per physics step, before it is published): the IR the method renders against.
-  /// Default: ignored.
-  virtual void OnSnapshot(const ir::PhysicsSnapshot& snapshot) { (void)snapshot; }
-};
-
-/// Total reaction impulse the pointer delivered to one body over the run (world frame).
-struct BodyImpulseTotal {
-  int body = -1;
-  std::string name;
-  Vec3 linear = Vec3::Zero();     ///< N·s
-  Vec3 angular = Vec3::Zero();    ///< N·m·s about the COM
-};
+using haptic::TickRecord;
+using physics::BodyImpulseTotal;
+using physics::Recorder;
+using physics::StepRecord;
 
 /// What a run did. Filled by Engine::Run.
 struct RunStats {
@@ -90,6 +51,12 @@ struct RunStats {
   /// the stop (`stopped`), which commands zero whatever was rendered last.
   Wrench final_wrench;
   bool stopped = false;
+  /// Method status (TickOutput::status), namespaced per method: for each bit the method names
+  /// (Method::status_bits, e.g. "proxy.not_converged"), the ticks on which it was set.
+  std::vector<std::pair<std::string, std::int64_t>> method_status;
+  /// The physics phases (MuJoCo step, IR build, local-model export, sync) summed over the run
+  /// (ms, wall clock); per step in StepRecord / steps.csv.
+  physics::PhaseTimes phase_ms;
   bool realtime_priority = false;            ///< SCHED_FIFO + mlockall granted
   std::vector<BodyImpulseTotal> impulses;
   std::vector<std::string> warnings;
@@ -123,7 +90,7 @@ class Engine {
   /// One haptic tick at time t (s since Start): feeds `reading` (device frame) to the external
   /// device, renders, and returns the wrench to display (device frame, after the safety layer).
   /// RT-safe in real-time mode. @pre Start() was called.
-  Wrench Tick(double t, const device::DeviceState& reading);
+  Wrench Tick(double t, const device::DeviceState& reading) noexcept;
 
   /// Ends an embedded run (zero output, physics thread joined) and returns its statistics.
   RunStats Stop();

@@ -1,0 +1,50 @@
+// SPDX-License-Identifier: Apache-2.0
+// The built-in methods' haptic halves, built from plain parameters (they never see the world).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include "mrh/haptic/method_haptic.h"
+#include "mrh/render/penalty_sum.h"
+#include "mrh/render/proxy_renderer.h"
+#include "mrh/render/virtual_coupling.h"
+
+namespace mrh::haptic {
+
+/// TickOutput::status bits of local-dynamics' haptic half (RunStats::method_status names them
+/// "local_dynamics.<name>"). proxy-6dof reports render::ProxyStatusBits ("proxy.<name>").
+enum LocalDynamicsStatusBits : std::uint32_t {
+  kLocalBodyFault = 1u << 0,  ///< a local body's state became non-finite and was stopped
+};
+
+/// Haptic half of "single-rate" and "impulse": 3-DOF penalty (eq. 4.11) with a pointer sphere
+/// of `radius` (m), stiffness k (N/m) and damping d (N·s/m). Not RT-safe (allocates once).
+std::unique_ptr<MethodHaptic> MakePointPenaltyHaptic(double radius, double stiffness,
+                                                     double damping);
+
+/// Haptic half of "proxy-6dof": the 6-DOF proxy with `settings` (physics::ProxySettingsFor).
+std::unique_ptr<MethodHaptic> MakeProxyHaptic(const render::ProxyRendererSettings& settings);
+
+/// Haptic half of "penalty-sum" (B5): per-contact springs on the interpolated geometric IR.
+/// TickOutput::status carries render::kProxyStatusBadInput on non-finite input.
+std::unique_ptr<MethodHaptic> MakePenaltySumHaptic(const render::PenaltySumSettings& settings);
+
+/// Status bit of "virtual-coupling"'s haptic half: the coupling wrench was not finite (zero
+/// output this tick).
+inline constexpr std::uint32_t kVirtualCouplingBadInput = 1u << 0;
+
+/// Haptic half of "virtual-coupling" (B3): the spring–damper to the tool of the snapshot.
+std::unique_ptr<MethodHaptic> MakeVirtualCouplingHaptic(const render::CouplingGains& gains);
+
+/// Haptic half of "local-dynamics": local simulation of the neighbors, 3-DOF penalty as above.
+std::unique_ptr<MethodHaptic> MakeLocalDynamicsHaptic(double radius, double stiffness,
+                                                      double damping);
+
+/// Haptic half of "local-dynamics" with the contact local model: the snapshot's contact island
+/// simulated at the haptic rate (render/local_contact_solver.h) under the pointer's penalty
+/// force (radius m, stiffness N/m, damping N·s/m). RT-safe after construction.
+std::unique_ptr<MethodHaptic> MakeLocalContactHaptic(double radius, double stiffness,
+                                                     double damping);
+
+}  // namespace mrh::haptic

@@ -1,0 +1,27 @@
+// SPDX-License-Identifier: Apache-2.0
+// One haptic tick as the haptic thread records it for the recorder (haptic → physics thread).
+#pragma once
+
+#include <cstdint>
+
+#include "mrh/core/spatial.h"
+
+namespace mrh::haptic {
+
+/// One haptic tick as recorded (world frame). Written by the haptic thread into a lock-free
+/// ring, read by the physics thread (or the lockstep loop), which hands it to the Recorder.
+struct TickRecord {
+  std::int64_t tick = 0;
+  double t = 0.0;                 ///< s
+  Pose X_WP;                      ///< pointer (device tool) pose
+  Pose X_WQ;                      ///< proxy pose; equals X_WP when the method has no proxy
+  Wrench displayed_W;             ///< wrench sent to the device, after the safety layer
+  Wrench rendered_W;              ///< wrench the method rendered (what the physics saw)
+  int contacts = 0;
+  std::uint32_t safety_bits = 0;  ///< device::SafetyBits
+  /// The method's status bits this tick (TickOutput::status; their names per method are
+  /// engine::Method::status_bits, e.g. "proxy.not_converged").
+  std::uint32_t method_status = 0;
+};
+
+}  // namespace mrh::haptic

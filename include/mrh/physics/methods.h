@@ -1,0 +1,62 @@
+// SPDX-License-Identifier: Apache-2.0
+// The built-in methods' physics halves (the engine's registry pairs them with their haptic halves).
+#pragma once
+
+#include <memory>
+
+#include "mrh/engine/settings.h"
+#include "mrh/physics/method_physics.h"
+#include "mrh/render/proxy_renderer.h"
+
+namespace mrh::physics {
+
+/// Physics half of "single-rate" (B1) and "impulse" (B4): the period's reaction impulse as a
+/// constant force over the step, then the 3-DOF plane IR. Not RT-safe.
+std::unique_ptr<MethodPhysics> MakePointPenaltyPhysics(const MethodContext& context);
+
+/// Physics half of "proxy-6dof": the reaction one step late, then the geometric IR.
+/// @throws mrh::SceneError for a pointer without convex geoms. Not RT-safe.
+std::unique_ptr<MethodPhysics> MakeProxyPhysics(const MethodContext& context);
+
+/// Physics half of "virtual-coupling" (B3): the pointer as a free tool body stepped at the haptic
+/// rate under the reported coupling impulse, its weight compensated.
+/// @throws mrh::SceneError if the pointer is not a free body. Not RT-safe.
+std::unique_ptr<MethodPhysics> MakeVirtualCouplingPhysics(const MethodContext& context);
+
+/// Physics half of "local-dynamics": overwrite, global step, plane IR and perturbations.
+std::unique_ptr<MethodPhysics> MakeLocalDynamicsPhysics(const MethodContext& context);
+
+/// The physics half of `local-dynamics` with the contact local model (rendering.local_model
+/// "contact"): the contact island export (world/contact_export.h).
+std::unique_ptr<MethodPhysics> MakeLocalContactPhysics(const MethodContext& context);
+
+/// True when `local-dynamics` runs the contact model: rendering.local_model is "contact" and
+/// every moving body is free-jointed (a scene with a slide- or hinge-jointed body, e.g. T4.1's
+/// cube, keeps the thesis' perturbation model).
+bool UsesContactLocalModel(const MethodContext& context);
+
+/// The rotation weight R_w (m², world frame) proxy-6dof uses for `rendering` (SPEC §3.10):
+/// diag(rendering.rotation_weight) when given, else rotation_weight_scale × the pointer's
+/// unit-mass inertia about its body origin, I_O/m = I_Cm/m + |c|²·1 − c cᵀ (c = p_BCm), in the
+/// pointer's body axes taken as world axes.
+///
+/// Why these choices: the renderer's R_w is one constant world-frame matrix and the lever arms
+/// r_i are measured from the pointer origin X_WP.p, so the weight that matches its translation
+/// weight of 1 is the unit-mass inertia block about that origin; the body axes are used as if the
+/// pointer were at its reference orientation (identity), which is exact for an isotropic pointer
+/// (the T3.1 cube) and for a pointer held near its reference orientation (the T3.2 stick).
+/// @throws mrh::SceneError if the pointer body has no mass (nothing to take an inertia from).
+/// @throws mrh::InvalidArgument if its inertia is not positive definite. Not RT-safe.
+Mat3 PointerRotationWeight(const world::World& world, int pointer_body,
+                           const engine::RenderingSettings& rendering);
+
+/// The proxy renderer's settings for an engine configuration (computed on the setup thread from
+/// the world, handed to the haptic half): k_t = stiffness, d_t = damping, k_r = rot_stiffness,
+/// d_r = rot_damping, R_w = PointerRotationWeight, μ = friction, max_iterations,
+/// tolerance = solver_tolerance.
+/// @throws mrh::InvalidArgument naming the session key (rendering.max_iterations above
+/// render::kMaxProxyIterations) and the errors of PointerRotationWeight. Not RT-safe.
+render::ProxyRendererSettings ProxySettingsFor(const world::World& world, int pointer_body,
+                                               const engine::RenderingSettings& rendering);
+
+}  // namespace mrh::physics

@@ -1,0 +1,83 @@
+// SPDX-License-Identifier: Apache-2.0
+// The physics thread's side of a run: one global step per call, exchange and statistics.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "mrh/core/spsc_ring.h"
+#include "mrh/core/triple_buffer.h"
+#include "mrh/haptic/tick_record.h"
+#include "mrh/ir/snapshot.h"
+#include "mrh/physics/method_physics.h"
+#include "mrh/physics/recorder.h"
+
+namespace mrh::world {
+class World;
+}
+
+namespace mrh::physics {
+
+/// What the physics side contributes to a run's statistics (RunStats).
+struct PhysicsStats {
+  std::int64_t steps = 0;
+  double step_ms_p50 = 0.0, step_ms_p99 = 0.0, step_ms_max = 0.0;
+  std::uint32_t ir_status = 0;  ///< ir::StatusBits seen
+  PhaseTimes phase_total;       ///< MethodPhysics::last_phases summed over the steps (ms)
+  std::vector<BodyImpulseTotal> impulses;
+  std::vector<std::string> warnings;
+};
+
+/// The physics side of a run: steps the method's physics half, drains the exchange, records and
+/// keeps statistics. Physics thread (or the lockstep loop) only; not RT-safe. It meets the
+/// haptic side only in the exchange buffers.
+class PhysicsSide {
+ public:
+  struct Exchange {
+    TripleBuffer<ir::PhysicsSnapshot>* snapshots;   ///< physics → haptic
+    SpscRing<ir::HapticReport>* reports;            ///< haptic → physics
+    SpscRing<haptic::TickRecord>* tick_records;     ///< haptic → recorder
+  };
+
+  /// `recorder` may be null.
+  PhysicsSide(MethodPhysics* method, world::World* world, const Exchange& exchange,
+              Recorder* recorder);
+
+  /// Publishes the snapshot of the initial state (for haptic period 0); `initial` carries the
+  /// pointer's initial pose.
+  void Start(const ir::HapticReport& initial);
+  /// Runs physics step k with `input` (the merged report of period k−1) into the write slot.
+  void Step(std::int64_t k);
+  /// Pops every pending report into the next step's input; returns how many there were.
+  int TakeReports();
+  /// Makes the finished step's snapshot current for the haptic side.
+  void Publish() { exchange_.snapshots->Publish(); }
+  /// Writes the finished step and all pending tick records to the recorder.
+  void RecordStep();
+  void DrainTickRecords();
+  /// Fills the statistics this side owns (after the run).
+  void Finish(PhysicsStats* stats);
+
+  std::int64_t steps() const { return steps_; }
+
+ private:
+  MethodPhysics* method_;
+  world::World* world_;
+  Exchange exchange_;
+  Recorder* recorder_;
+  ir::HapticReport input_;
+  ir::HapticReport popped_;
+  StepRecord last_step_;
+  std::int64_t steps_ = 0;
+  std::vector<double> step_ms_;
+  std::uint32_t ir_status_ = 0;
+  PhaseTimes phase_total_;
+  std::map<int, BodyImpulseTotal> impulses_;
+};
+
+/// p-th percentile (0..100) of `values` (copied and partially sorted). 0 for an empty input.
+double Percentile(std::vector<double> values, double p);
+
+}  // namespace mrh::physics

@@ -1,0 +1,69 @@
+// SPDX-License-Identifier: Apache-2.0
+// What every scheduler shares: the physics thread's loop and the statistics tail of a run.
+#include <string>
+#include <utility>
+
+#include "engine_impl.h"
+#include "mrh/engine/rt_clock.h"
+
+namespace mrh::engine::internal {
+
+PhysicsSide EngineState::MakePhysicsSide(Recorder* recorder) {
+  return PhysicsSide(method.physics.get(), &world,
+                     PhysicsSide::Exchange{&snapshots, &reports, &tick_records}, recorder);
+}
+
+void RunPhysicsThread(PhysicsSide& physics, const std::atomic<bool>& done) {
+  // The physics thread polls for the end of a haptic period this often while it waits.
+  constexpr std::int64_t kPollNs = 100'000;
+  for (std::int64_t k = 0;; ++k) {
+    physics.Step(k);
+    while (physics.TakeReports() == 0) {
+      if (done.load(std::memory_order_acquire)) return;
+      SleepUntilNs(NowNs() + kPollNs, 0);
+    }
+    physics.Publish();
+    physics.RecordStep();
+  }
+}
+
+void FillHapticStats(const HapticCounters& c, RunStats* stats) {
+  stats->ticks = c.ticks;
+  stats->max_force = c.max_force;
+  stats->max_torque = c.max_torque;
+  stats->fault_nonfinite_wrench = c.nonfinite_wrench;
+  stats->fault_nonfinite_device = c.nonfinite_device;
+  stats->force_clamped = c.force_clamped;
+  stats->torque_clamped = c.torque_clamped;
+  stats->watchdog_ticks = c.watchdog_ticks;
+  stats->final_wrench = c.last_displayed;
+  stats->stopped = c.stopped;
+  stats->dropped_tick_records = c.dropped_tick_records;
+  stats->dropped_reports = c.dropped_reports;
+}
+
+void FillMethodStatus(const HapticCounters& c, const Method& method, RunStats* stats) {
+  for (std::size_t i = 0; i < c.method_status_ticks.size(); ++i) {
+    const bool named = i < method.status_bits.size() && !method.status_bits[i].empty();
+    if (!named && c.method_status_ticks[i] == 0) continue;
+    stats->method_status.emplace_back(
+        named ? method.status_bits[i] : method.name + ".bit" + std::to_string(i),
+        c.method_status_ticks[i]);
+  }
+}
+
+
+void FillPhysicsStats(PhysicsSide& physics, RunStats* stats) {
+  physics::PhysicsStats p;
+  physics.Finish(&p);
+  stats->steps = p.steps;
+  stats->step_ms_p50 = p.step_ms_p50;
+  stats->step_ms_p99 = p.step_ms_p99;
+  stats->step_ms_max = p.step_ms_max;
+  stats->ir_status = p.ir_status;
+  stats->phase_ms = p.phase_total;
+  for (std::string& w : p.warnings) stats->warnings.push_back(std::move(w));
+  stats->impulses = std::move(p.impulses);
+}
+
+}  // namespace mrh::engine::internal

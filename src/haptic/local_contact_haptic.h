@@ -1,0 +1,62 @@
+// SPDX-License-Identifier: Apache-2.0
+// local-dynamics with the contact local model (issue 13): the haptic half.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "mrh/haptic/method_haptic.h"
+#include "mrh/haptic/methods.h"
+#include "mrh/render/local_contact_solver.h"
+#include "normal_carry.h"
+
+namespace mrh::haptic::internal {
+
+// TickOutput::status: kLocalBodyFault when an island body became non-finite and was stopped.
+using haptic::kLocalBodyFault;
+
+/// Counters of the contact model's haptic half (haptic thread; read them after the run).
+struct LocalContactHapticCounters {
+  std::int64_t ticks = 0;         ///< haptic ticks
+  std::int64_t local_faults = 0;  ///< non-finite local states
+};
+
+/// The haptic half of `local-dynamics`, local model "contact": the island of the snapshot's
+/// ir::LocalContactModel is simulated at 1 kHz under gravity, the pointer's reaction and its own
+/// contacts (normal + friction cone, render/local_contact_solver.h), and corrected eq. 4.11 is
+/// rendered against planes fixed on its bodies. A body stays owned by the local simulation while
+/// it stays in the island, so a synchronization moves nothing here (no jump) and the eq. 4.18
+/// correction is not needed. EndPeriod reports every island body's end state for the physics
+/// half's overwrite (physics::internal::LocalContactPhysics).
+class LocalContactHaptic final : public MethodHaptic {
+ public:
+  /// radius (m), stiffness k (N/m), damping d (N·s/m) of eq. 4.11.
+  LocalContactHaptic(double radius, double stiffness, double damping,
+                     const render::LocalContactSolverSettings& solver = {});
+
+  void Adopt(const ir::PhysicsSnapshot& snapshot) noexcept override;
+  void HapticTick(const TickInput& in, TickOutput* out) noexcept override;
+  void EndPeriod(ir::HapticReport* report) noexcept override;
+
+  const LocalContactHapticCounters& counters() const { return counters_; }
+
+  /// The haptic side's island (haptic thread; tests read it between ticks).
+  const render::LocalContactSolver& solver() const noexcept { return solver_; }
+
+ private:
+  void RenderContacts(const TickInput& in, double alpha, TickOutput* out) noexcept;
+
+  double radius_;
+  double stiffness_;
+  double damping_;
+  ir::PhysicsSnapshot snapshot_;
+  render::LocalContactSolver solver_;
+  std::array<int, ir::kMaxNeighborBodies> local_of_motion_{};
+  std::array<Vec3, ir::kMaxPointContacts> n_B_{};  // contact normals in the body frame
+  ContactNormals previous_n_{};
+  ContactNormals rendered_n_{};
+  ir::HapticReport period_;
+  LocalContactHapticCounters counters_;
+};
+
+}  // namespace mrh::haptic::internal

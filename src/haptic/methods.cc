@@ -1,0 +1,41 @@
+// SPDX-License-Identifier: Apache-2.0
+// Factories of the built-in methods' haptic halves.
+#include "mrh/haptic/methods.h"
+
+#include "local_contact_haptic.h"
+#include "local_dynamics_haptic.h"
+#include "penalty_sum_haptic.h"
+#include "point_penalty_haptic.h"
+#include "proxy_haptic.h"
+#include "virtual_coupling_haptic.h"
+
+namespace mrh::haptic {
+
+std::unique_ptr<MethodHaptic> MakePointPenaltyHaptic(double radius, double stiffness,
+                                                     double damping) {
+  return std::make_unique<internal::PointPenaltyHaptic>(radius, stiffness, damping);
+}
+
+std::unique_ptr<MethodHaptic> MakeProxyHaptic(const render::ProxyRendererSettings& settings) {
+  return std::make_unique<internal::ProxyHaptic>(settings);
+}
+
+std::unique_ptr<MethodHaptic> MakePenaltySumHaptic(const render::PenaltySumSettings& settings) {
+  return std::make_unique<internal::PenaltySumHaptic>(settings);
+}
+
+std::unique_ptr<MethodHaptic> MakeVirtualCouplingHaptic(const render::CouplingGains& gains) {
+  return std::make_unique<internal::VirtualCouplingHaptic>(gains);
+}
+
+std::unique_ptr<MethodHaptic> MakeLocalDynamicsHaptic(double radius, double stiffness,
+                                                      double damping) {
+  return std::make_unique<internal::LocalDynamicsHaptic>(radius, stiffness, damping);
+}
+
+std::unique_ptr<MethodHaptic> MakeLocalContactHaptic(double radius, double stiffness,
+                                                     double damping) {
+  return std::make_unique<internal::LocalContactHaptic>(radius, stiffness, damping);
+}
+
+}  // namespace mrh::haptic

@@ -1,0 +1,173 @@
+// SPDX-License-Identifier: Apache-2.0
+// Physics half of the Chapter-4 method: the dynamic IR (accelerance + bias) per physics step.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "mrh/physics/method_physics.h"
+#include "mrh/world/perturbation.h"
+#include "point_ir_builder.h"
+
+namespace mrh::physics::internal {
+
+using engine::RenderingSettings;
+
+/// How the velocity correction of eq. 4.18 (the effect of what A cannot predict) is obtained
+/// (SPEC §4.8.2, I11).
+enum class CorrectionModel {
+  /// Springhead's realization (SPEC §4.11): (u_after − u_before) − b_pred Δt over the global
+  /// step. Captures new and broken contacts alike. Relies on the group synchronization (see
+  /// LocalDynamicsPhysics): without it, a pushed group's catching up in the global step is
+  /// attributed to the neighbor, and a row of k cubes feels like about k²·m.
+  kVelocityResidual,
+  /// Impulses of the contacts in the global step whose geom pair did not exist where A was
+  /// measured, through the body's own M⁻¹J (eq. 4.18's third term): collisions only; broken
+  /// contacts reach the local simulation through the next b. Needs the perturbation runs.
+  kNewContacts,
+};
+
+/// Options of LocalDynamicsPhysics that sessions do not set (tests and experiments do).
+struct LocalDynamicsOptions {
+  world::PerturberSettings perturber;
+  CorrectionModel correction = CorrectionModel::kVelocityResidual;
+  /// Accuracy check for experiments and tests: every measurement is repeated by a second
+  /// Perturber with these settings at the same state with the same test forces, and the
+  /// difference is counted (LocalDynamicsCounters::reference_*). The method still uses the
+  /// first measurement.
+  std::optional<world::PerturberSettings> reference;
+};
+
+/// Wall-clock cost of the phases of a physics step (ms), for cost experiments (t4.3, t4.5).
+struct LocalDynamicsTiming {
+  double overwrite_ms = 0.0;     ///< (0) overwrite with the local states, group synchronization
+  double global_ms = 0.0;        ///< (1) the global step with the f_n bookkeeping
+  double ir_ms = 0.0;            ///< (2) neighbor search and plane IR
+  double perturbation_ms = 0.0;  ///< (3) perturbation runs (or M⁻¹J)
+};
+
+/// Work of the physics half, accumulated over a run (physics thread; read it from that thread,
+/// e.g. between lockstep steps, or after the run).
+struct LocalDynamicsCounters {
+  std::int64_t steps = 0;             ///< PhysicsStep() calls
+  std::int64_t perturbed_bodies = 0;  ///< bodies whose A and b were measured, over all steps
+  int last_perturbed_bodies = 0;      ///< ... in the latest step (or PhysicsStart)
+  std::int64_t overwrites = 0;        ///< local states written into the world (eq. 4.16–4.17)
+  /// Local states the body's joints could not represent: the period's reaction impulse was
+  /// applied as a force instead, and the local simulation restarts from the global state.
+  std::int64_t overwrite_failures = 0;
+  std::int64_t own_accelerance = 0;  ///< bodies given M⁻¹J (perturbation off or non-finite)
+  /// Group bodies moved along with a synchronized neighbor (see LocalDynamicsPhysics), and those
+  /// whose joints could not take the move.
+  std::int64_t group_syncs = 0;
+  std::int64_t group_sync_failures = 0;
+  /// With LocalDynamicsOptions::reference: measurements compared, and the largest and summed
+  /// relative difference |A − A_ref| / |A_ref| (Frobenius norms) and |b − b_ref| / (1 + |b_ref|).
+  std::int64_t reference_checks = 0;
+  double reference_max_rel_A = 0.0;
+  double reference_sum_rel_A = 0.0;
+  double reference_max_rel_b = 0.0;
+  LocalDynamicsTiming last;   ///< the latest step's phases
+  LocalDynamicsTiming total;  ///< summed over all steps
+};
+
+/// Method `local-dynamics` (SPEC §4): the physics half overwrites the neighbors with the local
+/// states of the previous period (eq. 4.16–4.17) and moves the rest of each neighbor's contact
+/// group along with it (below), steps the world recording the velocity
+/// correction f_n (eq. 4.18, see CorrectionModel), builds the plane IR and
+/// measures every dynamic neighbor's A and b by perturbation simulations (eq. 4.3–4.10, a
+/// shared zero-force run, SPEC I9). The haptic half simulates each dynamic neighbor locally
+/// (eq. 4.13–4.15) and renders corrected eq. 4.11 against planes that move with it, feeding the
+/// reaction (eq. 4.12) to the local simulation in the same tick.
+///
+/// [EXTENSION of SPEC §4.8.1] Group synchronization. A, measured with the whole world, makes the
+/// local body move as its contact group would (a pushed row of k cubes feels like k·m), but
+/// eq. 4.16–4.17 write only the neighbor back: the rest of the group never receives the user's
+/// push, lags, and the global step then brakes the neighbor (or, with soft contacts, kicks the
+/// group ahead). So the neighbor's local − global discrepancy Δ (twist, and COM position plus
+/// rotation vector) is mapped onto every other group body j that is not itself locally simulated:
+/// Δ_j = A_jB A_B⁺ Δ, with A_jB the cross accelerance from the same perturbation runs. In the
+/// linear model Δ = A_B (∫f, ∬f) exactly, so this gives j the state the user's force would have
+/// given it. Neighbors in one group still do not couple to each other (SPEC I9).
+///
+/// The world is overwritten with the state the next period starts from: the local end state
+/// plus the eq. 4.18 correction sent for that period's first tick. (Writing the bare end state
+/// lets the global and local states drift apart by that correction, and the loop through b then
+/// turns unstable on stiff contacts: a cube resting on a floor starts to bounce.)
+///
+/// This is the physics half; the haptic half is haptic::internal::LocalDynamicsHaptic.
+class LocalDynamicsPhysics final : public MethodPhysics {
+ public:
+  explicit LocalDynamicsPhysics(const MethodContext& context,
+                                const LocalDynamicsOptions& options = {});
+
+  void PhysicsStart(const ir::HapticReport& initial, ir::PhysicsSnapshot* out) override;
+  void PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot* out) override;
+  /// counters().last as the engine's phases: overwrite → sync, global → world_step, ir,
+  /// perturbation → model.
+  PhaseTimes last_phases() const noexcept override {
+    const LocalDynamicsTiming& t = counters_.last;
+    return PhaseTimes{t.global_ms, t.ir_ms, t.perturbation_ms, t.overwrite_ms};
+  }
+
+  const LocalDynamicsCounters& counters() const { return counters_; }
+
+  const world::PerturberCounters& perturber_counters() const { return perturber_.counters(); }
+
+ private:
+  // A dynamic neighbor in a snapshot this half produced.
+  struct SentBody {
+    int body = -1;
+    ir::Mat63 A = ir::Mat63::Zero();  // accelerance it was sent with
+    Vec6 b = Vec6::Zero();            // bias it was sent with (b_pred of the next step)
+    std::size_t first_member = 0;     // its group: [first_member, + members) of the group list
+    std::size_t members = 0;
+    Twist u_before;  // COM twist before the global step that follows
+    Twist dV_n;      // eq. 4.18 correction from that step
+    Twist dV_sent;   // the correction this snapshot carried (applied at its tick 0)
+  };
+
+  // A neighbor to measure in this step.
+  struct Target {
+    std::size_t motion = 0;   // index into the snapshot's bodies
+    int contact = -1;         // its nearest contact
+    Vec3 p_W = Vec3::Zero();  // test-force point (the contact's plane point), world
+    Vec3 f1 = Vec3::Zero();   // first test force (eq. 4.5–4.7)
+  };
+
+  void Overwrite(const ir::HapticReport& report);
+  void SyncGroup(const SentBody& sent, const world::BodyState& global,
+                 const ir::LocalBodyState& local);
+  void GlobalStep(const ir::HapticReport& report);
+  void FindTargets(const ir::HapticReport* report, const ir::PhysicsSnapshot& out);
+  void MeasureTargets(ir::PhysicsSnapshot* out);
+  void CheckAgainstReference();
+  void FillDynamics(ir::PhysicsSnapshot* out);
+  world::DynamicIr OwnAccelerance(int body, const Vec3& p_W) const;
+  const SentBody* FindSent(const std::vector<SentBody>& sent, int body) const;
+
+  world::World* world_;
+  int pointer_body_;
+  double physics_dt_;
+  RenderingSettings rendering_;
+  CorrectionModel correction_;
+  std::optional<PointIrBuilder> builder_;
+  world::Perturber perturber_;
+  std::optional<world::Perturber> reference_;
+  std::vector<SentBody> sent_last_;    // dynamic bodies of the latest snapshot (rendered next)
+  std::vector<SentBody> sent_before_;  // ... of the one before (rendered by the report's period)
+  std::vector<world::GroupResponse> group_last_;    // groups of sent_last_
+  std::vector<world::GroupResponse> group_before_;  // groups of sent_before_
+  std::vector<world::GroupResponse> measured_groups_;
+  std::vector<std::size_t> measured_group_start_;
+  std::vector<int> sync_failed_;  // bodies whose overwrite failed in this step
+  std::vector<Target> targets_;
+  std::vector<int> target_bodies_;
+  std::vector<world::DynamicIr> measured_;
+  std::vector<std::uint64_t> known_contacts_;  // contact pairs where the latest A was measured
+  LocalDynamicsCounters counters_;
+};
+
+}  // namespace mrh::physics::internal

@@ -1,0 +1,47 @@
+// SPDX-License-Identifier: Apache-2.0
+// Factories of the built-in methods' physics halves.
+#include "mrh/physics/methods.h"
+
+#include <fmt/format.h>
+
+#include "local_contact_physics.h"
+#include "local_dynamics_physics.h"
+#include "mrh/core/error.h"
+#include "mrh/world/world.h"
+#include "point_penalty_physics.h"
+#include "proxy_physics.h"
+#include "virtual_coupling_physics.h"
+
+namespace mrh::physics {
+
+double PointerRadiusFor3Dof(const MethodContext& context) {
+  if (context.pointer_radius > 0.0) return context.pointer_radius;
+  const std::string& body = context.settings->pointer.body;
+  throw SceneError(fmt::format(
+      "{}: pointer.body = '{}' has no sphere geom and pointer.radius is not set, which method "
+      "'{}' (3-DOF) needs; set pointer.radius (m) in the session or add a sphere geom to the body",
+      context.world->origin(), body, context.settings->method));
+}
+
+
+std::unique_ptr<MethodPhysics> MakePointPenaltyPhysics(const MethodContext& context) {
+  return std::make_unique<internal::PointPenaltyPhysics>(context);
+}
+
+std::unique_ptr<MethodPhysics> MakeProxyPhysics(const MethodContext& context) {
+  return std::make_unique<internal::ProxyPhysics>(context);
+}
+
+std::unique_ptr<MethodPhysics> MakeLocalDynamicsPhysics(const MethodContext& context) {
+  return std::make_unique<internal::LocalDynamicsPhysics>(context);
+}
+
+std::unique_ptr<MethodPhysics> MakeVirtualCouplingPhysics(const MethodContext& context) {
+  return std::make_unique<internal::VirtualCouplingPhysics>(context);
+}
+
+std::unique_ptr<MethodPhysics> MakeLocalContactPhysics(const MethodContext& context) {
+  return std::make_unique<internal::LocalContactPhysics>(context);
+}
+
+}  // namespace mrh::physics

@@ -1,0 +1,90 @@
+// SPDX-License-Identifier: Apache-2.0
+// Neighbor search and Adachi plane IR for a sphere pointer (physics thread).
+#include "point_ir_builder.h"
+
+#include <cmath>
+
+#include "mrh/world/world.h"
+
+namespace mrh::physics::internal {
+namespace {
+
+// Below this the witness vector is too short to define a direction (m).
+constexpr double kMinDirectionLength = 1e-12;
+
+geometry::Shape PointerSphere(double radius) {
+  geometry::Shape s;
+  s.type = geometry::ShapeType::kSphere;
+  s.size = Vec3(radius, 0, 0);
+  return s;
+}
+
+// Unit normal from the object toward the pointer (SPEC §2). While the sphere's centre is outside
+// the object (depth < radius) the object's witness is its closest point to the centre, so
+// centre − witness is well conditioned; deeper, the EPA witness pair gives the separating
+// direction.
+Vec3 ContactNormal(const geometry::DistanceResult& r, const Vec3& centre, double radius) {
+  Vec3 dir;
+  if (r.distance > -radius) {
+    dir = centre - r.p_WB;
+  } else {
+    dir = r.p_WB - r.p_WA;
+  }
+  const double len = dir.norm();
+  if (len < kMinDirectionLength) return Vec3::UnitZ();
+  return dir / len;
+}
+
+}  // namespace
+
+PointIrBuilder::PointIrBuilder(const world::World& world, int pointer_body, double radius,
+                               const RenderingSettings& rendering)
+    : pointer_body_(pointer_body),
+      radius_(radius),
+      rendering_(rendering),
+      pointer_shape_(PointerSphere(radius)),
+      motions_(world) {
+  for (int g = 0; g < world.num_geoms(); ++g) {
+    const world::GeomInfo& info = world.geom(g);
+    if (info.body == pointer_body_ || !info.collides) continue;
+    candidates_.push_back(
+        Candidate{g, geometry::CollisionShape(info.shape), info.shape.BoundingRadius()});
+  }
+}
+
+void PointIrBuilder::CapturePreviousPoses(const world::World& world) {
+  motions_.CapturePreviousPoses(world);
+}
+
+
+void PointIrBuilder::Build(const world::World& world, const Pose& X_WP,
+                           ir::PhysicsSnapshot* out) const {
+  out->bodies.Clear();
+  out->contacts.Clear();
+  const Pose X_WS{X_WP.p, Quat::Identity()};
+  const double reach = radius_ + rendering_.neighbor_margin;
+  for (const Candidate& c : candidates_) {
+    const Pose X_WG = world.geom_pose(c.geom);
+    // Broad phase: bounding spheres (planes are unbounded and always pass).
+    if ((X_WG.p - X_WP.p).norm() > c.bounding_radius + reach) continue;
+    const geometry::DistanceResult r = geometry::SignedDistance(pointer_shape_, X_WS, c.shape, X_WG);
+    if (r.distance > rendering_.neighbor_distance) continue;
+    if (out->contacts.full()) {
+      out->status |= ir::kStatusContactsFull;
+      continue;
+    }
+    const int body = world.geom(c.geom).body;
+    const int motion = motions_.Add(world, body, out);
+    if (motion < 0) continue;
+    const Pose& X_WB = out->bodies[static_cast<std::size_t>(motion)].X_WB;
+    ir::PointContact contact;
+    contact.motion = motion;
+    contact.geom = c.geom;
+    contact.p_BC = X_WB.Inverse() * r.p_WB;
+    contact.n_W = ContactNormal(r, X_WP.p, radius_);
+    contact.distance = r.distance;
+    (void)out->contacts.PushBack(contact);
+  }
+}
+
+}  // namespace mrh::physics::internal

@@ -1,0 +1,96 @@
+// SPDX-License-Identifier: Apache-2.0
+// Physics half of the chapter-3 method: geometric IR built per physics step.
+#include "proxy_physics.h"
+
+#include <fmt/format.h>
+
+#include "mrh/core/error.h"
+#include "mrh/physics/methods.h"
+#include "mrh/world/world.h"
+#include "report_impulses.h"
+
+namespace mrh::physics {
+
+Mat3 PointerRotationWeight(const world::World& world, int pointer_body,
+                           const engine::RenderingSettings& rendering) {
+  if (rendering.rotation_weight) return rendering.rotation_weight->asDiagonal();
+  const world::BodyInfo& pointer = world.body(pointer_body);
+  if (!(pointer.mass > 0.0)) {
+    throw SceneError(fmt::format(
+        "pointer body '{}' has mass {} kg, so its unit-mass inertia (the default rotation "
+        "weight, SPEC §3.10) is undefined; expected a body with mass > 0: give its geoms a "
+        "mass or density, or set rendering.rotation_weight",
+        pointer.name, pointer.mass));
+  }
+  // Parallel-axis shift from the COM to the body origin, where the lever arms start.
+  const Vec3& c = pointer.p_BCm;
+  const Mat3 unit_inertia_origin =
+      pointer.inertia_B / pointer.mass + c.squaredNorm() * Mat3::Identity() - c * c.transpose();
+  // The body-axes tensor R diag Rᵀ is symmetric only up to rounding.
+  return render::RotationWeightFromInertia(
+      0.5 * (unit_inertia_origin + unit_inertia_origin.transpose()),
+      rendering.rotation_weight_scale);
+}
+
+render::ProxyRendererSettings ProxySettingsFor(const world::World& world, int pointer_body,
+                                               const engine::RenderingSettings& rendering) {
+  if (rendering.max_iterations > render::kMaxProxyIterations) {
+    throw InvalidArgument(
+        fmt::format("rendering.max_iterations = {}; expected 1..{} for proxy-6dof (the solver's "
+                    "compile-time ceiling); set a sweep budget such as 20-50",
+                    rendering.max_iterations, render::kMaxProxyIterations));
+  }
+  render::ProxyRendererSettings s;
+  s.k_t = rendering.stiffness;
+  s.d_t = rendering.damping;
+  s.k_r = rendering.rot_stiffness;
+  s.d_r = rendering.rot_damping;
+  s.rotation_weight = PointerRotationWeight(world, pointer_body, rendering);
+  s.mu = rendering.friction;
+  s.solver = rendering.proxy_solver == "pgs" ? render::ProxySolverKind::kPgs
+                                             : render::ProxySolverKind::kActiveSet;
+  s.max_iterations = rendering.max_iterations;
+  s.tolerance = rendering.solver_tolerance;
+  return s;
+}
+
+}  // namespace mrh::physics
+
+namespace mrh::physics::internal {
+
+ProxyPhysics::ProxyPhysics(const MethodContext& context)
+    : world_(context.world),
+      pointer_body_(context.pointer_body),
+      physics_dt_(context.settings->physics_dt) {
+  builder_.emplace(*world_, pointer_body_, context.settings->rendering);
+}
+
+void ProxyPhysics::Build(const Pose& X_WP, ir::PhysicsSnapshot* out) {
+  builder_->Build(*world_, X_WP, out);
+  out->contacts.Clear();  // the 3-DOF plane IR is not used by this method
+  out->t = world_->time();
+  out->physics_dt = physics_dt_;
+}
+
+void ProxyPhysics::PhysicsStart(const ir::HapticReport& initial, ir::PhysicsSnapshot* out) {
+  world_->SetMocapPose(pointer_body_, initial.X_WP);
+  builder_->CapturePreviousPoses(*world_);
+  Build(initial.X_WP, out);
+  out->step = -1;
+}
+
+void ProxyPhysics::PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot* out) {
+  // SPEC §3.6 / I5: what the user pushed during the last period acts as a constant wrench over
+  // this whole step, so the objects answer one physics step late (the chapter-3 design).
+  ApplyReportImpulses(*world_, report, physics_dt_);
+  world_->SetMocapPose(pointer_body_, report.X_WP);
+  builder_->CapturePreviousPoses(*world_);
+  auto t0 = std::chrono::steady_clock::now();
+  world_->Step();
+  phases_.world_step_ms = MsSince(t0);
+  t0 = std::chrono::steady_clock::now();
+  Build(report.X_WP, out);
+  phases_.ir_ms = MsSince(t0);
+}
+
+}  // namespace mrh::physics::internal

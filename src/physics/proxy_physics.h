@@ -1,0 +1,46 @@
+// SPDX-License-Identifier: Apache-2.0
+// Physics half of the chapter-3 method `proxy-6dof`: the geometric IR per physics step.
+#pragma once
+
+#include <memory>
+#include <optional>
+
+#include "geometric_ir_builder.h"
+#include "mrh/physics/method_physics.h"
+
+namespace mrh::physics::internal {
+
+using engine::RenderingSettings;
+
+/// The physics half of the chapter-3 method (SPEC §3.1–3.11), registered as "proxy-6dof".
+///
+/// PhysicsStep k: applies the reaction impulses J of haptic period k−1 as the constant wrench
+/// J/Δt^G about each body's COM over this step (SPEC §3.6, I5: the reaction arrives one physics
+/// step late, as in the thesis), remembers the poses before the step, steps the world, and
+/// builds the geometric IR for the pointer pose of the report (GeometricIrBuilder).
+/// PhysicsStart builds from the initial state without stepping. Its haptic half is
+/// haptic::internal::ProxyHaptic.
+class ProxyPhysics final : public MethodPhysics {
+ public:
+  /// @throws mrh::SceneError from GeometricIrBuilder (a pointer without convex geoms). Not
+  /// RT-safe.
+  explicit ProxyPhysics(const MethodContext& context);
+
+  void PhysicsStart(const ir::HapticReport& initial, ir::PhysicsSnapshot* out) override;
+  void PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot* out) override;
+  PhaseTimes last_phases() const noexcept override { return phases_; }
+
+  /// The work of the last IR build.
+  const GeometricIrStats& ir_stats() const { return builder_->stats(); }
+
+ private:
+  void Build(const Pose& X_WP, ir::PhysicsSnapshot* out);
+
+  world::World* world_;
+  int pointer_body_;
+  double physics_dt_;
+  PhaseTimes phases_;
+  std::optional<GeometricIrBuilder> builder_;
+};
+
+}  // namespace mrh::physics::internal
