@@ -43,7 +43,9 @@ EngineState::EngineState(world::World w, std::unique_ptr<device::Device> d,
       tick_records(kTickRecordCapacity) {
   settings.Validate();
   pointer_body = world.FindBody(settings.pointer.body);
-  if (pointer_body < 0 || !world.body(pointer_body).is_mocap) {
+  // virtual-coupling's tool is the pointer made a free body (world::LoadOptions::dynamic_pointer).
+  const bool tool = settings.method == "virtual-coupling" && pointer_body == world.pointer_body();
+  if (pointer_body < 0 || !(world.body(pointer_body).is_mocap || tool)) {
     throw SceneError(fmt::format(
         "pointer.body = '{}' is not a mocap body of the scene; add <body name=\"{}\" "
         "mocap=\"true\"> or name the right body",

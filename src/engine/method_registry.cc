@@ -59,6 +59,25 @@ Method Proxy(const MethodContext& c) {
                 {"proxy.rows_full", "proxy.not_converged", "proxy.bad_input"}};
 }
 
+// B5: proxy-6dof's physics half (reaction one step late, geometric IR), per-contact springs.
+Method PenaltySum(const MethodContext& c) {
+  const RenderingSettings& r = c.settings->rendering;
+  return Method{"penalty-sum", false, physics::MakeProxyPhysics(c),
+                haptic::MakePenaltySumHaptic(render::PenaltySumSettings{.k = r.stiffness,
+                                                                        .d = r.damping}),
+                {"", "", "penalty_sum.bad_input"}};  // render::kProxyStatusBadInput
+}
+
+// B3: single-rate; the tool is a free body of the world (session::LoadWorld).
+Method VirtualCoupling(const MethodContext& c) {
+  const RenderingSettings& r = c.settings->rendering;
+  return Method{"virtual-coupling", true, physics::MakeVirtualCouplingPhysics(c),
+                haptic::MakeVirtualCouplingHaptic(render::CouplingGains{
+                    r.coupling_stiffness, r.coupling_damping, r.coupling_rot_stiffness,
+                    r.coupling_rot_damping}),
+                {"virtual_coupling.bad_input"}};  // haptic::kVirtualCouplingBadInput
+}
+
 // rendering.local_model picks the local model: "contact" (default; free-jointed scenes only)
 // or the thesis' "perturbation".
 Method LocalDynamics(const MethodContext& c) {
@@ -89,6 +108,14 @@ void RegisterBuiltins() {
     RegisterMethod("proxy-6dof",
                    "Ch. 3: geometric IR + 6-DOF proxy with friction cones, reaction one step late",
                    Proxy);
+    RegisterMethod("penalty-sum",
+                   "B5: proxy-6dof's geometric IR, wrench = sum of per-contact springs k·depth·n "
+                   "(stiffness grows with the contact count)",
+                   PenaltySum);
+    RegisterMethod("virtual-coupling",
+                   "B3: pointer as a dynamic tool in MuJoCo at the haptic rate, spring-damper to "
+                   "the device (the tool's inertia is felt)",
+                   VirtualCoupling);
     RegisterMethod("local-dynamics",
                    "Ch. 4: neighbors simulated at the haptic rate; rendering.local_model "
                    "\"contact\" (their contact island with friction, default) or "

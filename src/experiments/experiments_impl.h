@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "mrh/core/spatial.h"
 #include "mrh/engine/engine.h"
 #include "mrh/physics/method_physics.h"
@@ -208,6 +210,24 @@ struct ProxyRun {
 /// @throws mrh::InvalidArgument if the session's method is not proxy-6dof. Defined in t3_1.cc.
 ProxyRun RunProxySession(const session::Session& session, const std::filesystem::path& dir,
                          const std::string& title, bool quiet);
+
+/// T3.1's session (same device motion) run with method penalty-sum (B5) in lockstep through the
+/// public engine API: one record per tick. Defined in t3_1_penalty_sum.cc.
+std::vector<engine::TickRecord> RunPenaltySumTicks(const session::Session& session);
+
+/// The T3.1 windows the penalty-sum check reads: k (N/m), the held edge/face depths (m), the
+/// edge hold [t0, t1) and the time after which the face is held (s).
+struct PenaltySumWindows {
+  double k = 0.0, edge_depth = 0.0, face_depth = 0.0;
+  double edge_hold[2] = {0.0, 0.0};
+  double face_hold = 0.0;
+};
+
+/// B5 vs the proxy (SPEC §1.4 B5): checks the sum renders 2kδ on the held edge and 4kδ on the
+/// held face (the proxy: k_t δ on both), and writes the forces and force-per-depth stiffnesses
+/// into `numbers`. Returns the checks.
+nlohmann::json CheckPenaltySumT31(const std::vector<engine::TickRecord>& ticks,
+                                  const PenaltySumWindows& windows, nlohmann::json* numbers);
 
 /// T3.1: edge contact → roll → face contact of a 0.2 m cube at the thesis gains (figs.
 /// 3.10–3.11). Returns 0 if the analytic checks pass.

@@ -194,20 +194,25 @@ Row Analyse(const ProxyTick& tick, double k_t, double k_r, double R_w) {
 }
 
 // `budget`: the same motion rendered with the default 50 PGS sweeps (comparison columns).
+// `sum`: the same motion rendered by penalty-sum (B5), per tick.
 void WriteT31Files(const std::filesystem::path& out, const std::vector<Row>& rows,
-                   const std::vector<Row>& budget, bool quiet) {
+                   const std::vector<Row>& budget, const std::vector<engine::TickRecord>& sum,
+                   bool quiet) {
   std::string csv =
       "t,height_m,angle_deg,f_z_N,tau_x_Nm,f_analytic_N,tau_analytic_Nm,"
       "contacts,vertices_below,pgs_sweeps,converged,f_z_50_sweeps_N,"
-      "tau_x_50_sweeps_Nm\n";
+      "tau_x_50_sweeps_Nm,f_z_penalty_sum_N,tau_x_penalty_sum_Nm,contacts_penalty_sum\n";
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const Row& r = rows[i];
     const Row b = i < budget.size() ? budget[i] : Row{};
-    csv += fmt::format("{:.3f},{:.9f},{:.5f},{:.7f},{:.7f},{},{},{},{},{},{},{:.7f},{:.7f}\n", r.t,
+    const engine::TickRecord p = i < sum.size() ? sum[i] : engine::TickRecord{};
+    csv += fmt::format("{:.3f},{:.9f},{:.5f},{:.7f},{:.7f},{},{},{},{},{},{},{:.7f},{:.7f},"
+                       "{:.7f},{:.7f},{}\n", r.t,
                        r.height, r.angle_deg, r.f, r.tau,
                        r.analytic ? fmt::format("{:.7f}", r.f_an) : "",
                        r.analytic ? fmt::format("{:.7f}", r.tau_an) : "", r.contacts, r.below,
-                       r.sweeps, r.converged ? 1 : 0, b.f, b.tau);
+                       r.sweeps, r.converged ? 1 : 0, b.f, b.tau, p.rendered_W.f.z(),
+                       p.rendered_W.tau.x(), p.contacts);
   }
   WriteText(out / "t3_1.csv", csv);
   WriteText(out / "t3_1.gp",
@@ -223,10 +228,12 @@ void WriteT31Files(const std::filesystem::path& out, const std::vector<Row>& row
             "'{/Symbol q}_x (thesis {/Symbol q}_z)'\n"
             "set ylabel 'force f_z (N)'\nplot 't3_1.csv' using 1:4 with lines lw 2 title "
             "'rendered', '' using 1:6 with points pt 7 ps 0.2 title 'analytic', '' using 1:12 "
-            "with lines dt 2 title '50 PGS sweeps'\n"
+            "with lines dt 2 title '50 PGS sweeps', '' using 1:14 with lines lw 2 title "
+            "'penalty-sum (B5)'\n"
             "set ylabel 'torque {/Symbol t}_x (N m)'\nplot 't3_1.csv' using 1:5 with lines lw 2 "
             "title 'rendered', '' using 1:7 with points pt 7 ps 0.2 title 'analytic', '' using "
-            "1:13 with lines dt 2 title '50 PGS sweeps'\n"
+            "1:13 with lines dt 2 title '50 PGS sweeps', '' using 1:15 with lines title "
+            "'penalty-sum (B5)'\n"
             "unset multiplot\n");
   std::string why;
   if (!report::RunGnuplotScript(out, "t3_1.gp", "t3_1.png", &why) && !quiet) {
@@ -325,7 +332,9 @@ int RunT31(const std::filesystem::path& out, bool quiet) {
     const Row& row = budget.emplace_back(Analyse(tick, r.stiffness, r.rot_stiffness, R_w));
     if (row.analytic) budget_tau_error = std::max(budget_tau_error, std::abs(row.tau - row.tau_an));
   }
-  WriteT31Files(out, rows, budget, quiet);
+  // B5 on the same motion (SPEC §1.4 B5): the sum's stiffness doubles as contacts go 2 → 4.
+  const std::vector<engine::TickRecord> sum = RunPenaltySumTicks(session);
+  WriteT31Files(out, rows, budget, sum, quiet);
   nlohmann::json summary;
   summary["experiment"] = "t3.1";
   summary["machine"] = MachineTag();
@@ -334,6 +343,9 @@ int RunT31(const std::filesystem::path& out, bool quiet) {
                       {"f_z_N", last.f}, {"tau_x_Nm", last.tau},    {"contacts", last.contacts}};
   summary["checks"] = CheckT31(rows, r, R_w, &summary["numbers"]);
   summary["numbers"]["pgs_50_sweeps_max_torque_error_Nm"] = budget_tau_error;
+  const PenaltySumWindows windows{r.stiffness, kEdgeDepth, kFaceDepth,
+                                  {kEdgeHold[0], kEdgeHold[1]}, kFaceHold};
+  summary["checks"].update(CheckPenaltySumT31(sum, windows, &summary["numbers"]));
   bool ok = !summary["checks"].empty();  // no checks is a failure, not a pass
   for (const auto& [name, pass] : summary["checks"].items()) ok = ok && pass.get<bool>();
   WriteText(out / "summary.json", summary.dump(2) + "\n");

@@ -4,8 +4,10 @@
 
 #include "local_contact_haptic.h"
 #include "local_dynamics_haptic.h"
+#include "penalty_sum_haptic.h"
 #include "point_penalty_haptic.h"
 #include "proxy_haptic.h"
+#include "virtual_coupling_haptic.h"
 
 namespace mrh::haptic {
 
@@ -16,6 +18,14 @@ std::unique_ptr<MethodHaptic> MakePointPenaltyHaptic(double radius, double stiff
 
 std::unique_ptr<MethodHaptic> MakeProxyHaptic(const render::ProxyRendererSettings& settings) {
   return std::make_unique<internal::ProxyHaptic>(settings);
+}
+
+std::unique_ptr<MethodHaptic> MakePenaltySumHaptic(const render::PenaltySumSettings& settings) {
+  return std::make_unique<internal::PenaltySumHaptic>(settings);
+}
+
+std::unique_ptr<MethodHaptic> MakeVirtualCouplingHaptic(const render::CouplingGains& gains) {
+  return std::make_unique<internal::VirtualCouplingHaptic>(gains);
 }
 
 std::unique_ptr<MethodHaptic> MakeLocalDynamicsHaptic(double radius, double stiffness,

@@ -11,6 +11,7 @@
 #include "mrh/world/world.h"
 #include "point_penalty_physics.h"
 #include "proxy_physics.h"
+#include "virtual_coupling_physics.h"
 
 namespace mrh::physics {
 
@@ -49,6 +50,10 @@ const LocalDynamicsCounters* LocalDynamicsCountersOf(const MethodPhysics& method
 const world::PerturberCounters* PerturberCountersOf(const MethodPhysics& method) noexcept {
   const auto* ld = dynamic_cast<const internal::LocalDynamicsPhysics*>(&method);
   return ld == nullptr ? nullptr : &ld->perturber_counters();
+}
+
+std::unique_ptr<MethodPhysics> MakeVirtualCouplingPhysics(const MethodContext& context) {
+  return std::make_unique<internal::VirtualCouplingPhysics>(context);
 }
 
 std::unique_ptr<MethodPhysics> MakeLocalContactPhysics(const MethodContext& context) {

@@ -390,11 +390,16 @@ void ProxyRenderer::Fault(const Pose& X_WP, ProxyOutput* out) noexcept {
 }
 
 void AddReactionImpulses(const ProxyOutput& out, double dt, ir::HapticReport* report) noexcept {
+  AddReactionImpulses(out.reactions, dt, report);
+}
+
+void AddReactionImpulses(const FixedVector<ProxyPairReaction, ir::kMaxGeometricPairs>& reactions,
+                         double dt, ir::HapticReport* report) noexcept {
   // Sum this tick's reactions per body first, so last_force is the body's whole force.
   std::array<int, ir::kMaxGeometricPairs> bodies{};
   std::array<Wrench, ir::kMaxGeometricPairs> sums{};
   std::size_t count = 0;
-  for (const ProxyPairReaction& r : out.reactions) {
+  for (const ProxyPairReaction& r : reactions) {
     if (r.is_static || r.body < 0) continue;
     std::size_t b = 0;
     while (b < count && bodies[b] != r.body) ++b;

@@ -40,8 +40,15 @@ auto WithFile(const Session& session, Build&& build) {
 
 // The timestep is left to the engine: it sets physics_dt, or haptic_dt for single-rate methods.
 world::World LoadWorld(const Session& session) {
+  const engine::RenderingSettings& r = session.engine.rendering;
+  // Virtual coupling (B3) simulates the pointer as a dynamic tool inside MuJoCo.
+  const bool tool = session.engine.method == "virtual-coupling";
   world::World world = world::World::LoadFile(
-      session.scene, world::LoadOptions{.pointer_body = session.engine.pointer.body});
+      session.scene,
+      world::LoadOptions{.pointer_body = session.engine.pointer.body,
+                         .dynamic_pointer = tool,
+                         .tool_mass = r.tool_mass,
+                         .tool_inertia = r.tool_inertia.value_or(Vec3::Zero())});
   if (!session.keyframe.empty()) world.ApplyKeyframe(session.keyframe);
   if (session.gravity) world.set_gravity(*session.gravity);
   return world;

@@ -42,7 +42,7 @@ inline constexpr std::array<Field<engine::PointerSettings>, 2> kPointerFields{{
 }};
 
 /// `rendering` block.
-inline constexpr std::array<Field<engine::RenderingSettings>, 15> kRenderingFields{{
+inline constexpr std::array<Field<engine::RenderingSettings>, 20> kRenderingFields{{
     {"stiffness", &engine::RenderingSettings::stiffness, "N/m", "penalty spring k (eq. 4.11)"},
     {"damping", &engine::RenderingSettings::damping, "N*s/m", "penalty damper d (eq. 4.11)"},
     {"neighbor_distance", &engine::RenderingSettings::neighbor_distance, "m",
@@ -70,10 +70,21 @@ inline constexpr std::array<Field<engine::RenderingSettings>, 15> kRenderingFiel
      "test force when the user's last force is zero"},
     {"local_model", &engine::RenderingSettings::local_model, "",
      "local-dynamics: \"contact\" (island with friction, default) or \"perturbation\" (A, b)"},
+    {"coupling_stiffness", &engine::RenderingSettings::coupling_stiffness, "N/m",
+     "virtual-coupling spring k_vc"},
+    {"coupling_damping", &engine::RenderingSettings::coupling_damping, "N*s/m",
+     "virtual-coupling damper b_vc"},
+    {"coupling_rot_stiffness", &engine::RenderingSettings::coupling_rot_stiffness, "N*m/rad",
+     "virtual-coupling rotational spring"},
+    {"coupling_rot_damping", &engine::RenderingSettings::coupling_rot_damping, "N*m*s/rad",
+     "virtual-coupling rotational damper"},
+    {"tool_mass", &engine::RenderingSettings::tool_mass, "kg",
+     "virtual-coupling tool mass; 0: the pointer body's"},
 }};
 
 /// `rendering` keys the parser handles itself (not plain fields).
-inline constexpr std::array<std::string_view, 1> kRenderingSpecialKeys{{"rotation_weight"}};
+inline constexpr std::array<std::string_view, 2> kRenderingSpecialKeys{{"rotation_weight",
+                                                                        "tool_inertia"}};
 
 /// `safety` block.
 inline constexpr std::array<Field<device::SafetySettings>, 4> kSafetyFields{{

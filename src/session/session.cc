@@ -70,6 +70,10 @@ void ReadRendering(const Node& root, engine::RenderingSettings* out) {
     const std::vector<double> w = weight->Numbers(3, "[Rxx, Ryy, Rzz] (m^2)");
     out->rotation_weight = Vec3(w[0], w[1], w[2]);
   }
+  if (const auto inertia = block->Find("tool_inertia")) {
+    const std::vector<double> w = inertia->Numbers(3, "[Ixx, Iyy, Izz] (kg*m^2)");
+    out->tool_inertia = Vec3(w[0], w[1], w[2]);
+  }
 }
 
 // Keys that fill Session itself or the engine settings, then the blocks.

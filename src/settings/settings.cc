@@ -68,6 +68,18 @@ void ValidateRendering(const RenderingSettings& r) {
   RequireIntInRange(r.curved_segments, 6, kMaxCurvedSegments, "rendering.curved_segments");
   ValidateProxy(r);
   RequireInRange(r.perturbation_force, 1e-3, 1e3, "rendering.perturbation_force", "N");
+  RequireNonNegative(r.coupling_stiffness, "rendering.coupling_stiffness", "N/m", kMaxStiffness);
+  RequireNonNegative(r.coupling_damping, "rendering.coupling_damping", "N*s/m", kMaxDamping);
+  RequireNonNegative(r.coupling_rot_stiffness, "rendering.coupling_rot_stiffness", "N*m/rad",
+                     kMaxStiffness);
+  RequireNonNegative(r.coupling_rot_damping, "rendering.coupling_rot_damping", "N*m*s/rad",
+                     kMaxDamping);
+  RequireNonNegative(r.tool_mass, "rendering.tool_mass", "kg", 1e3);
+  if (r.tool_inertia) {
+    for (int i = 0; i < 3; ++i) {
+      RequirePositive((*r.tool_inertia)[i], "rendering.tool_inertia", "kg*m^2", 1e3);
+    }
+  }
   if (r.local_model != "contact" && r.local_model != "perturbation") {
     throw InvalidArgument(fmt::format(
         "rendering.local_model = \"{}\"; expected \"contact\" (default) or \"perturbation\"",

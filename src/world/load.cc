@@ -233,12 +233,18 @@ std::string PointerFix(const std::string& name) {
 
 // The pointer must be a mocap body. Its geoms stop colliding inside MuJoCo: the haptic rendering
 // owns the pointer's contacts.
-int SetUpPointer(mjModel* m, const std::string& origin, const std::string& name,
-                 std::vector<GeomInfo>* geoms) {
+int SetUpPointer(mjModel* m, const std::string& origin, const LoadOptions& options,
+                 std::vector<BodyInfo>* bodies, std::vector<GeomInfo>* geoms) {
+  const std::string& name = options.pointer_body;
   if (name.empty()) return -1;
   const int body = mj_name2id(m, mjOBJ_BODY, name.c_str());
   if (body < 0) {
     throw SceneError(origin + ": pointer body '" + name + "' not found; " + PointerFix(name));
+  }
+  if (options.dynamic_pointer) {  // a tool that collides inside MuJoCo (virtual-coupling)
+    internal::SetUpDynamicPointer(m, body, options, origin,
+                                  &(*bodies)[static_cast<std::size_t>(body)]);
+    return body;
   }
   if (m->body_mocapid[body] < 0) {
     throw SceneError(origin + ": pointer body '" + name + "' is not a mocap body; " +
@@ -276,6 +282,10 @@ World World::LoadFile(const std::filesystem::path& path, const LoadOptions& opti
     throw SceneError(origin + ": scene file not found (working directory " +
                      std::filesystem::current_path(ec).string() +
                      "); check the path or run from the directory it is relative to");
+  }
+  if (options.dynamic_pointer) {
+    return LoadString(internal::MakePointerDynamic(ReadScene(path), options.pointer_body, origin),
+                      options, origin);
   }
   auto impl = std::make_unique<Impl>();
   internal::InitializeState(LoadOrThrow(origin.c_str(), nullptr, origin, ReadScene(path)), origin, options,
@@ -341,7 +351,7 @@ void InitializeState(ModelPtr model, const std::string& origin, const LoadOption
   CheckSceneNumbers(*model, origin);
   impl->load_warnings = SceneWarnings(*model, origin);
   DescribeModel(*model, origin, &impl->bodies, &impl->geoms);
-  impl->pointer_body = SetUpPointer(model.get(), origin, options.pointer_body, &impl->geoms);
+  impl->pointer_body = SetUpPointer(model.get(), origin, options, &impl->bodies, &impl->geoms);
   impl->data.reset(mj_makeData(model.get()));
   if (!impl->data) {
     throw SceneError(origin + ": MuJoCo could not allocate the scene's data (njmax " +
@@ -349,6 +359,7 @@ void InitializeState(ModelPtr model, const std::string& origin, const LoadOption
                      ", nstack " + std::to_string(model->nstack) +
                      "); lower <size> or remove it (mrhaptics sizes the buffers from the scene)");
   }
+  if (options.dynamic_pointer) mj_setConst(model.get(), impl->data.get());
   impl->model = std::move(model);
   impl->snapshot_size = SnapshotSize(*impl->model);
   // Everything derived from qpos (poses, contacts) is valid right after loading.

@@ -108,6 +108,16 @@ class MujocoScope {
 void InitializeState(ModelPtr model, const std::string& origin, const LoadOptions& options,
                      WorldState* state);
 
+/// LoadOptions::dynamic_pointer: the scene text with the pointer body's mocap="true" removed
+/// and a <freejoint/> added. @throws mrh::SceneError naming the body.
+std::string MakePointerDynamic(const std::string& xml, const std::string& name,
+                               const std::string& origin);
+
+/// The rewritten pointer as a tool: checks its free joint, applies tool_mass / tool_inertia and
+/// updates `info`. The caller runs mj_setConst once the data exists. @throws mrh::SceneError.
+void SetUpDynamicPointer(mjModel* m, int body, const LoadOptions& options,
+                         const std::string& origin, BodyInfo* info);
+
 }  // namespace internal
 
 struct World::Impl : internal::WorldState {};

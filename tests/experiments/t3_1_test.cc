@@ -43,6 +43,14 @@ TEST(T31ExperimentTest, EdgeRollFaceMatchesTheAnalyticProxy) {
   EXPECT_NEAR(s["final"]["height_m"].get<double>(), kHalf - kFaceDepth, 1e-9);
   EXPECT_NEAR(s["final"]["angle_deg"].get<double>(), 0.0, 1e-9);
   EXPECT_EQ(s["final"]["contacts"].get<int>(), 4);
+  // B5 on the same motion (SPEC §1.4 B5): the proxy renders k_t δ on the edge (2 contacts) and
+  // on the face (4 contacts), the penalty sum 2 k δ then 4 k δ: its stiffness doubles.
+  const nlohmann::json& n = s["numbers"];
+  EXPECT_GT(n["penalty_sum_edge_ticks"].get<int>(), 400);  // of the 500-tick edge hold
+  EXPECT_NEAR(n["penalty_sum_edge_force_N"].get<double>(), 2.0 * kKt * kEdgeDepth, 1e-5);
+  EXPECT_NEAR(n["penalty_sum_face_force_N"].get<double>(), 4.0 * kKt * kFaceDepth, 1e-5);
+  EXPECT_NEAR(n["penalty_sum_stiffness_jump"].get<double>(), 2.0, 1e-6);
+  EXPECT_NEAR(s["final"]["f_z_N"].get<double>() / kFaceDepth, kKt, 1e-3 * kKt);
   std::filesystem::remove_all(out);
 }
 

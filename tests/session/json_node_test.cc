@@ -43,8 +43,9 @@ TEST(SessionKeysTest, UnknownNestedKeyIsNamedByItsFullDottedPath) {
           "damping, neighbor_distance, neighbor_margin, curved_segments, rot_stiffness, "
           "rot_damping, rotation_weight_scale, "
           "friction, proxy_solver, max_iterations, solver_tolerance, perturbation, "
-          "perturbation_force, local_model, "
-          "rotation_weight (did you mean \"stiffness\"?)"));
+          "perturbation_force, local_model, coupling_stiffness, coupling_damping, "
+          "coupling_rot_stiffness, coupling_rot_damping, tool_mass, "
+          "rotation_weight, tool_inertia (did you mean \"stiffness\"?)"));
 }
 
 TEST(SessionKeysTest, UnknownKeyUnlikeAnyAllowedKeyGetsNoSuggestion) {
@@ -153,7 +154,9 @@ TEST(SessionKeysTest, BlockGivenAsNumberListsItsKeys) {
           "session.json: rendering: found a number (5); expected an object with keys: "
           "stiffness, damping, neighbor_distance, neighbor_margin, curved_segments, rot_stiffness, "
           "rot_damping, rotation_weight_scale, friction, proxy_solver, max_iterations, "
-          "solver_tolerance, perturbation, perturbation_force, local_model, rotation_weight"));
+          "solver_tolerance, perturbation, perturbation_force, local_model, coupling_stiffness, "
+          "coupling_damping, coupling_rot_stiffness, coupling_rot_damping, tool_mass, "
+          "rotation_weight, tool_inertia"));
 }
 
 TEST(SessionKeysTest, WrongArrayElementIsNamedByIndex) {

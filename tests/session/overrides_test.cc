@@ -129,8 +129,9 @@ TEST(OverridesTest, UnknownKeyFromAnOverrideSaysItCameFromSet) {
           "rendering.stifness=5); expected one of: stiffness, damping, neighbor_distance, "
           "neighbor_margin, curved_segments, rot_stiffness, rot_damping, rotation_weight_scale, "
           "friction, proxy_solver, max_iterations, solver_tolerance, perturbation, "
-          "perturbation_force, local_model, "
-          "rotation_weight (did you mean \"stiffness\"?)"));
+          "perturbation_force, local_model, coupling_stiffness, coupling_damping, "
+          "coupling_rot_stiffness, coupling_rot_damping, tool_mass, "
+          "rotation_weight, tool_inertia (did you mean \"stiffness\"?)"));
 }
 
 TEST(OverridesTest, UnknownBlockCreatedByAnOverrideSaysItCameFromSet) {
@@ -170,8 +171,9 @@ TEST(OverridesTest, ErrorInAnotherKeyDoesNotBlameTheOverride) {
           "damping, neighbor_distance, neighbor_margin, curved_segments, rot_stiffness, "
           "rot_damping, rotation_weight_scale, "
           "friction, proxy_solver, max_iterations, solver_tolerance, perturbation, "
-          "perturbation_force, local_model, "
-          "rotation_weight (did you mean \"stiffness\"?)"));
+          "perturbation_force, local_model, coupling_stiffness, coupling_damping, "
+          "coupling_rot_stiffness, coupling_rot_damping, tool_mass, "
+          "rotation_weight, tool_inertia (did you mean \"stiffness\"?)"));
 }
 
 }  // namespace

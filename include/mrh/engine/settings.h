@@ -72,6 +72,17 @@ struct RenderingSettings {
   /// island, its contacts with the world and each other, normal + Coulomb friction, simulated at
   /// the haptic rate) or "perturbation" (the thesis' accelerance A and bias b, eq. 4.3–4.10).
   std::string local_model = "contact";
+
+  // Virtual coupling (B3, SPEC §1.4): the spring–damper between the device pose and the tool.
+  double coupling_stiffness = 1000.0;  ///< k_vc (N/m, >= 0)
+  double coupling_damping = 10.0;      ///< b_vc (N·s/m, >= 0)
+  double coupling_rot_stiffness = 1.0; ///< k_vc,r (N·m/rad, >= 0)
+  double coupling_rot_damping = 0.01;  ///< b_vc,r (N·m·s/rad, >= 0)
+  /// Tool mass m_t (kg, >= 0); 0: the pointer body's MJCF mass.
+  double tool_mass = 0.0;
+  /// Tool principal inertia (kg·m², body-axes diagonal, each > 0); empty: the MJCF's (scaled
+  /// with tool_mass when that is given).
+  std::optional<Vec3> tool_inertia;
 };
 
 /// Everything the engine needs besides the world and the device.

@@ -6,7 +6,9 @@
 #include <memory>
 
 #include "mrh/haptic/method_haptic.h"
+#include "mrh/render/penalty_sum.h"
 #include "mrh/render/proxy_renderer.h"
+#include "mrh/render/virtual_coupling.h"
 
 namespace mrh::haptic {
 
@@ -23,6 +25,17 @@ std::unique_ptr<MethodHaptic> MakePointPenaltyHaptic(double radius, double stiff
 
 /// Haptic half of "proxy-6dof": the 6-DOF proxy with `settings` (physics::ProxySettingsFor).
 std::unique_ptr<MethodHaptic> MakeProxyHaptic(const render::ProxyRendererSettings& settings);
+
+/// Haptic half of "penalty-sum" (B5): per-contact springs on the interpolated geometric IR.
+/// TickOutput::status carries render::kProxyStatusBadInput on non-finite input.
+std::unique_ptr<MethodHaptic> MakePenaltySumHaptic(const render::PenaltySumSettings& settings);
+
+/// Status bit of "virtual-coupling"'s haptic half: the coupling wrench was not finite (zero
+/// output this tick).
+inline constexpr std::uint32_t kVirtualCouplingBadInput = 1u << 0;
+
+/// Haptic half of "virtual-coupling" (B3): the spring–damper to the tool of the snapshot.
+std::unique_ptr<MethodHaptic> MakeVirtualCouplingHaptic(const render::CouplingGains& gains);
 
 /// Haptic half of "local-dynamics": local simulation of the neighbors, 3-DOF penalty as above.
 std::unique_ptr<MethodHaptic> MakeLocalDynamicsHaptic(double radius, double stiffness,

@@ -18,6 +18,11 @@ std::unique_ptr<MethodPhysics> MakePointPenaltyPhysics(const MethodContext& cont
 /// @throws mrh::SceneError for a pointer without convex geoms. Not RT-safe.
 std::unique_ptr<MethodPhysics> MakeProxyPhysics(const MethodContext& context);
 
+/// Physics half of "virtual-coupling" (B3): the pointer as a free tool body stepped at the haptic
+/// rate under the reported coupling impulse, its weight compensated.
+/// @throws mrh::SceneError if the pointer is not a free body. Not RT-safe.
+std::unique_ptr<MethodPhysics> MakeVirtualCouplingPhysics(const MethodContext& context);
+
 /// Physics half of "local-dynamics": overwrite, global step, plane IR and perturbations.
 std::unique_ptr<MethodPhysics> MakeLocalDynamicsPhysics(const MethodContext& context);
 

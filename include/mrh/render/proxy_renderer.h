@@ -257,4 +257,8 @@ class ProxyRenderer {
 /// @param dt haptic period (s). RT-safe.
 void AddReactionImpulses(const ProxyOutput& out, double dt, ir::HapticReport* report) noexcept;
 
+/// The same for a bare list of per-pair reactions (penalty-sum uses it). RT-safe.
+void AddReactionImpulses(const FixedVector<ProxyPairReaction, ir::kMaxGeometricPairs>& reactions,
+                         double dt, ir::HapticReport* report) noexcept;
+
 }  // namespace mrh::render

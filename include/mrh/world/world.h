@@ -19,6 +19,16 @@ struct LoadOptions {
   /// Name of the mocap body that is the haptic pointer. Its geoms are made non-colliding inside
   /// MuJoCo (the haptic rendering handles the pointer's contacts). Empty: no pointer.
   std::string pointer_body = "pointer";
+  /// Virtual coupling (B3): the pointer becomes a dynamic tool. Its mocap="true" is dropped from
+  /// the scene text and a <freejoint/> added, and its geoms keep colliding inside MuJoCo. The
+  /// rewritten text is loaded as by LoadString (relative asset paths resolve against the working
+  /// directory). @throws mrh::SceneError naming the body if it cannot be rewritten.
+  bool dynamic_pointer = false;
+  /// With dynamic_pointer: the tool's mass (kg) instead of the geoms' (0: keep the geoms').
+  double tool_mass = 0.0;
+  /// With dynamic_pointer: the tool's principal inertia (kg·m², body-axes diagonal) instead of
+  /// the geoms' (all zero: keep the geoms', scaled by tool_mass / geom mass if tool_mass > 0).
+  Vec3 tool_inertia = Vec3::Zero();
 };
 
 /// A geom of a body, as a convex shape fixed in the body frame.

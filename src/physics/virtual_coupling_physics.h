@@ -1,0 +1,37 @@
+// SPDX-License-Identifier: Apache-2.0
+// Baseline B3 `virtual-coupling`: the physics half (the tool as a dynamic body in MuJoCo).
+#pragma once
+
+#include "mrh/physics/method_physics.h"
+
+namespace mrh::physics::internal {
+
+/// B3 (Colgate et al. 1995), physics half; single-rate (physics_dt = haptic_dt).
+///
+/// The scene's pointer body is loaded as a free body (session::LoadWorld sets
+/// world::LoadOptions::dynamic_pointer for this method): its geoms collide inside MuJoCo, its
+/// mass and inertia come from the MJCF or rendering.tool_mass / tool_inertia. Each step applies
+/// the coupling impulse the haptic half reported on the tool and the tool's weight compensation
+/// (−m_t g on its COM, so the user feels the tool's inertia, not its weight), steps, and
+/// publishes the tool as the snapshot's only body. Its haptic half is
+/// haptic::internal::VirtualCouplingHaptic.
+class VirtualCouplingPhysics final : public MethodPhysics {
+ public:
+  /// @throws mrh::SceneError if the pointer body is not a free body (the world was loaded
+  /// without LoadOptions::dynamic_pointer). Not RT-safe.
+  explicit VirtualCouplingPhysics(const MethodContext& context);
+
+  void PhysicsStart(const ir::HapticReport& initial, ir::PhysicsSnapshot* out) override;
+  void PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot* out) override;
+  PhaseTimes last_phases() const noexcept override { return phases_; }
+
+ private:
+  void Publish(ir::PhysicsSnapshot* out) const;
+
+  world::World* world_;
+  int tool_;
+  double physics_dt_;
+  PhaseTimes phases_;
+};
+
+}  // namespace mrh::physics::internal

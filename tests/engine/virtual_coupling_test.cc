@@ -1,0 +1,143 @@
+// SPDX-License-Identifier: Apache-2.0
+// Virtual coupling (B3, SPEC §1.4): the tool's inertia is felt in free motion (−m_t ẍ_t against
+// the tool's linear steady state), and pressed into a floor the force settles at the spring's.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <complex>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <vector>
+
+#include "mrh/core/error.h"
+#include "mrh/device/simulated.h"
+#include "mrh/engine/engine.h"
+#include "mrh/world/world.h"
+
+namespace mrh::engine {
+namespace {
+
+constexpr double kMass = 0.5;    // tool mass (kg)
+constexpr double kHalf = 0.05;   // tool box half side (m)
+constexpr double kK = 1000.0;    // coupling spring (N/m)
+constexpr double kB = 10.0;      // coupling damper (N·s/m)
+constexpr double kDt = 1e-3;     // haptic = physics period (s)
+
+// Under gravity: a floor plane and a box pointer (mocap in the file; the method makes it free).
+constexpr char kScene[] = R"(<mujoco>
+  <option gravity="0 0 -9.81"/>
+  <worldbody>
+    <geom name="floor" type="plane" size="2 2 0.1"/>
+    <body name="pointer" mocap="true" pos="0 0 0.5">
+      <geom type="box" size="0.05 0.05 0.05" mass="0.5"/>
+    </body>
+  </worldbody>
+</mujoco>)";
+
+world::World ToolWorld() {
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() / "mrh_virtual_coupling_test.xml";
+  std::ofstream(file) << kScene;
+  return world::World::LoadFile(
+      file, world::LoadOptions{.pointer_body = "pointer", .dynamic_pointer = true});
+}
+
+EngineSettings CouplingSettings(double duration) {
+  EngineSettings s;
+  s.method = "virtual-coupling";
+  s.mode = Mode::kLockstep;
+  s.physics_dt = kDt;
+  s.haptic_dt = kDt;
+  s.duration = duration;
+  s.rendering.coupling_stiffness = kK;
+  s.rendering.coupling_damping = kB;
+  s.safety.ramp = false;
+  s.realtime_priority = false;
+  return s;
+}
+
+class Tap final : public Recorder {
+ public:
+  void OnTick(const TickRecord& tick) override { ticks.push_back(tick); }
+  void OnStep(const StepRecord&, const world::World&) override {}
+  std::vector<TickRecord> ticks;
+};
+
+std::vector<TickRecord> RunCoupled(std::vector<device::Keyframe> keyframes, double duration) {
+  device::Specifications specs;
+  specs.max_force = 1000.0;
+  Engine engine(ToolWorld(), device::MakeScriptedDevice(std::move(keyframes), specs),
+                device::Calibration{}, CouplingSettings(duration));
+  Tap tap;
+  (void)engine.Run(&tap);
+  return tap.ticks;
+}
+
+TEST(VirtualCoupling, FreeMotionDisplaysTheToolInertia) {
+  constexpr double kAmplitude = 0.05, kHz = 2.0, kDuration = 2.0;
+  const double omega = 2.0 * std::numbers::pi * kHz;
+  std::vector<device::Keyframe> keyframes;
+  for (int i = 0; i <= static_cast<int>(kDuration / kDt) + 1; ++i) {
+    const double t = i * kDt;
+    keyframes.push_back({t, Pose{Vec3(kAmplitude * std::sin(omega * t), 0.0, 0.5), Quat::Identity()}});
+  }
+  const std::vector<TickRecord> ticks = RunCoupled(keyframes, kDuration);
+  // Linear steady state of m ẍ_t = k (x_h − x_t) + b (ẋ_h − ẋ_t) for x_h = A sin ωt:
+  // x_t = Im(H A e^{iωt}), H = (k + ibω) / (k − mω² + ibω); displayed −F_c = −m ẍ_t = mω² x_t.
+  const std::complex<double> ib(0.0, kB * omega);
+  const std::complex<double> H = (kK + ib) / (kK - kMass * omega * omega + ib);
+  const std::complex<double> expected = kMass * omega * omega * H * kAmplitude;
+  // Complex amplitude of the displayed f_x over the last whole second (2 periods; the
+  // transient decays with 2m/b = 0.1 s).
+  std::complex<double> measured = 0.0;
+  int n = 0;
+  for (const TickRecord& tick : ticks) {
+    if (tick.t < 1.0 - 1e-9) continue;
+    measured += tick.displayed_W.f.x() * std::complex<double>(std::sin(omega * tick.t),
+                                                              std::cos(omega * tick.t));
+    ++n;
+  }
+  ASSERT_GT(n, 900);
+  measured *= 2.0 / n;  // f = Im(c e^{iωt}) = Re(c) sin + Im(c) cos
+  EXPECT_LE(std::abs(measured - expected), 0.02 * std::abs(expected))
+      << "measured " << measured << " expected " << expected;
+  // The weight is compensated: no vertical force in free motion.
+  EXPECT_NEAR(ticks.back().displayed_W.f.z(), 0.0, 0.01 * std::abs(expected));
+}
+
+TEST(VirtualCoupling, PressingIntoAFloorSettlesAtTheSpringForce) {
+  constexpr double kPress = 0.01;  // device held 1 cm below the tool's resting height
+  const Pose above{Vec3(0.0, 0.0, kHalf + 0.02), Quat::Identity()};
+  const Pose pressed{Vec3(0.0, 0.0, kHalf - kPress), Quat::Identity()};
+  const std::vector<TickRecord> ticks = RunCoupled({{0.0, above}, {0.5, pressed}}, 2.0);
+  const TickRecord& last = ticks.back();
+  // The tool rests on the floor (MuJoCo's soft contact: < 1 mm in) ...
+  const double z_tool = last.X_WQ.p.z();
+  EXPECT_NEAR(z_tool, kHalf, 1e-3);
+  // ... and the hand feels the coupling spring's stretch, k (z_t − z_h), pushing up.
+  EXPECT_NEAR(last.displayed_W.f.z(), kK * (z_tool - pressed.p.z()), 1e-3 * kK * kPress);
+  EXPECT_NEAR(last.displayed_W.f.z(), kK * kPress, 0.1 * kK * kPress);
+  // Settled: the last 100 ms vary by less than 1 %.
+  double lo = 1e9, hi = -1e9;
+  for (std::size_t i = ticks.size() - 100; i < ticks.size(); ++i) {
+    lo = std::min(lo, ticks[i].displayed_W.f.z());
+    hi = std::max(hi, ticks[i].displayed_W.f.z());
+  }
+  EXPECT_LT(hi - lo, 0.01 * kK * kPress);
+}
+
+TEST(VirtualCoupling, MocapPointerWorldIsRefusedWithTheFix) {
+  EXPECT_THROW(
+      {
+        const std::filesystem::path file =
+            std::filesystem::temp_directory_path() / "mrh_virtual_coupling_mocap.xml";
+        std::ofstream(file) << kScene;
+        Engine engine(world::World::LoadFile(file), device::MakeFixedDevice(Pose{}),
+                      device::Calibration{}, CouplingSettings(0.1));
+      },
+      mrh::Error);
+}
+
+}  // namespace
+}  // namespace mrh::engine
