@@ -6,11 +6,66 @@
 
 #include <chrono>
 
+#include <Eigen/Eigenvalues>
+
 #include "mrh/core/error.h"
+#include "mrh/core/validate.h"
+#include "mrh/render/virtual_coupling.h"
 #include "mrh/world/world.h"
 #include "report_impulses.h"
 
 namespace mrh::physics::internal {
+namespace {
+
+// Growth per tick above this is an unstable coupling (1 is the uncoupled tool's drift).
+constexpr double kMaxGrowth = 1.0 + 1e-9;
+
+// Gains that keep one axis well inside the stable region: a = 0.05, c = 0.3 (growth 0.77).
+double StableStiffness(double inertia, double h) { return 0.05 * inertia / (h * h); }
+double StableDamping(double inertia, double h) { return 0.3 * inertia / h; }
+
+// The smallest principal moment of the tool's inertia about its COM (kg·m²): the axis on which
+// the rotational coupling is closest to instability.
+double WeakestInertia(const Mat3& inertia_B) {
+  const Eigen::SelfAdjointEigenSolver<Mat3> eigen(0.5 * (inertia_B + inertia_B.transpose()));
+  return eigen.eigenvalues().minCoeff();
+}
+
+}  // namespace
+
+// The free tool under the coupling must not grow (render::CouplingGrowthPerTick): an unstable
+// coupling makes MuJoCo reset its state ("bad number in qacc") and the device fade or clamp,
+// so it is refused at setup with gains that would work instead.
+void CheckCouplingStable(const world::BodyInfo& tool, const engine::RenderingSettings& r,
+                         double h, const std::string& origin) {
+  const double m = tool.mass;
+  const double growth = render::CouplingGrowthPerTick(r.coupling_stiffness * h * h / m,
+                                                      r.coupling_damping * h / m);
+  if (growth > kMaxGrowth) {
+    throw InvalidArgument(fmt::format(
+        "{}: rendering.coupling_stiffness = {} N/m with coupling_damping = {} N*s/m makes the "
+        "{} kg tool '{}' unstable at haptic_dt {} s (its motion grows {}x per tick); expected a "
+        "stable pair such as coupling_stiffness {} and coupling_damping {}, or a heavier tool "
+        "(rendering.tool_mass)",
+        origin, FormatNumber(r.coupling_stiffness), FormatNumber(r.coupling_damping),
+        FormatNumber(m), tool.name, FormatNumber(h), FormatNumber(growth),
+        FormatNumber(StableStiffness(m, h)), FormatNumber(StableDamping(m, h))));
+  }
+  const double inertia = WeakestInertia(tool.inertia_B);
+  const double rot_growth = render::CouplingGrowthPerTick(
+      r.coupling_rot_stiffness * h * h / inertia, r.coupling_rot_damping * h / inertia);
+  if (rot_growth > kMaxGrowth) {
+    throw InvalidArgument(fmt::format(
+        "{}: rendering.coupling_rot_stiffness = {} N*m/rad with coupling_rot_damping = {} "
+        "N*m*s/rad makes the tool '{}' (inertia {} kg*m^2 about its weakest axis) unstable at "
+        "haptic_dt {} s (its rotation grows {}x per tick); expected a stable pair such as "
+        "coupling_rot_stiffness {} and coupling_rot_damping {}, or a larger "
+        "rendering.tool_inertia",
+        origin, FormatNumber(r.coupling_rot_stiffness), FormatNumber(r.coupling_rot_damping),
+        tool.name, FormatNumber(inertia), FormatNumber(h), FormatNumber(rot_growth),
+        FormatNumber(StableStiffness(inertia, h)), FormatNumber(StableDamping(inertia, h))));
+  }
+}
 
 VirtualCouplingPhysics::VirtualCouplingPhysics(const MethodContext& context)
     : world_(context.world),
@@ -24,6 +79,8 @@ VirtualCouplingPhysics::VirtualCouplingPhysics(const MethodContext& context)
         "\"virtual-coupling\")",
         info.name));
   }
+  CheckCouplingStable(info, context.settings->rendering, context.settings->haptic_dt,
+                      world_->origin());
 }
 
 void VirtualCouplingPhysics::Publish(ir::PhysicsSnapshot* out) const {

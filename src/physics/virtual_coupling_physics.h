@@ -2,7 +2,11 @@
 // Baseline B3 `virtual-coupling`: the physics half (the tool as a dynamic body in MuJoCo).
 #pragma once
 
+#include <string>
+
+#include "mrh/engine/settings.h"
 #include "mrh/physics/method_physics.h"
+#include "mrh/world/world.h"
 
 namespace mrh::physics::internal {
 
@@ -15,10 +19,18 @@ namespace mrh::physics::internal {
 /// (−m_t g on its COM, so the user feels the tool's inertia, not its weight), steps, and
 /// publishes the tool as the snapshot's only body. Its haptic half is
 /// haptic::internal::VirtualCouplingHaptic.
+/// Refuses coupling gains under which the free tool's motion grows (render::CouplingGrowthPerTick,
+/// translation with the tool's mass, rotation about its weakest principal axis) at haptic period
+/// h (s). @throws mrh::InvalidArgument naming the scene (`origin`), the keys, their values and
+/// a stable pair of gains.
+void CheckCouplingStable(const world::BodyInfo& tool, const engine::RenderingSettings& r,
+                         double h, const std::string& origin);
+
 class VirtualCouplingPhysics final : public MethodPhysics {
  public:
   /// @throws mrh::SceneError if the pointer body is not a free body (the world was loaded
-  /// without LoadOptions::dynamic_pointer). Not RT-safe.
+  /// without LoadOptions::dynamic_pointer); mrh::InvalidArgument for unstable coupling gains
+  /// (CheckCouplingStable). Not RT-safe.
   explicit VirtualCouplingPhysics(const MethodContext& context);
 
   void PhysicsStart(const ir::HapticReport& initial, ir::PhysicsSnapshot* out) override;
