@@ -51,6 +51,15 @@ void SetUpDynamicPointer(mjModel* m, int body, const LoadOptions& options,
                      " kg*m^2; virtual-coupling needs a tool with mass and inertia > 0: give its "
                      "geoms a density or set rendering.tool_mass and rendering.tool_inertia");
   }
+  // The tool must touch the scene inside MuJoCo: a pointer geom that collides with nothing (as
+  // the IR-based methods' pointers usually are, contype = conaffinity = 0) collides as a default
+  // geom (1, 1) instead.
+  for (int g = 0; g < m->ngeom; ++g) {
+    const bool silent = m->geom_contype[g] == 0 && m->geom_conaffinity[g] == 0;
+    if (m->geom_bodyid[g] != body || !silent) continue;
+    m->geom_contype[g] = 1;
+    m->geom_conaffinity[g] = 1;
+  }
   info->mass = m->body_mass[body];
   const Mat3 R = Quat(m->body_iquat[4 * body], m->body_iquat[4 * body + 1],
                       m->body_iquat[4 * body + 2], m->body_iquat[4 * body + 3])

@@ -142,12 +142,13 @@ TEST(VirtualCoupling, MocapPointerWorldIsRefusedWithTheFix) {
 
 // A light sphere tool (r 1.5 cm, water density: m = 14.1 g, I = 2/5 m r² = 1.27e-6 kg·m²), as in
 // scenes/demo.json, pressed 1 cm into the floor and dragged 5 cm along it (friction turns it).
+// Its geom collides with nothing, as IR-based pointers' geoms do: the tool must collide anyway.
 constexpr char kLightScene[] = R"(<mujoco>
   <option gravity="0 0 -9.81"/>
   <worldbody>
     <geom name="floor" type="plane" size="2 2 0.1"/>
     <body name="pointer" mocap="true" pos="0 0 0.1">
-      <geom type="sphere" size="0.015" density="1000"/>
+      <geom type="sphere" size="0.015" density="1000" contype="0" conaffinity="0"/>
     </body>
   </worldbody>
 </mujoco>)";
