@@ -77,19 +77,10 @@ RunStats Engine::Stop() {
   if (run.physics_thread.joinable()) run.physics_thread.join();
   s.device->Close();
   RunStats stats;
-  internal::FillPhysicsStats(run.physics, &stats);
-  internal::FillHapticStats(s.haptic->counters(), &stats);
-  internal::FillMethodStatus(s.haptic->counters(), s.method, &stats);
-  stats.method = s.method.name;
-  stats.mode = s.settings.mode;
-  stats.physics_dt = s.settings.physics_dt;
-  stats.haptic_dt = s.settings.haptic_dt;
-  stats.sim_time = run.last_t + s.settings.haptic_dt;
-  stats.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - run.wall0).count();
-  if (stats.wall_time > 0) {
-    stats.haptic_rate_hz = static_cast<double>(stats.ticks) / stats.wall_time;
-    stats.physics_rate_hz = static_cast<double>(stats.steps) / stats.wall_time;
-  }
+  const double wall_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - run.wall0).count();
+  internal::FillRunStats(s, run.physics, s.settings.mode, run.last_t + s.settings.haptic_dt,
+                         wall_time, wall_time, &stats);
   return stats;
 }
 

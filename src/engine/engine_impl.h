@@ -54,11 +54,12 @@ struct EngineState {
 /// report is pending.
 void RunPhysicsThread(PhysicsSide& physics, const std::atomic<bool>& done);
 
-/// The statistics tail common to every scheduler: copies the physics side's and the haptic
-/// counters' share into `stats` and names the method, mode and rates.
-void FillHapticStats(const HapticCounters& counters, RunStats* stats);
-void FillPhysicsStats(PhysicsSide& physics, RunStats* stats);
-void FillMethodStatus(const HapticCounters& counters, const Method& method, RunStats* stats);
+/// The statistics tail common to every scheduler: the physics side's and the haptic counters'
+/// share, the method's status bits, the method, mode and time steps, sim_time and wall_time (s),
+/// and the tick and step rates per `rate_time` s (sim time in lockstep, wall time otherwise; no
+/// rates when it is 0). Moves the physics side's warnings and impulses into `stats`.
+void FillRunStats(EngineState& state, PhysicsSide& physics, Mode mode, double sim_time,
+                  double wall_time, double rate_time, RunStats* stats);
 
 using mrh::Percentile;
 

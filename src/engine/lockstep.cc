@@ -43,19 +43,10 @@ RunStats RunLockstep(EngineState& state, Recorder* recorder, const Engine::Progr
   state.haptic->Stop();
 
   RunStats stats;
-  FillPhysicsStats(physics, &stats);
-  FillHapticStats(state.haptic->counters(), &stats);
-  FillMethodStatus(state.haptic->counters(), state.method, &stats);
-  stats.method = state.method.name;
-  stats.mode = Mode::kLockstep;
-  stats.physics_dt = state.settings.physics_dt;
-  stats.haptic_dt = dt;
-  stats.sim_time = static_cast<double>(tick) * dt;
-  stats.wall_time =
+  const double sim_time = static_cast<double>(tick) * dt;
+  const double wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  stats.haptic_rate_hz = stats.sim_time > 0 ? static_cast<double>(stats.ticks) / stats.sim_time : 0;
-  stats.physics_rate_hz =
-      stats.sim_time > 0 ? static_cast<double>(stats.steps) / stats.sim_time : 0;
+  FillRunStats(state, physics, Mode::kLockstep, sim_time, wall_time, sim_time, &stats);
   if (progress) progress(1.0);
   return stats;
 }

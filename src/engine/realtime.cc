@@ -34,50 +34,26 @@ void HapticLoop(EngineState& s, HapticTiming* timing, std::atomic<bool>* done,
   if (s.settings.realtime_priority) fifo_ok->store(RequestFifoPriority(kHapticFifoPriority, &why));
   const auto dt_ns = static_cast<std::int64_t>(std::llround(s.settings.haptic_dt * kNsPerS));
   const auto duration_ns = static_cast<std::int64_t>(std::llround(s.settings.duration * kNsPerS));
-  const std::int64_t start = NowNs();
-  std::int64_t deadline = start;
-  std::int64_t last_wake = start;
+  PeriodicDeadline clock(dt_ns);
   while (true) {
-    deadline += dt_ns;
-    SleepUntilNs(deadline, kDeadlineSpinNs);
-    const std::int64_t now = NowNs();
-    if (now - deadline > dt_ns) {
-      // Overrun: skip the missed ticks instead of bursting to catch up (STYLE §6.5).
-      ++timing->overruns;
-      deadline = now;
-    }
+    const PeriodicDeadline::Wake wake = clock.Next();
+    if (wake.overrun) ++timing->overruns;
     if (timing->samples < timing->jitter_us.size()) {
-      timing->jitter_us[timing->samples++] =
-          std::abs(static_cast<double>(now - last_wake - dt_ns)) * 1e-3;
+      timing->jitter_us[timing->samples++] = wake.period_error_us;
     }
-    last_wake = now;
-    if (deadline - start > duration_ns) break;
-    s.haptic->Tick(static_cast<double>(deadline - start) / kNsPerS);
+    if (wake.deadline_ns - clock.start_ns() > duration_ns) break;
+    s.haptic->Tick(static_cast<double>(wake.deadline_ns - clock.start_ns()) / kNsPerS);
   }
   s.haptic->Stop();
   done->store(true, std::memory_order_release);
 }
 
-}  // namespace
-
-RunStats RunRealtime(EngineState& s, Recorder* recorder, const Engine::ProgressFn& progress) {
-  RunStats stats;
-  std::string why;
-  const bool locked = s.settings.realtime_priority && LockAllMemory(&why);
-  if (s.settings.realtime_priority && !locked) {
-    stats.warnings.push_back(why);
-  }
-  HapticTiming timing;
-  timing.jitter_us.resize(static_cast<std::size_t>(s.settings.duration / s.settings.haptic_dt) +
-                          kJitterSlack);
-  PhysicsSide physics = s.MakePhysicsSide(recorder);
-  physics.Start(s.haptic->InitialReport(0.0));
-
+// Both threads until the haptic one has run the session's duration; progress every 100 ms.
+// A MuJoCo error on the physics thread (a RuntimeError) ends the physics side; the watchdog
+// fades the force to zero, and the error is rethrown here once both threads are done.
+void RunThreads(EngineState& s, PhysicsSide& physics, HapticTiming* timing,
+                std::atomic<bool>* fifo_ok, std::int64_t wall0, const Engine::ProgressFn& progress) {
   std::atomic<bool> done{false};
-  std::atomic<bool> fifo_ok{false};
-  const std::int64_t wall0 = NowNs();
-  // A MuJoCo error on the physics thread (a RuntimeError) ends the physics side; the watchdog
-  // fades the force to zero, and the error is rethrown here once both threads are done.
   std::exception_ptr physics_error;
   std::thread physics_thread([&] {
     try {
@@ -86,7 +62,7 @@ RunStats RunRealtime(EngineState& s, Recorder* recorder, const Engine::ProgressF
       physics_error = std::current_exception();
     }
   });
-  std::thread haptic_thread([&] { HapticLoop(s, &timing, &done, &fifo_ok); });
+  std::thread haptic_thread([&] { HapticLoop(s, timing, &done, fifo_ok); });
   while (!done.load(std::memory_order_acquire)) {
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
     if (progress) {
@@ -95,31 +71,48 @@ RunStats RunRealtime(EngineState& s, Recorder* recorder, const Engine::ProgressF
   }
   haptic_thread.join();
   physics_thread.join();
-  if (locked) UnlockAllMemory();
   if (physics_error) std::rethrow_exception(physics_error);
+}
 
+void FillJitter(const HapticTiming& timing, RunStats* stats) {
+  std::vector<double> jitter(timing.jitter_us.begin(),
+                             timing.jitter_us.begin() + static_cast<std::ptrdiff_t>(timing.samples));
+  stats->jitter_p50_us = Percentile(jitter, 50.0);
+  stats->jitter_p99_us = Percentile(jitter, 99.0);
+  stats->jitter_max_us = jitter.empty() ? 0.0 : *std::max_element(jitter.begin(), jitter.end());
+  stats->overruns = timing.overruns;
+}
+
+}  // namespace
+
+RunStats RunRealtime(EngineState& s, Recorder* recorder, const Engine::ProgressFn& progress) {
+  RunStats stats;
+  std::string why;
+  const bool locked = s.settings.realtime_priority && LockAllMemory(&why);
+  if (s.settings.realtime_priority && !locked) stats.warnings.push_back(why);
+  HapticTiming timing;
+  timing.jitter_us.resize(static_cast<std::size_t>(s.settings.duration / s.settings.haptic_dt) +
+                          kJitterSlack);
+  PhysicsSide physics = s.MakePhysicsSide(recorder);
+  physics.Start(s.haptic->InitialReport(0.0));
+  std::atomic<bool> fifo_ok{false};
+  const std::int64_t wall0 = NowNs();
+  try {
+    RunThreads(s, physics, &timing, &fifo_ok, wall0, progress);
+  } catch (...) {
+    if (locked) UnlockAllMemory();
+    throw;
+  }
+  if (locked) UnlockAllMemory();
   if (s.settings.realtime_priority && !fifo_ok.load()) {
     stats.warnings.push_back("SCHED_FIFO refused for the haptic thread; running at normal priority");
   }
   for (const std::string& w : stats.warnings) spdlog::warn("{}", w);
-  FillPhysicsStats(physics, &stats);
-  FillHapticStats(s.haptic->counters(), &stats);
-  FillMethodStatus(s.haptic->counters(), s.method, &stats);
-  std::vector<double> jitter(timing.jitter_us.begin(),
-                             timing.jitter_us.begin() + static_cast<std::ptrdiff_t>(timing.samples));
-  stats.jitter_p50_us = Percentile(jitter, 50.0);
-  stats.jitter_p99_us = Percentile(jitter, 99.0);
-  stats.jitter_max_us = jitter.empty() ? 0.0 : *std::max_element(jitter.begin(), jitter.end());
-  stats.overruns = timing.overruns;
+  const double wall_time = static_cast<double>(NowNs() - wall0) / kNsPerS;
+  FillRunStats(s, physics, Mode::kRealtime, 0.0, wall_time, wall_time, &stats);
+  stats.sim_time = static_cast<double>(stats.steps) * s.settings.physics_dt;  // as stepped
+  FillJitter(timing, &stats);
   stats.realtime_priority = locked && fifo_ok.load();
-  stats.method = s.method.name;
-  stats.mode = Mode::kRealtime;
-  stats.physics_dt = s.settings.physics_dt;
-  stats.haptic_dt = s.settings.haptic_dt;
-  stats.wall_time = static_cast<double>(NowNs() - wall0) / kNsPerS;
-  stats.sim_time = static_cast<double>(stats.steps) * s.settings.physics_dt;
-  stats.haptic_rate_hz = static_cast<double>(stats.ticks) / stats.wall_time;
-  stats.physics_rate_hz = static_cast<double>(stats.steps) / stats.wall_time;
   if (progress) progress(1.0);
   return stats;
 }

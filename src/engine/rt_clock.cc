@@ -7,6 +7,7 @@
 #include <sys/mman.h>
 
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <ctime>
 
@@ -46,6 +47,23 @@ void SleepUntilNs(std::int64_t deadline_ns, std::int64_t spin_ns) noexcept {
   }
   while (NowNs() < deadline_ns) {
   }
+}
+
+PeriodicDeadline::PeriodicDeadline(std::int64_t period_ns) noexcept
+    : period_ns_(period_ns), start_ns_(NowNs()), deadline_ns_(start_ns_), last_wake_ns_(start_ns_) {}
+
+PeriodicDeadline::Wake PeriodicDeadline::Next() noexcept {
+  deadline_ns_ += period_ns_;
+  SleepUntilNs(deadline_ns_, kDeadlineSpinNs);
+  Wake wake;
+  wake.now_ns = NowNs();
+  wake.overrun = wake.now_ns - deadline_ns_ > period_ns_;
+  if (wake.overrun) deadline_ns_ = wake.now_ns;
+  wake.deadline_ns = deadline_ns_;
+  wake.period_error_us =
+      std::abs(static_cast<double>(wake.now_ns - last_wake_ns_ - period_ns_)) * 1e-3;
+  last_wake_ns_ = wake.now_ns;
+  return wake;
 }
 
 bool RequestFifoPriority(int priority, std::string* why) {

@@ -27,6 +27,8 @@ void RunPhysicsThread(PhysicsSide& physics, const std::atomic<bool>& done) {
   }
 }
 
+namespace {
+
 void FillHapticStats(const HapticCounters& c, RunStats* stats) {
   stats->ticks = c.ticks;
   stats->max_force = c.max_force;
@@ -64,6 +66,25 @@ void FillPhysicsStats(PhysicsSide& physics, RunStats* stats) {
   stats->phase_ms = p.phase_total;
   for (std::string& w : p.warnings) stats->warnings.push_back(std::move(w));
   stats->impulses = std::move(p.impulses);
+}
+
+}  // namespace
+
+void FillRunStats(EngineState& state, PhysicsSide& physics, Mode mode, double sim_time,
+                  double wall_time, double rate_time, RunStats* stats) {
+  FillPhysicsStats(physics, stats);
+  FillHapticStats(state.haptic->counters(), stats);
+  FillMethodStatus(state.haptic->counters(), state.method, stats);
+  stats->method = state.method.name;
+  stats->mode = mode;
+  stats->physics_dt = state.settings.physics_dt;
+  stats->haptic_dt = state.settings.haptic_dt;
+  stats->sim_time = sim_time;
+  stats->wall_time = wall_time;
+  if (rate_time > 0.0) {
+    stats->haptic_rate_hz = static_cast<double>(stats->ticks) / rate_time;
+    stats->physics_rate_hz = static_cast<double>(stats->steps) / rate_time;
+  }
 }
 
 }  // namespace mrh::engine::internal

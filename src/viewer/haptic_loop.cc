@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// HapticLoop: absolute-deadline periods, skip-ahead on overrun, raw jitter windows for the UI.
+// HapticLoop: the engine's PeriodicDeadline at the haptic rate, raw jitter windows for the UI.
 #include "viewer/haptic_loop.h"
 
 #include <algorithm>
@@ -48,25 +48,15 @@ bool HapticLoop::TakeStep() noexcept {
 }
 
 void HapticLoop::Run(engine::Engine* engine, device::Device* source, double dt) noexcept {
-  const auto dt_ns = static_cast<std::int64_t>(std::llround(dt * kNsPerS));
-  std::int64_t deadline = engine::NowNs();
-  std::int64_t last_wake = deadline;
+  engine::PeriodicDeadline clock(static_cast<std::int64_t>(std::llround(dt * kNsPerS)));
   samples_ = 0;
-  window_start_ns_ = deadline;
+  window_start_ns_ = clock.start_ns();
   std::int64_t ticks = 0;
   while (!quit_.load(std::memory_order_relaxed)) {
-    deadline += dt_ns;
-    engine::SleepUntilNs(deadline, engine::kDeadlineSpinNs);
-    const std::int64_t now = engine::NowNs();
-    if (now - deadline > dt_ns) {
-      // Overrun: skip the missed periods instead of bursting to catch up (STYLE §6.5).
-      overruns_.fetch_add(1, std::memory_order_relaxed);
-      deadline = now;
-    }
-    const double error_us = std::abs(static_cast<double>(now - last_wake - dt_ns)) * 1e-3;
-    last_wake = now;
+    const engine::PeriodicDeadline::Wake wake = clock.Next();
+    if (wake.overrun) overruns_.fetch_add(1, std::memory_order_relaxed);
     if (paused_.load() && !TakeStep()) {
-      window_start_ns_ = now;  // a pause is not slowness: restart the rate window
+      window_start_ns_ = wake.now_ns;  // a pause is not slowness: restart the rate window
       samples_ = 0;
       held_.fetch_add(1, std::memory_order_release);  // orders the ticks_ store before it
       continue;
@@ -76,7 +66,7 @@ void HapticLoop::Run(engine::Engine* engine, device::Device* source, double dt) 
     source->SetWrench(engine->Tick(t, reading));
     ++ticks;
     ticks_.store(ticks, std::memory_order_relaxed);
-    Record(error_us, now);
+    Record(wake.period_error_us, wake.now_ns);
   }
 }
 

@@ -24,6 +24,34 @@ std::int64_t NowNs() noexcept;
 /// `spin_ns` before it, then spins. Returns at once if the deadline has passed. RT-safe.
 void SleepUntilNs(std::int64_t deadline_ns, std::int64_t spin_ns = kDeadlineSpinNs) noexcept;
 
+/// The one deadline loop of the haptic rate (the engine's real-time mode, the viewer's haptic
+/// thread): absolute deadlines every `period_ns` from the start, and on an overrun (a wake more
+/// than one period late) the deadline moves to the wake time, so missed periods are skipped
+/// instead of burst through (STYLE §6.5). RT-safe; owned by one thread.
+class PeriodicDeadline {
+ public:
+  struct Wake {
+    std::int64_t now_ns = 0;       ///< CLOCK_MONOTONIC at the wake
+    std::int64_t deadline_ns = 0;  ///< the deadline this wake serves (moved on an overrun)
+    double period_error_us = 0.0;  ///< |time since the previous wake − period| (µs)
+    bool overrun = false;
+  };
+
+  /// Starts the first period now. `period_ns` > 0.
+  explicit PeriodicDeadline(std::int64_t period_ns) noexcept;
+
+  /// Sleeps to the next deadline (SleepUntilNs with kDeadlineSpinNs) and reports the wake.
+  Wake Next() noexcept;
+
+  std::int64_t start_ns() const noexcept { return start_ns_; }
+
+ private:
+  std::int64_t period_ns_;
+  std::int64_t start_ns_;
+  std::int64_t deadline_ns_;
+  std::int64_t last_wake_ns_;
+};
+
 /// Gives the calling thread SCHED_FIFO at `priority`. Returns false with the reason in *why
 /// (typically: no CAP_SYS_NICE). Not RT-safe (it may allocate the message).
 bool RequestFifoPriority(int priority, std::string* why);
