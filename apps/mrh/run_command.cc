@@ -143,6 +143,24 @@ CLI::App* AddRunCommand(CLI::App& app, RunOptions* o) {
   return run;
 }
 
+// The report plot, the warnings (once, at the end, even with --quiet: they mean wrong physics or
+// timing), the summary and device faults, and where the files went.
+void PrintRunResults(const RunOptions& o, const engine::RunStats& stats, const fs::path& out,
+                     const device::Device& device) {
+  std::string why;
+  const std::string title = fmt::format("{}: {} ({})", o.session.filename().string(), stats.method,
+                                        engine::ModeName(stats.mode));
+  const bool plotted = report::PlotReport(out, title, &why);
+  if (!plotted) fmt::print(stderr, "mrh: warning: no report.png: {}\n", why);
+  for (const std::string& warning : stats.warnings) {
+    fmt::print(stderr, "mrh: warning: {}\n", warning);
+  }
+  if (!o.quiet) PrintSummary(stats);
+  PrintDeviceFaults(device);
+  if (plotted) fmt::print("report: {}\n", (out / "report.png").string());
+  fmt::print("summary: {}\n", (out / "summary.json").string());
+}
+
 int RunCommand(const RunOptions& o) {
   const session::Session s = session::LoadSession(o.session, Overrides(o));
   CheckStudy(o.session, Overrides(o));
@@ -173,19 +191,7 @@ int RunCommand(const RunOptions& o) {
   recorder.Close();
   report::WriteSummary(out, stats, s.file.string(), s.scene.string());
 
-  std::string why;
-  const std::string title = fmt::format("{}: {} ({})", o.session.filename().string(), stats.method,
-                                        engine::ModeName(stats.mode));
-  const bool plotted = report::PlotReport(out, title, &why);
-  if (!plotted) fmt::print(stderr, "mrh: warning: no report.png: {}\n", why);
-  // Warnings mean wrong physics or timing: printed once, at the end, even with --quiet.
-  for (const std::string& warning : stats.warnings) {
-    fmt::print(stderr, "mrh: warning: {}\n", warning);
-  }
-  if (!o.quiet) PrintSummary(stats);
-  PrintDeviceFaults(*device);
-  if (plotted) fmt::print("report: {}\n", (out / "report.png").string());
-  fmt::print("summary: {}\n", (out / "summary.json").string());
+  PrintRunResults(o, stats, out, *device);
   return kExitOk;
 }
 

@@ -69,6 +69,17 @@ void HapticSide::Tick(double t) noexcept {
   device_->SetWrench(calibration_.ToDevice(displayed));
   Count(displayed, bits);
 
+  Record(t, out, displayed, bits);
+
+  ++counters_.ticks;
+  ++j_;
+  if (++ticks_in_period_ == n_) EndPeriod(t);
+}
+
+// The tick's record for the physics thread (dropped, and counted, when its ring is full) and the
+// method's status bits counted per bit.
+void HapticSide::Record(double t, const TickOutput& out, const Wrench& displayed,
+                        std::uint32_t safety_bits) noexcept {
   TickRecord record;
   record.tick = counters_.ticks;
   record.t = t;
@@ -77,16 +88,12 @@ void HapticSide::Tick(double t) noexcept {
   record.displayed_W = displayed;
   record.rendered_W = out.w_W;
   record.contacts = out.contacts;
-  record.safety_bits = bits;
+  record.safety_bits = safety_bits;
   record.method_status = out.status;
   for (std::uint32_t s = out.status, i = 0; s != 0; s >>= 1, ++i) {
     if (s & 1u) ++counters_.method_status_ticks[i];
   }
   if (!exchange_.tick_records->TryPush(record)) ++counters_.dropped_tick_records;
-
-  ++counters_.ticks;
-  ++j_;
-  if (++ticks_in_period_ == n_) EndPeriod(t);
 }
 
 void HapticSide::EndPeriod(double t) noexcept {

@@ -148,6 +148,45 @@ session::Session StimulusSession(const Study& study, const std::string& method, 
   return s;
 }
 
+namespace {
+
+// Presents trial t's two stimuli, in its order, and asks; nullopt when the subject stopped.
+std::optional<Response> PresentTrial(const Study& study, const RunSettings& settings,
+                                     const Trial& t, Apparatus* apparatus) {
+  const StudySettings& s = study.settings;
+  const std::filesystem::path stimuli = settings.out / "stimuli";
+  session::Session standard = StimulusSession(study, s.standard_method, s.standard_mass, stimuli);
+  session::Session comparison = StimulusSession(study, t.method, t.comparison_mass, stimuli);
+  standard.engine.mode = comparison.engine.mode = settings.mode;
+  apparatus->Cue(1, s.pause);
+  apparatus->Present(t.comparison_first ? comparison : standard);
+  apparatus->Cue(2, s.pause);
+  apparatus->Present(t.comparison_first ? standard : comparison);
+  std::optional<Response> response = apparatus->Ask();
+  if (response && response->answer != 1 && response->answer != 2) {
+    throw RuntimeError(fmt::format("apparatus answered {}; expected 1 or 2", response->answer));
+  }
+  return response;
+}
+
+TrialRow RowOf(const StudySettings& s, const RunSettings& settings, const Trial& t,
+               const Response& response, std::uint64_t seed) {
+  return TrialRow{.subject = settings.subject,
+                  .trial = t.index,
+                  .method = t.method,
+                  .standard_method = s.standard_method,
+                  .standard_mass = s.standard_mass,
+                  .comparison_mass = t.comparison_mass,
+                  .speed = s.speed,
+                  .comparison_first = t.comparison_first,
+                  .answer = response.answer,
+                  .comparison_heavier = (response.answer == 1) == t.comparison_first,
+                  .response_time = response.response_time,
+                  .seed = seed};
+}
+
+}  // namespace
+
 RunResult RunStudy(const Study& study, const RunSettings& settings, Apparatus* apparatus) {
   CheckSubject(settings.subject);
   const StudySettings& s = study.settings;
@@ -164,33 +203,10 @@ RunResult RunStudy(const Study& study, const RunSettings& settings, Apparatus* a
   }
   result.answered = result.answered_before;
   TrialsWriter writer(file, settings.sync);
-  const std::filesystem::path stimuli = settings.out / "stimuli";
   for (std::size_t i = result.answered_before; i < schedule.size(); ++i) {
-    const Trial& t = schedule[i];
-    session::Session standard = StimulusSession(study, s.standard_method, s.standard_mass, stimuli);
-    session::Session comparison = StimulusSession(study, t.method, t.comparison_mass, stimuli);
-    standard.engine.mode = comparison.engine.mode = settings.mode;
-    apparatus->Cue(1, s.pause);
-    apparatus->Present(t.comparison_first ? comparison : standard);
-    apparatus->Cue(2, s.pause);
-    apparatus->Present(t.comparison_first ? standard : comparison);
-    const std::optional<Response> response = apparatus->Ask();
+    const std::optional<Response> response = PresentTrial(study, settings, schedule[i], apparatus);
     if (!response) break;
-    if (response->answer != 1 && response->answer != 2) {
-      throw RuntimeError(fmt::format("apparatus answered {}; expected 1 or 2", response->answer));
-    }
-    writer.Append(TrialRow{.subject = settings.subject,
-                           .trial = t.index,
-                           .method = t.method,
-                           .standard_method = s.standard_method,
-                           .standard_mass = s.standard_mass,
-                           .comparison_mass = t.comparison_mass,
-                           .speed = s.speed,
-                           .comparison_first = t.comparison_first,
-                           .answer = response->answer,
-                           .comparison_heavier = (response->answer == 1) == t.comparison_first,
-                           .response_time = response->response_time,
-                           .seed = result.seed});
+    writer.Append(RowOf(s, settings, schedule[i], *response, result.seed));
     ++result.answered;
   }
   return result;

@@ -19,10 +19,6 @@ constexpr double kVelocityTolerance = 1e-9;  // m/s and rad/s
 // Bodies with more slide joints than this are not handled (3 already span all translations).
 constexpr int kMaxSlides = 6;
 
-Vec3 ToVec3(const mjtNum* v) {
-  return Vec3(v[0], v[1], v[2]);
-}
-
 Quat ToQuat(const mjtNum* q) {
   return Quat(q[0], q[1], q[2], q[3]).normalized();
 }

@@ -56,8 +56,8 @@ int IslandSolve::Find(int body) {
 }
 
 // Bodies are linked by every constraint row between their dofs and by their kinematic trees
-// (which couple dofs through M); the island is the component of `body`.
-bool IslandSolve::CollectIsland(const mjModel& m, const mjData& d, int body, int max_dofs) {
+// (which couple dofs through M): union–find over the bodies.
+void IslandSolve::UniteLinkedBodies(const mjModel& m, const mjData& d) {
   parent_.resize(static_cast<std::size_t>(m.nbody));
   std::iota(parent_.begin(), parent_.end(), 0);
   auto unite = [this](int a, int b) {
@@ -76,15 +76,10 @@ bool IslandSolve::CollectIsland(const mjModel& m, const mjData& d, int body, int
         unite(first, b);
     });
   }
-  const int root = Find(body);
-  dofs_.clear();
-  local_of_dof_.assign(static_cast<std::size_t>(m.nv), -1);
-  for (int i = 0; i < m.nv; ++i) {
-    if (Find(m.dof_bodyid[i]) != root) continue;
-    if (static_cast<int>(dofs_.size()) == max_dofs) return false;
-    local_of_dof_[static_cast<std::size_t>(i)] = static_cast<int>(dofs_.size());
-    dofs_.push_back(i);
-  }
+}
+
+// The rows that touch a dof of the island; false on a row kind the solve does not handle.
+bool IslandSolve::CollectRows(const mjModel& m, const mjData& d) {
   rows_.clear();
   one_sided_.clear();
   for (int r = 0; r < d.nefc; ++r) {
@@ -98,7 +93,22 @@ bool IslandSolve::CollectIsland(const mjModel& m, const mjData& d, int body, int
     rows_.push_back(r);
     one_sided_.push_back(one_sided);
   }
-  return !dofs_.empty();
+  return true;
+}
+
+// The island is the component of `body`: its dofs (at most max_dofs) and rows.
+bool IslandSolve::CollectIsland(const mjModel& m, const mjData& d, int body, int max_dofs) {
+  UniteLinkedBodies(m, d);
+  const int root = Find(body);
+  dofs_.clear();
+  local_of_dof_.assign(static_cast<std::size_t>(m.nv), -1);
+  for (int i = 0; i < m.nv; ++i) {
+    if (Find(m.dof_bodyid[i]) != root) continue;
+    if (static_cast<int>(dofs_.size()) == max_dofs) return false;
+    local_of_dof_[static_cast<std::size_t>(i)] = static_cast<int>(dofs_.size());
+    dofs_.push_back(i);
+  }
+  return CollectRows(m, d) && !dofs_.empty();
 }
 
 bool IslandSolve::Prepare(const mjModel& m, mjData* d, int body, int max_dofs,

@@ -44,6 +44,8 @@ class IslandSolve {
 
  private:
   bool CollectIsland(const mjModel& m, const mjData& d, int body, int max_dofs);
+  void UniteLinkedBodies(const mjModel& m, const mjData& d);
+  bool CollectRows(const mjModel& m, const mjData& d);
   bool SolveActiveSet(const Eigen::VectorXd& qfrc, Eigen::VectorXd* qacc);
 
   int Find(int body);

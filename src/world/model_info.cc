@@ -12,10 +12,6 @@
 namespace mrh::world::internal {
 namespace {
 
-Vec3 ToVec3(const mjtNum* v) {
-  return Vec3(v[0], v[1], v[2]);
-}
-
 // MuJoCo quaternions are (w, x, y, z).
 Quat ToQuat(const mjtNum* q) {
   return Quat(q[0], q[1], q[2], q[3]).normalized();

@@ -14,10 +14,16 @@
 #include "mrh/core/assert.h"
 #include "mrh/core/error.h"
 #include "world/island_solve_impl.h"
+#include "world/perturbation_kinematics.h"
 #include "world/world_impl.h"
 
 namespace mrh::world {
 namespace {
+
+using internal::IsFreeBody;
+using internal::IsSlideBody;
+using internal::ToVec3;
+using internal::TwistAfterEuler;
 
 // A body belongs to the measured body's group when the test forces change its velocity by more
 // than this fraction of the measured body's change (far above solver noise, ~1e-12 relative).
@@ -26,10 +32,6 @@ constexpr double kGroupTolerance = 1e-6;
 // e2 starts from x̂ unless x̂ is this close to e1 (|x̂·e1| above it), then from ŷ: keeps
 // |x̂ − (x̂·e1)e1| >= sqrt(1 − 0.9²) ≈ 0.44, far from cancellation.
 constexpr double kParallelDot = 0.9;
-
-Vec3 ToVec3(const mjtNum* v) {
-  return Vec3(v[0], v[1], v[2]);
-}
 
 Vec6 ToVec6(const Twist& t) {
   Vec6 out;
@@ -41,79 +43,6 @@ std::int64_t NowNs() {
   return std::chrono::duration_cast<std::chrono::nanoseconds>(
              std::chrono::steady_clock::now().time_since_epoch())
       .count();
-}
-
-bool IsFreeBody(const mjModel& m, int body) {
-  return m.body_jntnum[body] == 1 && m.jnt_type[m.body_jntadr[body]] == mjJNT_FREE;
-}
-
-// Slide joints only, on a parent that cannot move: the body never rotates and its COM velocity
-// is the sum of the joint axes (fixed in the world) times the joint speeds.
-bool IsSlideBody(const mjModel& m, int body) {
-  const int count = m.body_jntnum[body];
-  if (count == 0 || m.body_weldid[m.body_parentid[body]] != 0) return false;
-  for (int j = m.body_jntadr[body]; j < m.body_jntadr[body] + count; ++j) {
-    if (m.jnt_type[j] != mjJNT_SLIDE) return false;
-  }
-  return true;
-}
-
-// The velocities mj_step would produce from the forwarded state in `d` with accelerations `qacc`
-// (mj_Euler without damping: qvel + dt·qacc, then mj_integratePos), read as World::body_state
-// would read them after the step, for one free or slide body. `dt` = 0 reads the current ones.
-Twist TwistAfterEuler(const mjModel& m, const mjData& d, int body, double dt, const mjtNum* qacc) {
-  const int joint = m.body_jntadr[body];
-  if (IsFreeBody(m, body)) {
-    const int qadr = m.jnt_qposadr[joint];
-    const int vadr = m.jnt_dofadr[joint];
-    std::array<mjtNum, 6> qvel{};
-    for (int i = 0; i < 6; ++i) qvel[i] = d.qvel[vadr + i] + dt * qacc[vadr + i];
-    std::array<mjtNum, 4> quat{};
-    std::copy_n(d.qpos + qadr + 3, 4, quat.data());
-    if (dt > 0.0) mju_quatIntegrate(quat.data(), qvel.data() + 3, dt);
-    mju_normalize4(quat.data());  // as mj_kinematics does
-    std::array<mjtNum, 9> R{};
-    mju_quat2Mat(R.data(), quat.data());
-    const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> R_WB(R.data());
-    // Free-joint qvel: body-origin velocity (world axes), then angular velocity (body axes).
-    const Vec3 w_W = R_WB * Vec3(qvel[3], qvel[4], qvel[5]);
-    const Vec3 p_BoCm_W = R_WB * ToVec3(m.body_ipos + 3 * body);
-    return Twist{Vec3(qvel[0], qvel[1], qvel[2]) + w_W.cross(p_BoCm_W), w_W};
-  }
-  Twist twist;
-  for (int j = joint; j < joint + m.body_jntnum[body]; ++j) {
-    const int vadr = m.jnt_dofadr[j];
-    twist.v += ToVec3(d.xaxis + 3 * j) * (d.qvel[vadr] + dt * qacc[vadr]);
-  }
-  return twist;
-}
-
-// The body's own degrees of freedom (a free joint has 6).
-constexpr int kMaxOwnDofs = 6;
-using OwnVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxOwnDofs, 1>;
-
-// Adds J_Bᵀ (f; τ) of contact `i` to `out`, over the body's own dofs. MuJoCo's contact frame has
-// its normal from geom1 to geom2, and the force acts on geom2 (sign +1; −1 for geom1).
-void AddContactForce(const mjModel& m, const mjData& d, int i, int body, double sign,
-                     std::vector<double>* jacp, std::vector<double>* jacr, OwnVector* out) {
-  const mjContact& c = d.contact[i];
-  std::array<mjtNum, 6> local{};
-  mj_contactForce(&m, &d, i, local.data());
-  Vec3 f_W = Vec3::Zero();
-  Vec3 tau_W = Vec3::Zero();
-  for (int axis = 0; axis < 3; ++axis) {
-    const Vec3 direction = ToVec3(c.frame + 3 * axis);
-    f_W += sign * local[static_cast<std::size_t>(axis)] * direction;
-    tau_W += sign * local[static_cast<std::size_t>(3 + axis)] * direction;
-  }
-  mj_jac(&m, &d, jacp->data(), jacr->data(), c.pos, body);
-  const int first = m.body_dofadr[body];
-  for (int k = 0; k < out->size(); ++k) {
-    for (int r = 0; r < 3; ++r) {
-      const auto column = static_cast<std::size_t>(r * m.nv + first + k);
-      (*out)[k] += (*jacp)[column] * f_W[r] + (*jacr)[column] * tau_W[r];
-    }
-  }
 }
 
 // Sets the settings' solver tolerance and iteration limit on the model for one run (the model is
@@ -139,12 +68,6 @@ class SolverOverride {
 };
 
 }  // namespace
-
-std::uint64_t ContactKey(int geom_a, int geom_b) {
-  const auto lo = static_cast<std::uint32_t>(std::min(geom_a, geom_b));
-  const auto hi = static_cast<std::uint32_t>(std::max(geom_a, geom_b));
-  return (static_cast<std::uint64_t>(lo) << 32) | hi;
-}
 
 Mat3 TestForces(const Vec3& f1) {
   const double magnitude = f1.norm();
@@ -460,65 +383,6 @@ void Perturber::End() {
   world_->Restore(snapshot_);
   world_->impl_->data->solver_iter = saved_solver_iter_;  // World::solver_iterations(): the step's
   open_ = false;  // the velocities stay readable until the next Begin()
-}
-
-void Perturber::RecordBaseContacts() {
-  const mjData& d = *world_->impl_->data;
-  base_contacts_.clear();
-  for (int i = 0; i < d.ncon; ++i) {
-    base_contacts_.push_back(ContactKey(d.contact[i].geom1, d.contact[i].geom2));
-  }
-  std::sort(base_contacts_.begin(), base_contacts_.end());
-}
-
-std::span<const std::uint64_t> Perturber::base_contacts() const {
-  MRH_DEMAND(zero_done_);
-  return base_contacts_;
-}
-
-// The contacts and constraint forces in the data are those of the step's forward pass (at the
-// state the step started from), as are the kinematics and the mass matrix until a query
-// refreshes them: exactly what the integrator used.
-Twist Perturber::NewContactVelocityChange(int body, std::span<const std::uint64_t> known) {
-  const World::Impl& w = *world_->impl_;
-  const mjModel& m = *w.model;
-  const mjData& d = *w.data;
-  MRH_DEMAND(body >= 0 && body < m.nbody);
-  const int first = m.body_dofadr[body];
-  const int count = m.body_dofnum[body];
-  if (count <= 0 || count > kMaxOwnDofs) return Twist{};
-  OwnVector generalized = OwnVector::Zero(count);
-  bool any = false;
-  for (int i = 0; i < d.ncon; ++i) {
-    const mjContact& c = d.contact[i];
-    const int body1 = m.geom_bodyid[c.geom1];
-    const int body2 = m.geom_bodyid[c.geom2];
-    if ((body1 == body) == (body2 == body) || c.efc_address < 0) continue;
-    if (std::binary_search(known.begin(), known.end(), ContactKey(c.geom1, c.geom2))) continue;
-    AddContactForce(m, d, i, body, body2 == body ? 1.0 : -1.0, &jacp_, &jacr_, &generalized);
-    any = true;
-  }
-  if (!any) return Twist{};
-  // M_B: the body's own block of the joint-space mass matrix (its dofs form one chain in qM).
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxOwnDofs, kMaxOwnDofs> M(count,
-                                                                                       count);
-  M.setZero();
-  for (int i = 0; i < count; ++i) {
-    int address = m.dof_Madr[first + i];
-    for (int j = first + i; j >= first; j = m.dof_parentid[j], ++address) {
-      M(i, j - first) = M(j - first, i) = d.qM[address];
-    }
-  }
-  const auto dq = (M.llt().solve(generalized) * m.opt.timestep).eval();
-  mj_jacBodyCom(&m, &d, jacp_.data(), jacr_.data(), body);
-  Twist dV;
-  for (int r = 0; r < 3; ++r) {
-    for (int k = 0; k < count; ++k) {
-      dV.v[r] += jacp_[static_cast<std::size_t>(r * m.nv + first + k)] * dq[k];
-      dV.w[r] += jacr_[static_cast<std::size_t>(r * m.nv + first + k)] * dq[k];
-    }
-  }
-  return dV;
 }
 
 const Twist& Perturber::start_velocity(std::size_t index) const {

@@ -16,9 +16,7 @@
 namespace mrh::world {
 namespace {
 
-Vec3 ToVec3(const mjtNum* v) {
-  return Vec3(v[0], v[1], v[2]);
-}
+using internal::ToVec3;
 
 void CheckBody(const mjModel& m, int body) {
   MRH_DEMAND(body >= 0 && body < m.nbody);

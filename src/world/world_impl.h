@@ -15,6 +15,11 @@
 namespace mrh::world {
 namespace internal {
 
+/// A MuJoCo 3-vector (mjtNum[3]) as a Vec3.
+inline Vec3 ToVec3(const mjtNum* v) {
+  return Vec3(v[0], v[1], v[2]);
+}
+
 struct ModelDeleter {
   void operator()(mjModel* m) const { mj_deleteModel(m); }
 };

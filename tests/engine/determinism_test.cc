@@ -6,36 +6,12 @@
 #include <cstring>
 
 #include "engine_test_util.h"
+#include "support/hashing_recorder.h"
 
 namespace mrh::engine::testing {
 namespace {
 
-// FNV-1a over the raw bytes of every recorded double: any bit that changes changes the hash.
-class HashingRecorder final : public Recorder {
- public:
-  void OnTick(const TickRecord& t) override {
-    Add(t.t);
-    for (int i = 0; i < 3; ++i) Add(t.X_WP.p[i]);
-    for (int i = 0; i < 3; ++i) Add(t.rendered_W.f[i]);
-    for (int i = 0; i < 3; ++i) Add(t.displayed_W.f[i]);
-  }
-  void OnStep(const StepRecord&, const world::World& world) override {
-    for (double q : world.qpos()) Add(q);
-    for (double v : world.qvel()) Add(v);
-  }
-  std::uint64_t hash() const { return hash_; }
-
- private:
-  void Add(double value) {
-    std::uint64_t bits = 0;
-    std::memcpy(&bits, &value, sizeof bits);
-    for (int i = 0; i < 8; ++i) {
-      hash_ ^= (bits >> (8 * i)) & 0xffu;
-      hash_ *= 0x100000001b3ull;
-    }
-  }
-  std::uint64_t hash_ = 0xcbf29ce484222325ull;
-};
+using mrh::testing::HashingRecorder;
 
 std::uint64_t RunAndHash(const char* method) {
   HashingRecorder recorder;

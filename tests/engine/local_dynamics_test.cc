@@ -16,7 +16,8 @@
 #include "physics/local_contact_physics.h"
 #include "physics/local_dynamics_physics.h"
 #include "engine_test_util.h"
-#include "support/alloc_guard.h"
+#include "support/hashing_recorder.h"
+#include "haptic_alloc_loop.h"
 
 namespace mrh::engine::testing {
 namespace {
@@ -616,54 +617,13 @@ TEST(LocalDynamicsTest, HapticTicksNeverAllocateInContact) {
     auto device = scene == 0 ? device::MakeFixedDevice(Pose{})
                              : PushingDevice(Vec3(kRowPointerX, 0, kRowZ), kPushSpeed, duration);
     EngineState state(std::move(world), std::move(device), device::Calibration{}, settings);
-    PhysicsSide physics = state.MakePhysicsSide(nullptr);
-    physics.Start(state.haptic->InitialReport(0.0));
-    std::int64_t allocations = 0;
-    std::int64_t tick = 0;
-    for (int k = 0; k < 20; ++k) {
-      physics.Step(k);
-      {
-        mrh::testing::AllocGuard guard;  // the haptic period only (adoption included)
-        for (int j = 0; j < state.ticks_per_step; ++j, ++tick) {
-          state.haptic->Tick(static_cast<double>(tick) * settings.haptic_dt);
-        }
-        allocations += guard.count();
-      }
-      physics.TakeReports();
-      physics.Publish();
-      physics.DrainTickRecords();
-    }
+    const std::int64_t allocations = HapticAllocations(state, 20);  // adoption included
     EXPECT_EQ(allocations, 0) << "scene " << scene;
     EXPECT_GT(state.haptic->counters().max_force, 1.0) << "scene " << scene;
   }
 }
 
-// FNV-1a over every recorded double, as in determinism_test.cc.
-class HashingRecorder final : public Recorder {
- public:
-  void OnTick(const TickRecord& t) override {
-    for (int i = 0; i < 3; ++i) Add(t.rendered_W.f[i]);
-  }
-
-  void OnStep(const StepRecord&, const world::World& world) override {
-    for (double q : world.qpos()) Add(q);
-    for (double v : world.qvel()) Add(v);
-  }
-
-  std::uint64_t hash() const { return hash_; }
-
- private:
-  void Add(double value) {
-    std::uint64_t bits = 0;
-    std::memcpy(&bits, &value, sizeof bits);
-    for (int i = 0; i < 8; ++i) {
-      hash_ ^= (bits >> (8 * i)) & 0xffu;
-      hash_ *= 0x100000001b3ull;
-    }
-  }
-
-  std::uint64_t hash_ = 0xcbf29ce484222325ull;
-};
+using mrh::testing::HashingRecorder;
 
 std::uint64_t RowRunHash() {
   HashingRecorder recorder;

@@ -16,7 +16,7 @@
 #include "mrh/device/simulated.h"
 #include "mrh/engine/engine.h"
 #include "mrh/world/world.h"
-#include "support/alloc_guard.h"
+#include "haptic_alloc_loop.h"
 
 namespace mrh::engine::testing {
 namespace {
@@ -203,27 +203,14 @@ TEST(ProxyMethodTest, HapticTicksNeverAllocateWithFrictionAndAMovingBox) {
   auto device = device::MakeScriptedDevice(
       Keys({{0.0, At(0.0, 0, kHalf - 0.002)}, {1.0, At(0.16, 0.01, kHalf - 0.002)}}));
   internal::EngineState state(std::move(w), std::move(device), device::Calibration{}, s);
-  internal::PhysicsSide physics = state.MakePhysicsSide(nullptr);
-  physics.Start(state.haptic->InitialReport(0.0));
   const auto* method = dynamic_cast<const haptic::internal::ProxyHaptic*>(state.method.haptic.get());
   ASSERT_NE(method, nullptr);
-  std::int64_t allocations = 0;
   int sliding = 0;
   int box_pairs = 0;
-  std::int64_t tick = 0;
-  for (int k = 0; k < 50; ++k) {
-    physics.Step(k);
-    for (int j = 0; j < state.ticks_per_step; ++j, ++tick) {
-      mrh::testing::AllocGuard guard;
-      state.haptic->Tick(static_cast<double>(tick) * s.haptic_dt);
-      allocations += guard.count();
-      sliding += method->last_output().diagnostics.sliding_rows;
-      box_pairs = std::max(box_pairs, static_cast<int>(method->last_tick_ir().pairs.size()));
-    }
-    physics.TakeReports();
-    physics.Publish();
-    physics.DrainTickRecords();
-  }
+  const std::int64_t allocations = HapticAllocations(state, 50, [&](std::int64_t) {
+    sliding += method->last_output().diagnostics.sliding_rows;
+    box_pairs = std::max(box_pairs, static_cast<int>(method->last_tick_ir().pairs.size()));
+  });
   EXPECT_EQ(allocations, 0);
   EXPECT_GT(sliding, 0) << "friction rows never slid";
   EXPECT_GE(box_pairs, 2) << "the box never became a neighbor";

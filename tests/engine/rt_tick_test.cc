@@ -7,35 +7,13 @@
 
 #include "engine/engine_impl.h"
 #include "engine_test_util.h"
-#include "support/alloc_guard.h"
+#include "haptic_alloc_loop.h"
 
 namespace mrh::engine::testing {
 namespace {
 
 using internal::EngineState;
 using internal::PhysicsSide;
-
-// Runs `periods` lockstep periods, counting heap allocations made inside haptic ticks only.
-std::int64_t HapticAllocations(EngineState& state, int periods) {
-  PhysicsSide physics = state.MakePhysicsSide(nullptr);
-  physics.Start(state.haptic->InitialReport(0.0));
-  std::int64_t allocations = 0;
-  std::int64_t tick = 0;
-  for (int k = 0; k < periods; ++k) {
-    physics.Step(k);
-    {
-      mrh::testing::AllocGuard guard;
-      for (int j = 0; j < state.ticks_per_step; ++j, ++tick) {
-        state.haptic->Tick(static_cast<double>(tick) * state.settings.haptic_dt);
-      }
-      allocations += guard.count();
-    }
-    physics.TakeReports();
-    physics.Publish();
-    physics.DrainTickRecords();
-  }
-  return allocations;
-}
 
 EngineState MakeState(const EngineSettings& settings, std::unique_ptr<device::Device> device) {
   world::World w = T41World();

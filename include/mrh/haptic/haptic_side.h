@@ -59,6 +59,8 @@ class HapticSide {
 
  private:
   void ReadDevice(double t) noexcept;
+  void Record(double t, const TickOutput& out, const Wrench& displayed,
+              std::uint32_t safety_bits) noexcept;
   void EndPeriod(double t) noexcept;
   void Count(const Wrench& displayed, std::uint32_t bits) noexcept;
 
