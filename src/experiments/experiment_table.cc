@@ -42,7 +42,10 @@ std::string Table::Markdown() const {
   std::string md = fmt::format("| {} |\n|", fmt::join(columns_, " | "));
   for (std::size_t i = 0; i < columns_.size(); ++i) md += "---|";
   md += "\n";
-  for (const auto& row : rows_) md += fmt::format("| {} |\n", fmt::join(row, " | "));
+  for (const auto& row : rows_) {
+    for (const std::string& cell : row) md += cell.empty() ? "| " : fmt::format("| {} ", cell);
+    md += "|\n";
+  }
   return md;
 }
 

@@ -38,7 +38,7 @@ class Table {
 
   /// "a,b\n1,2\n..." (no quoting: cells hold numbers and plain names).
   std::string Csv() const;
-  /// "| a | b |\n|---|---|\n| 1 | 2 |\n...".
+  /// "| a | b |\n|---|---|\n| 1 | 2 |\n..." (an empty cell is "| |").
   std::string Markdown() const;
   /// Each row as an object column → number (cells that parse as a number) or string.
   nlohmann::json Json() const;
