@@ -86,12 +86,12 @@ nlohmann::json Checks::Json() const {
 }
 
 std::string Checks::Markdown() const {
-  std::string md = "| check | value | bound | result |\n|---|---|---|---|\n";
+  Table table({"check", "value", "bound", "result"});
   for (const Check& c : checks_) {
-    md += fmt::format("| {} | {} | {} | {} |\n", c.name, OptionalCell(c.value, "{:.6g}"),
-                      OptionalCell(c.bound, "{:.6g}"), c.pass ? "pass" : "FAIL");
+    table.Add({c.name, OptionalCell(c.value, "{:.6g}"), OptionalCell(c.bound, "{:.6g}"),
+               c.pass ? "pass" : "FAIL"});
   }
-  return md;
+  return table.Markdown();
 }
 
 void Checks::Print(std::ostream& out) const {
