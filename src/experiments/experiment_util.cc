@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <sys/utsname.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
@@ -47,6 +48,12 @@ std::string MachineTag() {
   utsname u{};
   const std::string kernel = uname(&u) == 0 ? std::string(u.sysname) + " " + u.release : "";
   return fmt::format("{}, {} cores, {}", cpu, std::thread::hardware_concurrency(), kernel);
+}
+
+std::string Slug(std::string_view name, char replacement) {
+  std::string s(name);
+  std::replace(s.begin(), s.end(), '/', replacement);
+  return s;
 }
 
 void WriteText(const std::filesystem::path& path, const std::string& text) {

@@ -1,15 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
-// Experiment T3.1 (thesis §3.3.2, figs. 3.9–3.11) and the proxy-6dof session runner of ch. 3.
+// Experiment T3.1 (thesis §3.3.2, figs. 3.9–3.11); the session runner is in proxy_run.cc.
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <nlohmann/json.hpp>
-#include <optional>
 
-#include "mrh/haptic/methods.h"
-#include "mrh/world/world.h"
 #include "experiment_table.h"
 #include "experiment_util.h"
 #include "experiments_impl.h"
@@ -18,112 +15,6 @@
 #include "mrh/session/session.h"
 
 namespace mrh::experiments::internal {
-namespace {
-
-// Forwards everything to the real device and, after each tick's command (HapticSide calls
-// SetWrench right after Method::HapticTick), copies the method's output. Lockstep only: it
-// allocates, which is fine off the real-time path.
-class SamplingDevice final : public device::Device {
- public:
-  explicit SamplingDevice(std::unique_ptr<device::Device> inner) : inner_(std::move(inner)) {}
-
-  const device::Specifications& specifications() const override { return inner_->specifications(); }
-
-  void Open() override { inner_->Open(); }
-
-  void Close() override { inner_->Close(); }
-
-  device::DeviceState Read(double t) noexcept override { return inner_->Read(t); }
-
-  void SetWrench(const Wrench& w_D) noexcept override {
-    inner_->SetWrench(w_D);
-    if (method != nullptr) Sample();
-  }
-
-  const haptic::MethodHaptic* method = nullptr;  // proxy-6dof's haptic half
-  std::vector<ProxyTick> samples;
-
- private:
-  void Sample() noexcept {
-    const render::ProxyOutput& out = *haptic::ProxyLastOutput(*method);
-    const render::TickIr& tick_ir = *haptic::ProxyLastTickIr(*method);
-    ProxyTick tick;
-    tick.w_W = out.w_W;
-    tick.X_WQ = out.X_WQ;
-    tick.dr = out.dr;
-    tick.dtheta = out.dtheta;
-    tick.diagnostics = out.diagnostics;
-    for (std::size_t k = 0; k < out.rows.size(); ++k) {
-      if (out.row_info[k].kind != render::ProxyRowKind::kNormal) continue;
-      const auto point = static_cast<std::size_t>(out.row_info[k].point);
-      tick.constrained_p_PV.push_back(tick_ir.points[point].p_PV);
-    }
-    samples.push_back(std::move(tick));
-  }
-
-  std::unique_ptr<device::Device> inner_;
-};
-
-// Keeps the pointer pose and time of every tick and forwards to the CSV recorder, if any.
-class PoseTap final : public engine::Recorder {
- public:
-  explicit PoseTap(report::CsvRecorder* csv) : csv_(csv) {}
-
-  void OnTick(const engine::TickRecord& tick) override {
-    if (csv_ != nullptr) csv_->OnTick(tick);
-    ticks.push_back(tick);
-  }
-
-  void OnStep(const engine::StepRecord& step, const world::World& world) override {
-    if (csv_ != nullptr) csv_->OnStep(step, world);
-  }
-
-  std::vector<engine::TickRecord> ticks;
-
- private:
-  report::CsvRecorder* csv_;
-};
-
-}  // namespace
-
-ProxyRun RunProxySession(const session::Session& session, const std::filesystem::path& dir,
-                         const std::string& title, bool quiet) {
-  if (session.engine.method != "proxy-6dof") {
-    throw InvalidArgument(
-        fmt::format("{}: method = \"{}\"; expected \"proxy-6dof\" for a chapter-3 experiment",
-                    session.file.string(), session.engine.method));
-  }
-  engine::EngineSettings settings = session.engine;
-  settings.mode = engine::Mode::kLockstep;
-  auto sampler = std::make_unique<SamplingDevice>(session::MakeDevice(session));
-  SamplingDevice* device = sampler.get();
-  engine::Engine engine(session::LoadWorld(session), std::move(sampler),
-                        session.device.calibration, settings);
-  device->method = &engine.haptic_method();
-  device->samples.reserve(static_cast<std::size_t>(settings.duration / settings.haptic_dt) + 2);
-  std::optional<report::CsvRecorder> csv;
-  if (!dir.empty()) csv.emplace(dir);
-  PoseTap tap(csv ? &*csv : nullptr);
-  ProxyRun run;
-  run.stats = engine.Run(&tap);
-  // HapticSide::Stop sends one more (zero) command after the last tick: samples ⊇ ticks.
-  run.ticks = std::move(device->samples);
-  run.ticks.resize(std::min(run.ticks.size(), tap.ticks.size()));
-  for (std::size_t i = 0; i < run.ticks.size(); ++i) {
-    run.ticks[i].t = tap.ticks[i].t;
-    run.ticks[i].X_WP = tap.ticks[i].X_WP;
-  }
-  if (csv) {
-    csv->Close();
-    report::WriteSummary(dir, run.stats, session.file.string(), session.scene.string());
-    std::string why;
-    if (!report::PlotReport(dir, title, &why) && !quiet) {
-      std::cerr << "mrh: warning: no report plot in " << dir.string() << ": " << why << "\n";
-    }
-  }
-  return run;
-}
-
 namespace {
 
 // The T3.1 motion (scenes/t3_1.xml): half side h, edge and face depths (3 N and 3.5 N at

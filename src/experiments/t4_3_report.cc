@@ -11,13 +11,6 @@
 namespace mrh::experiments::internal::t4_3 {
 namespace {
 
-// "local-dynamics/no-perturbation" → "local-dynamics-no-perturbation" (file names).
-std::string Slug(const std::string& variant) {
-  std::string s = variant;
-  std::replace(s.begin(), s.end(), '/', '-');
-  return s;
-}
-
 std::string RunKey(const RunResult& r) {
   return Key(r.cubes, r.condim);
 }

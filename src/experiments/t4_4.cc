@@ -221,29 +221,23 @@ EdgeResult Edge(const RunData& run) {
   return r;
 }
 
-std::string Slug(const std::string& variant) {
-  std::string s = variant;
-  std::replace(s.begin(), s.end(), '/', '-');
-  return s;
-}
-
 void WriteRunCsv(const std::filesystem::path& dir, const std::string& variant, const RunData& line,
                  const RunData& edge) {
-  std::string ticks = "t,f_cube_x\n";
+  Table ticks({"t", "f_cube_x"});
   for (std::size_t i = 0; i < line.tap.t.size(); ++i) {
-    ticks += fmt::format("{:.3f},{:.6f}\n", line.tap.t[i], -line.tap.f[i].x());
+    ticks.AddFormatted("{:.3f},{:.6f}", line.tap.t[i], -line.tap.f[i].x());
   }
-  WriteText(dir / fmt::format("line_{}.csv", Slug(variant)), ticks);
-  std::string steps = "t,cube1_vx,felt_mass_A_kg\n";
+  WriteText(dir / fmt::format("line_{}.csv", Slug(variant)), ticks.Csv());
+  Table steps({"t", "cube1_vx", "felt_mass_A_kg"});
   for (const StepState& s : line.tap.steps) {
-    steps += fmt::format("{:.3f},{:.6f},{:.6f}\n", s.t, s.v1.x(), s.felt_mass_A);
+    steps.AddFormatted("{:.3f},{:.6f},{:.6f}", s.t, s.v1.x(), s.felt_mass_A);
   }
-  WriteText(dir / fmt::format("line_steps_{}.csv", Slug(variant)), steps);
-  std::string e = "t,edge_vx,edge_wz,edge_yaw\n";
+  WriteText(dir / fmt::format("line_steps_{}.csv", Slug(variant)), steps.Csv());
+  Table e({"t", "edge_vx", "edge_wz", "edge_yaw"});
   for (const StepState& s : edge.tap.steps) {
-    e += fmt::format("{:.3f},{:.6f},{:.6f},{:.6f}\n", s.t, s.edge_vx, s.edge_wz, s.edge_yaw);
+    e.AddFormatted("{:.3f},{:.6f},{:.6f},{:.6f}", s.t, s.edge_vx, s.edge_wz, s.edge_yaw);
   }
-  WriteText(dir / fmt::format("edge_{}.csv", Slug(variant)), e);
+  WriteText(dir / fmt::format("edge_{}.csv", Slug(variant)), e.Csv());
 }
 
 std::string T44Script(const std::vector<std::string>& variants) {

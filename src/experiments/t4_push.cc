@@ -87,20 +87,14 @@ PushResult Analyze(const Tap& tap) {
 }
 
 void WriteRun(const std::filesystem::path& dir, const std::string& slug, const Tap& tap) {
-  std::string f = "t,force_N\n";
-  for (std::size_t i = 0; i < tap.t.size(); ++i) f += fmt::format("{:.3f},{:.5f}\n", tap.t[i], tap.f[i]);
-  WriteText(dir / (slug + "_force.csv"), f);
-  std::string b = "t,x,y,z,spin\n";
+  Table f({"t", "force_N"});
+  for (std::size_t i = 0; i < tap.t.size(); ++i) f.AddFormatted("{:.3f},{:.5f}", tap.t[i], tap.f[i]);
+  WriteText(dir / (slug + "_force.csv"), f.Csv());
+  Table b({"t", "x", "y", "z", "spin"});
   for (const Tap::Step& s : tap.steps) {
-    b += fmt::format("{:.3f},{:.6f},{:.6f},{:.6f},{:.5f}\n", s.t, s.p.x(), s.p.y(), s.p.z(), s.spin);
+    b.AddFormatted("{:.3f},{:.6f},{:.6f},{:.6f},{:.5f}", s.t, s.p.x(), s.p.y(), s.p.z(), s.spin);
   }
-  WriteText(dir / (slug + "_box.csv"), b);
-}
-
-std::string Slug(const std::string& s) {
-  std::string out = s;
-  std::replace(out.begin(), out.end(), '/', '_');
-  return out;
+  WriteText(dir / (slug + "_box.csv"), b.Csv());
 }
 
 std::string PushScript(const PushOptions& o) {
@@ -114,12 +108,12 @@ std::string PushScript(const PushOptions& o) {
     gp += "set title '" + c.name + ": |f| (N)'\nset xlabel 't (s)'\nplot ";
     for (std::size_t i = 0; i < o.methods.size(); ++i) {
       gp += fmt::format("{}'runs/{}_{}_force.csv' using 1:2 with lines title '{}'",
-                        i ? ", " : "", c.name, Slug(o.methods[i]), o.methods[i]);
+                        i ? ", " : "", c.name, Slug(o.methods[i], '_'), o.methods[i]);
     }
     gp += "\nset title '" + c.name + ": box x (m)'\nplot ";
     for (std::size_t i = 0; i < o.methods.size(); ++i) {
       gp += fmt::format("{}'runs/{}_{}_box.csv' using 1:2 with lines title '{}'", i ? ", " : "",
-                        c.name, Slug(o.methods[i]), o.methods[i]);
+                        c.name, Slug(o.methods[i], '_'), o.methods[i]);
     }
     gp += "\n";
   }
@@ -158,7 +152,7 @@ std::vector<std::vector<PushResult>> RunPushCases(const std::filesystem::path& o
       auto engine = session::MakeEngine(MakeSession(c, m));
       Tap tap;
       engine->Run(&tap);
-      WriteRun(out / "runs", c.name + "_" + Slug(m), tap);
+      WriteRun(out / "runs", c.name + "_" + Slug(m, '_'), tap);
       results.back().push_back(Analyze(tap));
     }
   }
