@@ -101,8 +101,8 @@ void Checks::Print(std::ostream& out) const {
   }
 }
 
-int FinishExperiment(const std::filesystem::path& out, nlohmann::json summary,
-                     const Checks& checks, bool quiet) {
+int FinishExperiment(const std::filesystem::path& out, nlohmann::json summary, const Checks& checks,
+                     bool quiet) {
   summary["checks"] = checks.Json();
   WriteText(out / "summary.json", summary.dump(2) + "\n");
   if (!quiet) {

@@ -7,13 +7,12 @@
 #include <fmt/ranges.h>
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <ostream>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 namespace mrh::experiments::internal {
 
@@ -34,6 +33,7 @@ class Table {
   }
 
   const std::vector<std::string>& columns() const { return columns_; }
+
   const std::vector<std::vector<std::string>>& rows() const { return rows_; }
 
   /// "a,b\n1,2\n..." (no quoting: cells hold numbers and plain names).
@@ -59,14 +59,17 @@ class Checks {
  public:
   /// A check with no number behind it.
   void Add(const std::string& name, bool pass) { checks_.push_back({name, pass, {}, {}}); }
+
   /// A check that compares `value` against `bound` (units in the name).
   void Add(const std::string& name, bool pass, double value, double bound) {
     checks_.push_back({name, pass, value, bound});
   }
+
   /// Adds every name → bool of `checks` (as older checkers return them).
   void AddJson(const nlohmann::json& checks);
 
   bool empty() const { return checks_.empty(); }
+
   /// True if there is at least one check and every check passed.
   bool ok() const;
   /// {"name": pass, ...}: summary.json's "checks".
@@ -82,14 +85,15 @@ class Checks {
     bool pass = false;
     std::optional<double> value, bound;
   };
+
   std::vector<Check> checks_;
 };
 
 /// The common tail of a driver: sets summary["checks"], writes out/summary.json and, unless
 /// `quiet`, prints the checks and the results folder. Returns 0 if checks.ok(), else 1.
 /// @throws mrh::RuntimeError if summary.json cannot be written.
-int FinishExperiment(const std::filesystem::path& out, nlohmann::json summary,
-                     const Checks& checks, bool quiet);
+int FinishExperiment(const std::filesystem::path& out, nlohmann::json summary, const Checks& checks,
+                     bool quiet);
 
 /// Writes out/<stem>.gp (`script`, which must `set output '<stem>.png'`) and runs gnuplot on
 /// it in `out`. A missing or failing gnuplot is a warning on stderr (unless `quiet`), never

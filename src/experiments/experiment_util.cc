@@ -83,7 +83,8 @@ std::string ReplaceOnce(std::string text, std::string_view from, std::string_vie
 std::string ReplaceAttribute(std::string text, std::string_view element, std::string_view name,
                              std::string_view attribute, std::string_view value,
                              const std::filesystem::path& file, std::string_view why) {
-  const session::MjcfAttributeSpan span = session::FindMjcfAttribute(text, element, name, attribute);
+  const session::MjcfAttributeSpan span =
+      session::FindMjcfAttribute(text, element, name, attribute);
   if (!span.element) {
     throw RuntimeError(
         fmt::format(R"({}: no <{} name="{}"> element; {})", file.string(), element, name, why));

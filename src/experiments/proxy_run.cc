@@ -95,8 +95,8 @@ ProxyRun RunProxySession(const session::Session& session, const std::filesystem:
   settings.mode = engine::Mode::kLockstep;
   auto sampler = std::make_unique<SamplingDevice>(session::MakeDevice(session));
   SamplingDevice* device = sampler.get();
-  engine::Engine engine(session::LoadWorld(session), std::move(sampler),
-                        session.device.calibration, settings);
+  engine::Engine engine(session::LoadWorld(session), std::move(sampler), session.device.calibration,
+                        settings);
   device->method = &engine.haptic_method();
   device->samples.reserve(static_cast<std::size_t>(settings.duration / settings.haptic_dt) + 2);
   std::optional<report::CsvRecorder> csv;

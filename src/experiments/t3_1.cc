@@ -111,21 +111,20 @@ constexpr const char* kT31Plot =
 void WriteT31Files(const std::filesystem::path& out, const std::vector<Row>& rows,
                    const std::vector<Row>& budget, const std::vector<engine::TickRecord>& sum,
                    bool quiet) {
-  Table csv({"t", "height_m", "angle_deg", "f_z_N", "tau_x_Nm", "f_analytic_N",
-             "tau_analytic_Nm", "contacts", "vertices_below", "pgs_sweeps", "converged",
-             "f_z_50_sweeps_N", "tau_x_50_sweeps_Nm", "f_z_penalty_sum_N",
-             "tau_x_penalty_sum_Nm", "contacts_penalty_sum"});
+  Table csv({"t", "height_m", "angle_deg", "f_z_N", "tau_x_Nm", "f_analytic_N", "tau_analytic_Nm",
+             "contacts", "vertices_below", "pgs_sweeps", "converged", "f_z_50_sweeps_N",
+             "tau_x_50_sweeps_Nm", "f_z_penalty_sum_N", "tau_x_penalty_sum_Nm",
+             "contacts_penalty_sum"});
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const Row& r = rows[i];
     const Row b = i < budget.size() ? budget[i] : Row{};
     const engine::TickRecord p = i < sum.size() ? sum[i] : engine::TickRecord{};
-    csv.AddFormatted("{:.3f},{:.9f},{:.5f},{:.7f},{:.7f},{},{},{},{},{},{},{:.7f},{:.7f},"
-                     "{:.7f},{:.7f},{}",
-                     r.t, r.height, r.angle_deg, r.f, r.tau,
-                     r.analytic ? fmt::format("{:.7f}", r.f_an) : "",
-                     r.analytic ? fmt::format("{:.7f}", r.tau_an) : "", r.contacts, r.below,
-                     r.sweeps, r.converged ? 1 : 0, b.f, b.tau, p.rendered_W.f.z(),
-                     p.rendered_W.tau.x(), p.contacts);
+    csv.AddFormatted(
+        "{:.3f},{:.9f},{:.5f},{:.7f},{:.7f},{},{},{},{},{},{},{:.7f},{:.7f},"
+        "{:.7f},{:.7f},{}",
+        r.t, r.height, r.angle_deg, r.f, r.tau, r.analytic ? fmt::format("{:.7f}", r.f_an) : "",
+        r.analytic ? fmt::format("{:.7f}", r.tau_an) : "", r.contacts, r.below, r.sweeps,
+        r.converged ? 1 : 0, b.f, b.tau, p.rendered_W.f.z(), p.rendered_W.tau.x(), p.contacts);
   }
   WriteText(out / "t3_1.csv", csv.Csv());
   Plot(out, "t3_1", kT31Plot, quiet);
@@ -141,10 +140,13 @@ bool In(double t, const double (&range)[2]) {
 struct T31Tolerances {
   const engine::RenderingSettings& r;
   double R_w;
+
   double Force(int m) const { return r.stiffness * m * Kappa() * r.solver_tolerance; }
+
   double Torque(int m) const {
     return r.rot_stiffness * m * Kappa() * r.solver_tolerance * std::sqrt(2.0) * kHalf / R_w;
   }
+
   double Kappa() const { return R_w / (kHalf * kHalf); }
 };
 
@@ -177,8 +179,8 @@ T31Tally TallyT31(const std::vector<Row>& rows, const T31Tolerances& tol) {
     if (row.t >= kFaceHold) {
       ++s.face_ticks;
       s.face_tau = std::max(s.face_tau, std::abs(row.tau));
-      s.face = s.face && row.contacts == 4 &&
-               std::abs(row.f - r.stiffness * kFaceDepth) <= tol.Force(4);
+      s.face =
+          s.face && row.contacts == 4 && std::abs(row.f - r.stiffness * kFaceDepth) <= tol.Force(4);
     }
   }
   s.roll = s.roll_ticks > 0 && s.roll_f_err <= tol.Force(2) && s.roll_tau_err <= tol.Torque(2);

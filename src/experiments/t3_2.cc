@@ -131,9 +131,11 @@ constexpr const char* kT32Plot =
 
 // t3_2.csv: every tick.
 Table TraceTable(const std::vector<Row>& rows, double mu) {
-  Table traces({"t", "x_m", "y_m", "yaw_rad", "vx_mps", "vy_mps", "f_n_N", "f_tx_N", "f_ty_N",
-                "f_t_N", "f_t_over_mu_N", "ratio", "tau_z_Nm", "contacts", "sliding_rows",
-                "sticking_rows", "phase", "cone_ratio", "pgs_sweeps", "converged"});
+  Table traces({"t",        "x_m",        "y_m",           "yaw_rad",
+                "vx_mps",   "vy_mps",     "f_n_N",         "f_tx_N",
+                "f_ty_N",   "f_t_N",      "f_t_over_mu_N", "ratio",
+                "tau_z_Nm", "contacts",   "sliding_rows",  "sticking_rows",
+                "phase",    "cone_ratio", "pgs_sweeps",    "converged"});
   for (const Row& r : rows) {
     traces.AddFormatted(
         "{:.3f},{:.7f},{:.7f},{:.6f},{:.5f},{:.5f},{:.6f},{:.6f},{:.6f},{:.6f},"
@@ -156,8 +158,7 @@ Table DirectionTable(const std::vector<Row>& rows, double mu) {
     const double fs = r.f_t > kMinFrictionShare * mu * r.f_n ? 1.0 / r.f_t : 0.0;
     const double vs = r.v.head<2>().norm() > kMinSpeed ? 1.0 / r.v.head<2>().norm() : 0.0;
     directions.AddFormatted("{:.3f},{:.6f},{:.6f},{:.5f},{:.5f},{:.5f},{:.5f},{}", r.t, r.x, r.y,
-                            r.f_tx * fs, r.f_ty * fs, r.v.x() * vs, r.v.y() * vs,
-                            Name(r.phase));
+                            r.f_tx * fs, r.f_ty * fs, r.v.x() * vs, r.v.y() * vs, Name(r.phase));
   }
   return directions;
 }
@@ -259,8 +260,8 @@ Checks CheckT32(const std::vector<Row>& rows, double mu, double eps, nlohmann::j
   Checks checks;
   checks.Add("kinetic_friction_equals_mu_normal",
              s.kinetic > 0 && s.cone_min >= mu * (1.0 - eps) && s.cone_max <= mu * (1.0 + eps));
-  checks.Add("static_friction_below_mu_normal",
-             s.statics > 0 && s.static_cone <= mu * (1.0 + eps), s.static_cone, mu * (1.0 + eps));
+  checks.Add("static_friction_below_mu_normal", s.statics > 0 && s.static_cone <= mu * (1.0 + eps),
+             s.static_cone, mu * (1.0 + eps));
   checks.Add("static_at_start_reversals_and_end", CountStaticIntervals(rows) >= 5);
   checks.Add("friction_opposes_motion", s.moving > 0 && s.worst_cos >= 1.0 - eps);
   return checks;

@@ -10,12 +10,12 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "mrh/core/stats.h"
-#include "mrh/haptic/methods.h"
-#include "mrh/engine/method.h"
 #include "experiment_table.h"
 #include "experiment_util.h"
 #include "experiments_impl.h"
+#include "mrh/core/stats.h"
+#include "mrh/engine/method.h"
+#include "mrh/haptic/methods.h"
 #include "mrh/world/world.h"
 
 namespace mrh::experiments::internal {
@@ -85,7 +85,6 @@ struct Result {
   bool finite = true;
 };
 
-
 // The proxy-6dof pair on the N-gon scene, as the engine builds it (the method keeps pointers
 // to the world and the settings: the rig is not movable).
 struct PrismRig {
@@ -97,6 +96,7 @@ struct PrismRig {
     const engine::MethodContext context{&world, &settings, world.pointer_body(), kRadius};
     pair = engine::MakeMethod("proxy-6dof", context);
   }
+
   PrismRig(const PrismRig&) = delete;
   PrismRig& operator=(const PrismRig&) = delete;
 
@@ -247,8 +247,8 @@ void WriteT34Files(const std::filesystem::path& out, const std::vector<Result>& 
   for (const Result& r : results) {
     csv.AddFormatted("{},{},{},{},{},{},{:.3f},{:.3f},{:.3f},{:.2f},{},{:.3f},{:.3f},{:.3f},{:.3f}",
                      r.sides, r.friction ? 1 : 0, r.contacts_min, r.contacts_max, r.rows_max,
-                     r.ticks, r.p50 * 1e6, r.p99 * 1e6, r.max * 1e6, r.mean_sweeps,
-                     r.unconverged, r.switch_p50 * 1e6, r.switch_p99 * 1e6, r.steady_p50 * 1e6,
+                     r.ticks, r.p50 * 1e6, r.p99 * 1e6, r.max * 1e6, r.mean_sweeps, r.unconverged,
+                     r.switch_p50 * 1e6, r.switch_p99 * 1e6, r.steady_p50 * 1e6,
                      r.steady_p99 * 1e6);
   }
   WriteText(out / "t3_4.csv", csv.Csv());
@@ -268,11 +268,11 @@ Checks CheckT34(const std::vector<Result>& results) {
   bool ok = true, converged = true, force = true;
   for (const Result& r : results) {
     // Every tick sees all N base vertices; with friction every point also gets its row.
-    ok = ok && r.ticks > 0 && r.finite && r.contacts_min == r.sides &&
-         r.contacts_max == r.sides && r.rows_max == (r.friction ? 2 * r.sides : r.sides);
+    ok = ok && r.ticks > 0 && r.finite && r.contacts_min == r.sides && r.contacts_max == r.sides &&
+         r.rows_max == (r.friction ? 2 * r.sides : r.sides);
     converged = converged && r.unconverged == 0;
-    force = force &&
-            r.force_error <= kPointAccuracy * PrismSettings(r.friction).rendering.stiffness;
+    force =
+        force && r.force_error <= kPointAccuracy * PrismSettings(r.friction).rendering.stiffness;
   }
   Checks checks;
   checks.Add("every_tick_has_N_contacts_and_rows", ok);

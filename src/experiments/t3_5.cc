@@ -141,12 +141,12 @@ Table CsvTable(const std::vector<SweepPoint>& points) {
              "transition_max_force_jump_N", "transition_max_torque_jump_Nm", "mean_pgs_sweeps",
              "unconverged_ticks"});
   for (const SweepPoint& p : points) {
-    csv.AddFormatted("{},{:.6g},{:.6f},{:.3f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},"
-                     "{:.1f},{}",
-                     p.multiplier, p.R_w, p.free_penetration * 1e3, p.free_penetration_time,
-                     p.bound_penetration * 1e3, p.peak_torque, p.peak_torque_analytic,
-                     p.mean_torque, p.max_torque, p.force_jump, p.torque_jump, p.mean_sweeps,
-                     p.unconverged);
+    csv.AddFormatted(
+        "{},{:.6g},{:.6f},{:.3f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},"
+        "{:.1f},{}",
+        p.multiplier, p.R_w, p.free_penetration * 1e3, p.free_penetration_time,
+        p.bound_penetration * 1e3, p.peak_torque, p.peak_torque_analytic, p.mean_torque,
+        p.max_torque, p.force_jump, p.torque_jump, p.mean_sweeps, p.unconverged);
   }
   return csv;
 }

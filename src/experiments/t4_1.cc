@@ -324,18 +324,18 @@ int FinishT41(const std::filesystem::path& out, const std::vector<MethodResult>&
   const MethodResult* impulse = Find(results, "impulse");
   const MethodResult* local = Find(results, "local-dynamics");
   if (single != nullptr) {
-    checks.Add("single_rate_within_2_percent_of_2mv",
-               std::abs(single->impulse - Case{}.elastic()) <=
-                   kSingleRateTolerance * Case{}.elastic());
+    checks.Add(
+        "single_rate_within_2_percent_of_2mv",
+        std::abs(single->impulse - Case{}.elastic()) <= kSingleRateTolerance * Case{}.elastic());
   }
   if (single != nullptr && impulse != nullptr) {
     checks.Add("impulse_method_above_1.2x_single_rate",
                impulse->impulse > kImpulseMethodMinRatio * single->impulse);
   }
   if (single != nullptr && local != nullptr) {
-    checks.Add("local_dynamics_within_2_percent_of_single_rate",
-               std::abs(local->impulse - single->impulse) <=
-                   kLocalDynamicsTolerance * single->impulse);
+    checks.Add(
+        "local_dynamics_within_2_percent_of_single_rate",
+        std::abs(local->impulse - single->impulse) <= kLocalDynamicsTolerance * single->impulse);
   }
   if (local != nullptr) {
     checks.Add("free_cube_accelerance_is_identity_over_60kg", AccelerancePasses(summary));

@@ -191,9 +191,8 @@ Table PredictedTable(const std::vector<psychophysics::SubjectFit>& fits,
     if (m.method == kProposed) mean_p = m.mean_pse;
     if (m.method == kConventional) mean_c = m.mean_pse;
   }
-  md.Add({"**mean**", fmt::format("**{:.1f}**", mean_p),
-          fmt::format("**{}**", kThesisMeanProposed), fmt::format("**{:.1f}**", mean_c),
-          fmt::format("**{}**", kThesisMeanConventional)});
+  md.Add({"**mean**", fmt::format("**{:.1f}**", mean_p), fmt::format("**{}**", kThesisMeanProposed),
+          fmt::format("**{:.1f}**", mean_c), fmt::format("**{}**", kThesisMeanConventional)});
   md.Add({"observer model (noise-free)", fmt::format("{:.1f}", model_proposed), "",
           fmt::format("{:.1f}", model_conventional), ""});
   return md;
@@ -291,12 +290,11 @@ int RunT42(const std::filesystem::path& out, bool quiet, const T42Options& optio
   const double model_p = ModelPse(study, kProposed, stimuli, &cache, &Measure::momentum);
   const double model_c = ModelPse(study, kConventional, stimuli, &cache, &Measure::momentum);
   Table table = PredictedTable(fits, options.observers, model_p, model_c);
-  table.Add({"peak-force cue instead (noise-free)",
-             fmt::format("{:.1f}", ModelPse(study, kProposed, stimuli, &cache, &Measure::peak_force)),
-             "",
-             fmt::format("{:.1f}",
-                         ModelPse(study, kConventional, stimuli, &cache, &Measure::peak_force)),
-             ""});
+  table.Add(
+      {"peak-force cue instead (noise-free)",
+       fmt::format("{:.1f}", ModelPse(study, kProposed, stimuli, &cache, &Measure::peak_force)), "",
+       fmt::format("{:.1f}", ModelPse(study, kConventional, stimuli, &cache, &Measure::peak_force)),
+       ""});
   WriteStimuli(out / "stimuli.csv", study, stimuli, &cache);
   return FinishT42(out, quiet, fits, options, model_p, model_c, table.Markdown());
 }

@@ -5,11 +5,10 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "experiment_table.h"
 #include "experiments_impl.h"
@@ -44,6 +43,7 @@ struct RunResult {
   std::int64_t global_iterations = 0, zero_iterations = 0, test_iterations = 0, test_runs = 0;
   int max_test_iterations_per_step = 0;
 };
+
 // One accuracy run: every measurement of `used` compared with `reference` at the same state
 // and test forces.
 struct AccuracyResult {

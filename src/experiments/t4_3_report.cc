@@ -17,14 +17,14 @@ std::string RunKey(const RunResult& r) {
 
 // runs/<variant>_<key>.csv: one row per physics step.
 Table TimeSeries(const RunResult& r) {
-  Table csv({"t", "compute_ms", "occupancy", "cpu_ms", "occupancy_cpu", "sim_contacts",
-             "neighbors", "global_solver_iterations", "zero_force_solver_iterations",
+  Table csv({"t", "compute_ms", "occupancy", "cpu_ms", "occupancy_cpu", "sim_contacts", "neighbors",
+             "global_solver_iterations", "zero_force_solver_iterations",
              "test_run_solver_iterations", "test_runs"});
   for (const StepSample& s : r.samples) {
     csv.AddFormatted("{:.4f},{:.6f},{:.6f},{:.6f},{:.6f},{},{},{},{},{},{}", s.t, s.compute_ms,
-                     s.compute_ms / (r.physics_dt * 1e3), s.cpu_ms,
-                     s.cpu_ms / (r.physics_dt * 1e3), s.sim_contacts, s.neighbors,
-                     s.global_iterations, s.zero_iterations, s.test_iterations, s.test_runs);
+                     s.compute_ms / (r.physics_dt * 1e3), s.cpu_ms, s.cpu_ms / (r.physics_dt * 1e3),
+                     s.sim_contacts, s.neighbors, s.global_iterations, s.zero_iterations,
+                     s.test_iterations, s.test_runs);
   }
   return csv;
 }
@@ -81,13 +81,13 @@ bool OccupancyTables(const std::vector<RunResult>& runs, Table* csv, Table* md,
              fmt::format("{:.4f}", r.cpu_p50), fmt::format("{:.4f}", r.cpu_max),
              fmt::format("{:.2f}", ratio)});
     (*summary)["runs"][r.variant][RunKey(r)] = {{"p50", r.p50},
-                                             {"p99", r.p99},
-                                             {"max", r.max},
-                                             {"cpu_p50", r.cpu_p50},
-                                             {"cpu_max", r.cpu_max},
-                                             {"ratio_cpu_p50_to_impulse", ratio},
-                                             {"steps", r.samples.size()},
-                                             {"finite", r.finite}};
+                                                {"p99", r.p99},
+                                                {"max", r.max},
+                                                {"cpu_p50", r.cpu_p50},
+                                                {"cpu_max", r.cpu_max},
+                                                {"ratio_cpu_p50_to_impulse", ratio},
+                                                {"steps", r.samples.size()},
+                                                {"finite", r.finite}};
     complete = complete && r.finite;
   }
   return complete;
@@ -153,16 +153,14 @@ Checks T43Checks(const std::vector<RunResult>& runs, const std::vector<AccuracyR
   for (const AccuracyResult& a : accuracy) {
     if (a.name != "island_vs_converged") continue;
     checks.Add("island_accelerance_within_1e-4_of_converged",
-               a.checks > 0 && a.max_rel_A <= kIslandAccuracyTol, a.max_rel_A,
-               kIslandAccuracyTol);
+               a.checks > 0 && a.max_rel_A <= kIslandAccuracyTol, a.max_rel_A, kIslandAccuracyTol);
   }
   checks.Add("all_runs_complete_and_finite", complete);
   return checks;
 }
 
 // Wall-clock goals are reported, never checked: this VM stalls for milliseconds at random.
-void Goals(const std::vector<RunResult>& runs, const T43Options& options,
-           nlohmann::json* summary) {
+void Goals(const std::vector<RunResult>& runs, const T43Options& options, nlohmann::json* summary) {
   const int largest = *std::max_element(options.cubes.begin(), options.cubes.end());
   if (const RunResult* ld = FindRun(runs, "local-dynamics", largest)) {
     (*summary)["goals"]["local_dynamics_p50_below_1_at_largest"] = ld->p50 < 1.0;
@@ -219,8 +217,8 @@ void PlotScaling(const std::filesystem::path& out, const T43Options& options, bo
 Checks WriteSummaries(const std::filesystem::path& out, const std::vector<RunResult>& runs,
                       const std::vector<AccuracyResult>& accuracy, const T43Options& options,
                       bool quiet, nlohmann::json* summary) {
-  Table csv({"variant", "cubes", "physics_dt_s", "steps", "p50", "p99", "max", "cpu_p50",
-             "cpu_max", "ratio_cpu_p50_to_impulse", "condim"});
+  Table csv({"variant", "cubes", "physics_dt_s", "steps", "p50", "p99", "max", "cpu_p50", "cpu_max",
+             "ratio_cpu_p50_to_impulse", "condim"});
   Table occupancy({"variant", "cubes", "condim", "step (ms)", "occupancy p50", "p99", "max",
                    "CPU p50", "CPU max", "CPU p50 / impulse"});
   const bool complete = OccupancyTables(runs, &csv, &occupancy, summary);

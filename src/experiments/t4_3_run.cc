@@ -32,6 +32,7 @@ constexpr double kRadius = 0.02;       // m, pointer sphere
 constexpr double kPushSpeed = 0.1;     // m/s
 constexpr double kStartGap = 0.002;    // m, pointer surface to cube 0 at t = 0
 constexpr double kStiffness = 2000.0;  // N/m
+
 // Each count runs frictionless (condim 1, the thesis' setting) and with friction (condim 3,
 // μ = 1, pyramidal cones: 16 constraint rows per resting cube). The solver is CG: Newton's dense
 // Hessian (nv = 6000) would need a 3·nv² stack. MuJoCo's buffers are sized by World from the
@@ -146,8 +147,7 @@ void MergeWork(const std::vector<PerturbationWork>& work, RunResult* r) {
     r->zero_iterations += s.zero_iterations;
     r->test_iterations += s.test_iterations;
     r->test_runs += s.test_runs;
-    r->max_test_iterations_per_step =
-        std::max(r->max_test_iterations_per_step, s.test_iterations);
+    r->max_test_iterations_per_step = std::max(r->max_test_iterations_per_step, s.test_iterations);
   }
 }
 
@@ -209,6 +209,7 @@ world::PerturberSettings MuJoCoSettings() {
 // nv = 6000 the default leaves A off by ~0.5 % (measured); 1e-15 gets it to roundoff.
 constexpr double kConvergedTolerance = 1e-15;
 constexpr int kConvergedIterations = 1000;  // mjNSOLVER: MuJoCo keeps statistics up to here
+
 world::PerturberSettings ConvergedSettings() {
   world::PerturberSettings s = MuJoCoSettings();
   s.solver_tolerance = kConvergedTolerance;
@@ -220,19 +221,20 @@ AccuracyResult RunAccuracy(const std::filesystem::path& scene, int cubes, const 
                            const std::string& name, const world::PerturberSettings& used,
                            const world::PerturberSettings& reference) {
   const std::string method = "t4.3:accuracy:" + name;
-  engine::RegisterMethod(method, "t4.3: local-dynamics, measurements repeated by a reference",
-                         [used, reference](const engine::MethodContext& context) {
-                           physics::LocalDynamicsOptions o;
-                           o.perturber = used;
-                           o.reference = reference;
-                           const engine::RenderingSettings& r = context.settings->rendering;
-                           return engine::Method{
-                               "local-dynamics", false,
-                               physics::MakeLocalDynamicsPhysics(context, o),
-                               haptic::MakeLocalDynamicsHaptic(context.pointer_radius,
-                                                               r.stiffness, r.damping),
-                               {"local_dynamics.local_body_fault"}};
-                         });
+  engine::RegisterMethod(
+      method, "t4.3: local-dynamics, measurements repeated by a reference",
+      [used, reference](const engine::MethodContext& context) {
+        physics::LocalDynamicsOptions o;
+        o.perturber = used;
+        o.reference = reference;
+        const engine::RenderingSettings& r = context.settings->rendering;
+        return engine::Method{
+            "local-dynamics",
+            false,
+            physics::MakeLocalDynamicsPhysics(context, o),
+            haptic::MakeLocalDynamicsHaptic(context.pointer_radius, r.stiffness, r.damping),
+            {"local_dynamics.local_body_fault"}};
+      });
   const double dt = options.physics_dt;
   const auto steps = static_cast<std::size_t>(options.accuracy_steps);
   const auto timings = std::make_shared<MethodTimings>();

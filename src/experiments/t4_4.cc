@@ -301,9 +301,8 @@ void LineWindows(const std::string& variant, const RunData& line, T44Tables* tab
     *masses_ok = *masses_ok && std::abs(w.felt_mass - expected) <= kMassTolerance * expected;
     *accelerance_ok =
         *accelerance_ok && std::abs(w.felt_mass_A - expected) <= kMassTolerance * expected;
-    tables->csv.AddFormatted("{},{},{:.3f},{:.3f},{:.6f},{:.6f},{:.4f},{},{:.4f}", variant,
-                             w.cubes, w.t_a, w.t_b, w.force, w.accel, w.felt_mass, expected,
-                             w.felt_mass_A);
+    tables->csv.AddFormatted("{},{},{:.3f},{:.3f},{:.6f},{:.6f},{:.4f},{},{:.4f}", variant, w.cubes,
+                             w.t_a, w.t_b, w.force, w.accel, w.felt_mass, expected, w.felt_mass_A);
     tables->md.Add({variant, fmt::format("{}", w.cubes), fmt::format("{:.4f}", w.force),
                     fmt::format("{:.4f}", w.accel), fmt::format("{:.3f}", w.felt_mass),
                     fmt::format("{:.0f}", expected), fmt::format("{:.3f}", w.felt_mass_A)});

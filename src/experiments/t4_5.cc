@@ -202,8 +202,8 @@ std::string WriteT45Tables(const std::filesystem::path& out, const std::vector<R
             "worst tick bound", "occupancy (CPU)"});
   for (const Result& r : results) {
     csv.AddFormatted("{},{},{},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.6f}", r.method,
-                     r.balls, r.min_neighbors, r.min_contacts, r.tick_p50, r.tick_p99,
-                     r.tick_max, r.adopt_p50, r.end_period_p50, r.worst_tick, Occupancy(r));
+                     r.balls, r.min_neighbors, r.min_contacts, r.tick_p50, r.tick_p99, r.tick_max,
+                     r.adopt_p50, r.end_period_p50, r.worst_tick, Occupancy(r));
     md.Add({r.method, fmt::format("{}", r.balls), fmt::format("{}", r.min_neighbors),
             fmt::format("{:.2f}", r.tick_p50), fmt::format("{:.2f}", r.tick_p99),
             fmt::format("{:.1f}", r.tick_max), fmt::format("{:.2f}", r.adopt_p50),

@@ -88,7 +88,8 @@ PushResult Analyze(const Tap& tap) {
 
 void WriteRun(const std::filesystem::path& dir, const std::string& slug, const Tap& tap) {
   Table f({"t", "force_N"});
-  for (std::size_t i = 0; i < tap.t.size(); ++i) f.AddFormatted("{:.3f},{:.5f}", tap.t[i], tap.f[i]);
+  for (std::size_t i = 0; i < tap.t.size(); ++i)
+    f.AddFormatted("{:.3f},{:.5f}", tap.t[i], tap.f[i]);
   WriteText(dir / (slug + "_force.csv"), f.Csv());
   Table b({"t", "x", "y", "z", "spin"});
   for (const Tap::Step& s : tap.steps) {
@@ -107,8 +108,8 @@ std::string PushScript(const PushOptions& o) {
   for (const PushCase& c : o.cases) {
     gp += "set title '" + c.name + ": |f| (N)'\nset xlabel 't (s)'\nplot ";
     for (std::size_t i = 0; i < o.methods.size(); ++i) {
-      gp += fmt::format("{}'runs/{}_{}_force.csv' using 1:2 with lines title '{}'",
-                        i ? ", " : "", c.name, Slug(o.methods[i], '_'), o.methods[i]);
+      gp += fmt::format("{}'runs/{}_{}_force.csv' using 1:2 with lines title '{}'", i ? ", " : "",
+                        c.name, Slug(o.methods[i], '_'), o.methods[i]);
     }
     gp += "\nset title '" + c.name + ": box x (m)'\nplot ";
     for (std::size_t i = 0; i < o.methods.size(); ++i) {
@@ -188,8 +189,8 @@ bool Compare(const std::string& name, const std::string& method, const PushResul
                   fmt::format("{:.2f}", sd_ratio), fmt::format("{:.1f} %", 100 * r.contact_lost),
                   fmt::format("{:.4f}", err), fmt::format("{:.2f}", r.peak_spin)});
   (*summary)["cases"][name][method] = {
-      {"mean_force_N", r.mean_force}, {"mean_vs_single_rate", rel},
-      {"sd_force_N", r.sd_force},     {"sd_ratio", sd_ratio},
+      {"mean_force_N", r.mean_force},   {"mean_vs_single_rate", rel},
+      {"sd_force_N", r.sd_force},       {"sd_ratio", sd_ratio},
       {"contact_lost", r.contact_lost}, {"position_error_m", err},
       {"peak_spin_radps", r.peak_spin}, {"meets_bars", bars}};
   return bars;

@@ -23,7 +23,8 @@ std::optional<std::pair<std::size_t, std::size_t>> FindAttribute(const std::stri
                                                                  std::string_view element,
                                                                  std::string_view name,
                                                                  std::string_view attribute) {
-  const session::MjcfAttributeSpan span = session::FindMjcfAttribute(text, element, name, attribute);
+  const session::MjcfAttributeSpan span =
+      session::FindMjcfAttribute(text, element, name, attribute);
   if (!span.found) return std::nullopt;
   return std::pair{span.offset, span.size};
 }

@@ -37,10 +37,16 @@ TEST(TableTest, WritesCsvMarkdownAndJson) {
 
 TEST(TableTest, RowOfTheWrongWidthIsAnErrorNamingTheColumns) {
   Table t({"a", "b"});
-  EXPECT_THAT([&] { t.Add({"1"}); },
-              ThrowsMessage<InvalidArgument>(HasSubstr("table row has 1 cells; expected 2")));
-  EXPECT_THAT([&] { t.AddFormatted("{},{},{}", 1, 2, 3); },
-              ThrowsMessage<InvalidArgument>(HasSubstr("columns a,b")));
+  EXPECT_THAT(
+      [&] {
+        t.Add({"1"});
+      },
+      ThrowsMessage<InvalidArgument>(HasSubstr("table row has 1 cells; expected 2")));
+  EXPECT_THAT(
+      [&] {
+        t.AddFormatted("{},{},{}", 1, 2, 3);
+      },
+      ThrowsMessage<InvalidArgument>(HasSubstr("columns a,b")));
 }
 
 TEST(ChecksTest, EmptyListFails) {

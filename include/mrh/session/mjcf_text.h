@@ -12,10 +12,10 @@ namespace mrh::session {
 /// Where the value of `attribute="..."` of the first element `<element ... name="name" ...>`
 /// stands in the MJCF `text`.
 struct MjcfAttributeSpan {
-  bool element = false;     ///< there is such an element
-  bool found = false;       ///< and it has the attribute (offset and size are valid)
-  std::size_t offset = 0;   ///< of the value's first character (after the opening quote)
-  std::size_t size = 0;     ///< of the value, quotes excluded
+  bool element = false;    ///< there is such an element
+  bool found = false;      ///< and it has the attribute (offset and size are valid)
+  std::size_t offset = 0;  ///< of the value's first character (after the opening quote)
+  std::size_t size = 0;    ///< of the value, quotes excluded
 };
 
 /// Finds the double-quoted `attribute` of the first `<element>` whose name is `name`
