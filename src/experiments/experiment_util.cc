@@ -5,14 +5,14 @@
 #include <fmt/format.h>
 #include <sys/utsname.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
-#include <optional>
 #include <thread>
-#include <utility>
 
 #include "mrh/core/error.h"
+#include "mrh/session/mjcf_text.h"
 
 #ifndef MRH_SOURCE_SCENES_DIR
 #define MRH_SOURCE_SCENES_DIR ""
@@ -50,6 +50,12 @@ std::string MachineTag() {
   return fmt::format("{}, {} cores, {}", cpu, std::thread::hardware_concurrency(), kernel);
 }
 
+std::string Slug(std::string_view name, char replacement) {
+  std::string s(name);
+  std::replace(s.begin(), s.end(), '/', replacement);
+  return s;
+}
+
 void WriteText(const std::filesystem::path& path, const std::string& text) {
   std::ofstream out(path);
   out << text;
@@ -74,54 +80,20 @@ std::string ReplaceOnce(std::string text, std::string_view from, std::string_vie
   return text.replace(at, from.size(), to);
 }
 
-namespace {
-
-constexpr std::string_view kXmlSpace = " \t\n\r";
-
-// The value of `attribute="..."` in the tag text `tag` (from '<' to before '>'), as an offset
-// and length within `tag`; the attribute name must follow whitespace, so `name` never matches
-// inside `mesh_name`.
-std::optional<std::pair<std::size_t, std::size_t>> FindAttributeValue(std::string_view tag,
-                                                                      std::string_view attribute) {
-  const std::string key = fmt::format("{}=\"", attribute);
-  for (std::size_t at = tag.find(key); at != std::string_view::npos; at = tag.find(key, at + 1)) {
-    if (at == 0 || kXmlSpace.find(tag[at - 1]) == std::string_view::npos) continue;
-    const std::size_t begin = at + key.size();
-    const std::size_t end = tag.find('"', begin);
-    if (end == std::string_view::npos) return std::nullopt;
-    return std::pair{begin, end - begin};
-  }
-  return std::nullopt;
-}
-
-}  // namespace
-
 std::string ReplaceAttribute(std::string text, std::string_view element, std::string_view name,
                              std::string_view attribute, std::string_view value,
                              const std::filesystem::path& file, std::string_view why) {
-  const std::string open = fmt::format("<{}", element);
-  for (std::size_t at = text.find('<'); at != std::string::npos; at = text.find('<', at + 1)) {
-    if (text.compare(at, 4, "<!--") == 0) {
-      at = text.find("-->", at);
-      if (at == std::string::npos) break;
-      continue;
-    }
-    const std::size_t end = text.find('>', at);
-    if (end == std::string::npos) break;
-    const std::string_view tag = std::string_view(text).substr(at, end - at);
-    const bool is_element = tag.substr(0, open.size()) == open && open.size() < tag.size() &&
-                            kXmlSpace.find(tag[open.size()]) != std::string_view::npos;
-    const auto name_value = is_element ? FindAttributeValue(tag, "name") : std::nullopt;
-    if (!name_value || tag.substr(name_value->first, name_value->second) != name) continue;
-    const auto old_value = FindAttributeValue(tag, attribute);
-    if (!old_value) {
-      throw RuntimeError(fmt::format(R"({}: <{} name="{}"> has no {}="..." attribute; {})",
-                                     file.string(), element, name, attribute, why));
-    }
-    return text.replace(at + old_value->first, old_value->second, value);
+  const session::MjcfAttributeSpan span =
+      session::FindMjcfAttribute(text, element, name, attribute);
+  if (!span.element) {
+    throw RuntimeError(
+        fmt::format(R"({}: no <{} name="{}"> element; {})", file.string(), element, name, why));
   }
-  throw RuntimeError(
-      fmt::format(R"({}: no <{} name="{}"> element; {})", file.string(), element, name, why));
+  if (!span.found) {
+    throw RuntimeError(fmt::format(R"({}: <{} name="{}"> has no {}="..." attribute; {})",
+                                   file.string(), element, name, attribute, why));
+  }
+  return text.replace(span.offset, span.size, value);
 }
 
 }  // namespace mrh::experiments::internal

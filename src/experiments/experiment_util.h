@@ -15,6 +15,10 @@ std::filesystem::path ScenesDir();
 /// One line naming the machine (CPU model, cores, kernel) for tagging results.
 std::string MachineTag();
 
+/// `name` with every '/' replaced by `replacement`, for file names ("local-dynamics/perturbation"
+/// → "local-dynamics-perturbation").
+std::string Slug(std::string_view name, char replacement = '-');
+
 /// Writes `text` to `path`. @throws mrh::RuntimeError naming the path on failure.
 void WriteText(const std::filesystem::path& path, const std::string& text);
 

@@ -7,10 +7,10 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "experiment_table.h"
 #include "experiment_util.h"
 #include "experiments_impl.h"
 #include "mrh/engine/engine.h"
-#include "mrh/report/report.h"
 #include "mrh/session/session.h"
 
 namespace mrh::experiments::internal {
@@ -117,21 +117,23 @@ Result RunOne(const std::filesystem::path& dir, const std::string& method, int p
   return r;
 }
 
-void Plot(const std::filesystem::path& out, const std::vector<Result>& results, bool quiet) {
-  std::string csv = "ticks_after_onset";
-  for (const Result& r : results) csv += fmt::format(",{}@{}", r.method, r.phase);
-  csv += "\n";
+// deviation.csv (a column per run) and its plot.
+void PlotDeviation(const std::filesystem::path& out, const std::vector<Result>& results,
+                   bool quiet) {
+  std::vector<std::string> columns = {"ticks_after_onset"};
+  for (const Result& r : results) columns.push_back(fmt::format("{}@{}", r.method, r.phase));
+  Table csv(columns);
   for (int i = 0; i < kTicksAfter - 1; ++i) {
-    csv += fmt::format("{}", i + 1);
+    std::vector<std::string> row = {fmt::format("{}", i + 1)};
     for (const Result& r : results) {
       const auto k = static_cast<std::size_t>(i);
       // Zero deviations are drawn at the floor of the log axis.
-      csv +=
-          fmt::format(",{:.6e}", k < r.deviation.size() ? std::max(r.deviation[k], 1e-12) : 1e-12);
+      row.push_back(
+          fmt::format("{:.6e}", k < r.deviation.size() ? std::max(r.deviation[k], 1e-12) : 1e-12));
     }
-    csv += "\n";
+    csv.Add(std::move(row));
   }
-  WriteText(out / "deviation.csv", csv);
+  WriteText(out / "deviation.csv", csv.Csv());
   std::string plot =
       "# How the force increment departs from that of a still cube after the force onset.\n"
       "# Re-run with: gnuplot deviation.gp\n"
@@ -145,11 +147,33 @@ void Plot(const std::filesystem::path& out, const std::vector<Result>& results, 
     plot += fmt::format("{}'deviation.csv' using 1:{} with steps lw 2 title '{} (onset at j={})'",
                         i == 0 ? "" : ", ", i + 2, results[i].method, results[i].phase);
   }
-  WriteText(out / "deviation.gp", plot + "\n");
-  std::string why;
-  if (!report::RunGnuplotScript(out, "deviation.gp", "deviation.png", &why) && !quiet) {
-    std::cerr << "mrh: warning: deviation.png not drawn: " << why << "\n";
+  Plot(out, "deviation", plot + "\n", quiet);
+}
+
+// latency.csv, latency.md and summary["runs"]; returns the check and the Markdown.
+Checks LatencyTables(const std::filesystem::path& out, const std::vector<Result>& results,
+                     nlohmann::json* summary, std::string* markdown) {
+  Table csv({"method", "ticks_per_step", "onset_phase", "onset_tick", "response_tick",
+             "latency_ticks", "latency_ms", "expected_ticks"});
+  Table md({"method", "onset j (of n)", "latency (ticks)", "latency (ms)", "expected (ticks)"});
+  bool ok = true;
+  for (const Result& r : results) {
+    const std::int64_t expected = r.expected - r.onset;
+    const double ms = static_cast<double>(r.latency()) * kHapticDt * 1e3;
+    csv.AddFormatted("{},{},{},{},{},{},{:.1f},{}", r.method, r.n, r.phase, r.onset, r.response,
+                     r.latency(), ms, expected);
+    md.Add({r.method, fmt::format("{} of {}", r.phase, r.n), fmt::format("{}", r.latency()),
+            fmt::format("{:.0f}", ms), fmt::format("{}", expected)});
+    (*summary)["runs"][r.method][std::to_string(r.phase)] = {
+        {"onset_tick", r.onset}, {"latency_ticks", r.latency()}, {"expected_ticks", expected}};
+    ok = ok && r.onset >= 0 && r.response == r.expected;
   }
+  WriteText(out / "latency.csv", csv.Csv());
+  *markdown = md.Markdown();
+  WriteText(out / "latency.md", *markdown);
+  Checks checks;
+  checks.Add("latency_matches_the_data_flow_of_each_method", ok);
+  return checks;
 }
 
 }  // namespace
@@ -170,33 +194,14 @@ int RunLatency(const std::filesystem::path& out, bool quiet, const LatencyOption
       results.push_back(RunOne(out, method, method == "single-rate" ? 0 : phase));
     }
   }
-  std::string csv =
-      "method,ticks_per_step,onset_phase,onset_tick,response_tick,latency_ticks,"
-      "latency_ms,expected_ticks\n";
-  std::string md =
-      "| method | onset j (of n) | latency (ticks) | latency (ms) | expected (ticks) |"
-      "\n|---|---|---|---|---|\n";
   nlohmann::json summary;
-  bool ok = true;
-  for (const Result& r : results) {
-    const std::int64_t expected = r.expected - r.onset;
-    csv += fmt::format("{},{},{},{},{},{},{:.1f},{}\n", r.method, r.n, r.phase, r.onset, r.response,
-                       r.latency(), static_cast<double>(r.latency()) * kHapticDt * 1e3, expected);
-    md += fmt::format("| {} | {} of {} | {} | {:.0f} | {} |\n", r.method, r.phase, r.n, r.latency(),
-                      static_cast<double>(r.latency()) * kHapticDt * 1e3, expected);
-    summary["runs"][r.method][std::to_string(r.phase)] = {
-        {"onset_tick", r.onset}, {"latency_ticks", r.latency()}, {"expected_ticks", expected}};
-    ok = ok && r.onset >= 0 && r.response == r.expected;
-  }
-  WriteText(out / "latency.csv", csv);
-  WriteText(out / "latency.md", md);
-  Plot(out, results, quiet);
+  std::string md;
+  const Checks checks = LatencyTables(out, results, &summary, &md);
+  PlotDeviation(out, results, quiet);
   summary["experiment"] = "t4.latency";
   summary["machine"] = MachineTag();
-  summary["checks"]["latency_matches_the_data_flow_of_each_method"] = ok;
-  WriteText(out / "summary.json", summary.dump(2) + "\n");
-  if (!quiet) std::cout << md << "results: " << std::filesystem::absolute(out).string() << "\n";
-  return ok ? 0 : 1;
+  if (!quiet) std::cout << md;
+  return FinishExperiment(out, std::move(summary), checks, quiet);
 }
 
 }  // namespace mrh::experiments::internal

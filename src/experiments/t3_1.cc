@@ -1,15 +1,13 @@
 // SPDX-License-Identifier: Apache-2.0
-// Experiment T3.1 (thesis §3.3.2, figs. 3.9–3.11) and the proxy-6dof session runner of ch. 3.
+// Experiment T3.1 (thesis §3.3.2, figs. 3.9–3.11); the session runner is in proxy_run.cc.
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <nlohmann/json.hpp>
-#include <optional>
 
-#include "mrh/haptic/methods.h"
-#include "mrh/world/world.h"
+#include "experiment_table.h"
 #include "experiment_util.h"
 #include "experiments_impl.h"
 #include "mrh/core/error.h"
@@ -17,112 +15,6 @@
 #include "mrh/session/session.h"
 
 namespace mrh::experiments::internal {
-namespace {
-
-// Forwards everything to the real device and, after each tick's command (HapticSide calls
-// SetWrench right after Method::HapticTick), copies the method's output. Lockstep only: it
-// allocates, which is fine off the real-time path.
-class SamplingDevice final : public device::Device {
- public:
-  explicit SamplingDevice(std::unique_ptr<device::Device> inner) : inner_(std::move(inner)) {}
-
-  const device::Specifications& specifications() const override { return inner_->specifications(); }
-
-  void Open() override { inner_->Open(); }
-
-  void Close() override { inner_->Close(); }
-
-  device::DeviceState Read(double t) noexcept override { return inner_->Read(t); }
-
-  void SetWrench(const Wrench& w_D) noexcept override {
-    inner_->SetWrench(w_D);
-    if (method != nullptr) Sample();
-  }
-
-  const haptic::MethodHaptic* method = nullptr;  // proxy-6dof's haptic half
-  std::vector<ProxyTick> samples;
-
- private:
-  void Sample() noexcept {
-    const render::ProxyOutput& out = *haptic::ProxyLastOutput(*method);
-    const render::TickIr& tick_ir = *haptic::ProxyLastTickIr(*method);
-    ProxyTick tick;
-    tick.w_W = out.w_W;
-    tick.X_WQ = out.X_WQ;
-    tick.dr = out.dr;
-    tick.dtheta = out.dtheta;
-    tick.diagnostics = out.diagnostics;
-    for (std::size_t k = 0; k < out.rows.size(); ++k) {
-      if (out.row_info[k].kind != render::ProxyRowKind::kNormal) continue;
-      const auto point = static_cast<std::size_t>(out.row_info[k].point);
-      tick.constrained_p_PV.push_back(tick_ir.points[point].p_PV);
-    }
-    samples.push_back(std::move(tick));
-  }
-
-  std::unique_ptr<device::Device> inner_;
-};
-
-// Keeps the pointer pose and time of every tick and forwards to the CSV recorder, if any.
-class PoseTap final : public engine::Recorder {
- public:
-  explicit PoseTap(report::CsvRecorder* csv) : csv_(csv) {}
-
-  void OnTick(const engine::TickRecord& tick) override {
-    if (csv_ != nullptr) csv_->OnTick(tick);
-    ticks.push_back(tick);
-  }
-
-  void OnStep(const engine::StepRecord& step, const world::World& world) override {
-    if (csv_ != nullptr) csv_->OnStep(step, world);
-  }
-
-  std::vector<engine::TickRecord> ticks;
-
- private:
-  report::CsvRecorder* csv_;
-};
-
-}  // namespace
-
-ProxyRun RunProxySession(const session::Session& session, const std::filesystem::path& dir,
-                         const std::string& title, bool quiet) {
-  if (session.engine.method != "proxy-6dof") {
-    throw InvalidArgument(
-        fmt::format("{}: method = \"{}\"; expected \"proxy-6dof\" for a chapter-3 experiment",
-                    session.file.string(), session.engine.method));
-  }
-  engine::EngineSettings settings = session.engine;
-  settings.mode = engine::Mode::kLockstep;
-  auto sampler = std::make_unique<SamplingDevice>(session::MakeDevice(session));
-  SamplingDevice* device = sampler.get();
-  engine::Engine engine(session::LoadWorld(session), std::move(sampler),
-                        session.device.calibration, settings);
-  device->method = &engine.haptic_method();
-  device->samples.reserve(static_cast<std::size_t>(settings.duration / settings.haptic_dt) + 2);
-  std::optional<report::CsvRecorder> csv;
-  if (!dir.empty()) csv.emplace(dir);
-  PoseTap tap(csv ? &*csv : nullptr);
-  ProxyRun run;
-  run.stats = engine.Run(&tap);
-  // HapticSide::Stop sends one more (zero) command after the last tick: samples ⊇ ticks.
-  run.ticks = std::move(device->samples);
-  run.ticks.resize(std::min(run.ticks.size(), tap.ticks.size()));
-  for (std::size_t i = 0; i < run.ticks.size(); ++i) {
-    run.ticks[i].t = tap.ticks[i].t;
-    run.ticks[i].X_WP = tap.ticks[i].X_WP;
-  }
-  if (csv) {
-    csv->Close();
-    report::WriteSummary(dir, run.stats, session.file.string(), session.scene.string());
-    std::string why;
-    if (!report::PlotReport(dir, title, &why) && !quiet) {
-      std::cerr << "mrh: warning: no report plot in " << dir.string() << ": " << why << "\n";
-    }
-  }
-  return run;
-}
-
 namespace {
 
 // The T3.1 motion (scenes/t3_1.xml): half side h, edge and face depths (3 N and 3.5 N at
@@ -193,112 +85,180 @@ Row Analyse(const ProxyTick& tick, double k_t, double k_r, double R_w) {
   return r;
 }
 
-// `budget`: the same motion rendered with the default 50 PGS sweeps (comparison columns).
-// `sum`: the same motion rendered by penalty-sum (B5), per tick.
+constexpr const char* kT31Plot =
+    "# Thesis figs. 3.10-3.11 (their y up = our z, their z = our x). gnuplot t3_1.gp\n"
+    "set terminal pngcairo size 1000,1100 enhanced font ',10'\n"
+    "set output 't3_1.png'\nset datafile separator ','\nset grid\nset key top left\n"
+    "set xlabel 't (s)'\nset lmargin 12\n"
+    "set multiplot layout 4,1 title 'T3.1: 0.2 m cube, edge -> roll -> face "
+    "(k_t = k_r = 9000, R_w = 3.33 m^2, {/Symbol m} = 0)'\n"
+    "set ylabel 'height z (m)'\nplot 't3_1.csv' using 1:2 with lines lw 2 title "
+    "'centre height (thesis y)'\n"
+    "set ylabel 'angle (deg)'\nplot 't3_1.csv' using 1:3 with lines lw 2 title "
+    "'{/Symbol q}_x (thesis {/Symbol q}_z)'\n"
+    "set ylabel 'force f_z (N)'\nplot 't3_1.csv' using 1:4 with lines lw 2 title "
+    "'rendered', '' using 1:6 with points pt 7 ps 0.2 title 'analytic', '' using 1:12 "
+    "with lines dt 2 title '50 PGS sweeps', '' using 1:14 with lines lw 2 title "
+    "'penalty-sum (B5)'\n"
+    "set ylabel 'torque {/Symbol t}_x (N m)'\nplot 't3_1.csv' using 1:5 with lines lw 2 "
+    "title 'rendered', '' using 1:7 with points pt 7 ps 0.2 title 'analytic', '' using "
+    "1:13 with lines dt 2 title '50 PGS sweeps', '' using 1:15 with lines title "
+    "'penalty-sum (B5)'\n"
+    "unset multiplot\n";
+
+// Writes t3_1.csv and t3_1.png. `budget`: the same motion rendered with the default 50 PGS
+// sweeps (comparison columns). `sum`: the same motion rendered by penalty-sum (B5), per tick.
 void WriteT31Files(const std::filesystem::path& out, const std::vector<Row>& rows,
                    const std::vector<Row>& budget, const std::vector<engine::TickRecord>& sum,
                    bool quiet) {
-  std::string csv =
-      "t,height_m,angle_deg,f_z_N,tau_x_Nm,f_analytic_N,tau_analytic_Nm,"
-      "contacts,vertices_below,pgs_sweeps,converged,f_z_50_sweeps_N,"
-      "tau_x_50_sweeps_Nm,f_z_penalty_sum_N,tau_x_penalty_sum_Nm,contacts_penalty_sum\n";
+  Table csv({"t", "height_m", "angle_deg", "f_z_N", "tau_x_Nm", "f_analytic_N", "tau_analytic_Nm",
+             "contacts", "vertices_below", "pgs_sweeps", "converged", "f_z_50_sweeps_N",
+             "tau_x_50_sweeps_Nm", "f_z_penalty_sum_N", "tau_x_penalty_sum_Nm",
+             "contacts_penalty_sum"});
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const Row& r = rows[i];
     const Row b = i < budget.size() ? budget[i] : Row{};
     const engine::TickRecord p = i < sum.size() ? sum[i] : engine::TickRecord{};
-    csv += fmt::format("{:.3f},{:.9f},{:.5f},{:.7f},{:.7f},{},{},{},{},{},{},{:.7f},{:.7f},"
-                       "{:.7f},{:.7f},{}\n", r.t,
-                       r.height, r.angle_deg, r.f, r.tau,
-                       r.analytic ? fmt::format("{:.7f}", r.f_an) : "",
-                       r.analytic ? fmt::format("{:.7f}", r.tau_an) : "", r.contacts, r.below,
-                       r.sweeps, r.converged ? 1 : 0, b.f, b.tau, p.rendered_W.f.z(),
-                       p.rendered_W.tau.x(), p.contacts);
+    csv.AddFormatted(
+        "{:.3f},{:.9f},{:.5f},{:.7f},{:.7f},{},{},{},{},{},{},{:.7f},{:.7f},"
+        "{:.7f},{:.7f},{}",
+        r.t, r.height, r.angle_deg, r.f, r.tau, r.analytic ? fmt::format("{:.7f}", r.f_an) : "",
+        r.analytic ? fmt::format("{:.7f}", r.tau_an) : "", r.contacts, r.below, r.sweeps,
+        r.converged ? 1 : 0, b.f, b.tau, p.rendered_W.f.z(), p.rendered_W.tau.x(), p.contacts);
   }
-  WriteText(out / "t3_1.csv", csv);
-  WriteText(out / "t3_1.gp",
-            "# Thesis figs. 3.10-3.11 (their y up = our z, their z = our x). gnuplot t3_1.gp\n"
-            "set terminal pngcairo size 1000,1100 enhanced font ',10'\n"
-            "set output 't3_1.png'\nset datafile separator ','\nset grid\nset key top left\n"
-            "set xlabel 't (s)'\nset lmargin 12\n"
-            "set multiplot layout 4,1 title 'T3.1: 0.2 m cube, edge -> roll -> face "
-            "(k_t = k_r = 9000, R_w = 3.33 m^2, {/Symbol m} = 0)'\n"
-            "set ylabel 'height z (m)'\nplot 't3_1.csv' using 1:2 with lines lw 2 title "
-            "'centre height (thesis y)'\n"
-            "set ylabel 'angle (deg)'\nplot 't3_1.csv' using 1:3 with lines lw 2 title "
-            "'{/Symbol q}_x (thesis {/Symbol q}_z)'\n"
-            "set ylabel 'force f_z (N)'\nplot 't3_1.csv' using 1:4 with lines lw 2 title "
-            "'rendered', '' using 1:6 with points pt 7 ps 0.2 title 'analytic', '' using 1:12 "
-            "with lines dt 2 title '50 PGS sweeps', '' using 1:14 with lines lw 2 title "
-            "'penalty-sum (B5)'\n"
-            "set ylabel 'torque {/Symbol t}_x (N m)'\nplot 't3_1.csv' using 1:5 with lines lw 2 "
-            "title 'rendered', '' using 1:7 with points pt 7 ps 0.2 title 'analytic', '' using "
-            "1:13 with lines dt 2 title '50 PGS sweeps', '' using 1:15 with lines title "
-            "'penalty-sum (B5)'\n"
-            "unset multiplot\n");
-  std::string why;
-  if (!report::RunGnuplotScript(out, "t3_1.gp", "t3_1.png", &why) && !quiet) {
-    std::cerr << "mrh: warning: t3_1.png not drawn: " << why << "\n";
-  }
+  WriteText(out / "t3_1.csv", csv.Csv());
+  Plot(out, "t3_1", kT31Plot, quiet);
 }
 
 bool In(double t, const double (&range)[2]) {
   return t >= range[0] && t < range[1];
 }
 
-// SPEC T3.1 acceptance against the analytic proxy. Tolerances: PGS stops when a sweep changes
-// no multiplier by more than tol; the error left is at most m·κ·tol in displacement, with
-// κ = R_w/h² the ratio of C's translation and rotation eigenvalues for an edge or a face.
-nlohmann::json CheckT31(const std::vector<Row>& rows, const engine::RenderingSettings& r,
-                        double R_w, nlohmann::json* numbers) {
-  const double kappa = R_w / (kHalf * kHalf);
-  const auto f_tol = [&](int m) {
-    return r.stiffness * m * kappa * r.solver_tolerance;
-  };
-  const auto tau_tol = [&](int m) {
-    return r.rot_stiffness * m * kappa * r.solver_tolerance * std::sqrt(2.0) * kHalf / R_w;
-  };
+// The proxy's tolerances: PGS stops when a sweep changes no multiplier by more than tol; the
+// error left is at most m·κ·tol in displacement, with κ = R_w/h² the ratio of C's translation
+// and rotation eigenvalues for an edge or a face (m rows).
+struct T31Tolerances {
+  const engine::RenderingSettings& r;
+  double R_w;
+
+  double Force(int m) const { return r.stiffness * m * Kappa() * r.solver_tolerance; }
+
+  double Torque(int m) const {
+    return r.rot_stiffness * m * Kappa() * r.solver_tolerance * std::sqrt(2.0) * kHalf / R_w;
+  }
+
+  double Kappa() const { return R_w / (kHalf * kHalf); }
+};
+
+// What the T3.1 checks read off the rows, phase by phase (edge hold, roll, face hold).
+struct T31Tally {
   bool onset = true, roll = true, sign = true, face = true;
   int onset_ticks = 0, roll_ticks = 0, face_ticks = 0;
   double roll_f_err = 0.0, roll_tau_err = 0.0, peak = 0.0, peak_angle = 90.0, face_tau = 0.0;
+};
+
+T31Tally TallyT31(const std::vector<Row>& rows, const T31Tolerances& tol) {
+  const engine::RenderingSettings& r = tol.r;
+  T31Tally s;
   for (const Row& row : rows) {
     if (In(row.t, kEdgeHold) && row.contacts == 2) {
-      ++onset_ticks;
-      onset = onset && std::abs(row.tau) <= tau_tol(2) &&
-              std::abs(row.f - r.stiffness * kEdgeDepth) <= f_tol(2);
+      ++s.onset_ticks;
+      s.onset = s.onset && std::abs(row.tau) <= tol.Torque(2) &&
+                std::abs(row.f - r.stiffness * kEdgeDepth) <= tol.Force(2);
     }
     if (In(row.t, kRoll) && row.analytic && row.below == 2 && row.contacts == 2) {
-      ++roll_ticks;
-      roll_f_err = std::max(roll_f_err, std::abs(row.f - row.f_an));
-      roll_tau_err = std::max(roll_tau_err, std::abs(row.tau - row.tau_an));
-      if (row.lever < -kMinLever) sign = sign && row.tau < 0.0;
+      ++s.roll_ticks;
+      s.roll_f_err = std::max(s.roll_f_err, std::abs(row.f - row.f_an));
+      s.roll_tau_err = std::max(s.roll_tau_err, std::abs(row.tau - row.tau_an));
+      if (row.lever < -kMinLever) s.sign = s.sign && row.tau < 0.0;
     }
-    if (row.t < kRoll[1] && std::abs(row.tau) > peak) {
-      peak = std::abs(row.tau);
-      peak_angle = row.angle_deg;
+    if (row.t < kRoll[1] && std::abs(row.tau) > s.peak) {
+      s.peak = std::abs(row.tau);
+      s.peak_angle = row.angle_deg;
     }
     if (row.t >= kFaceHold) {
-      ++face_ticks;
-      face_tau = std::max(face_tau, std::abs(row.tau));
-      face = face && row.contacts == 4 && std::abs(row.f - r.stiffness * kFaceDepth) <= f_tol(4);
+      ++s.face_ticks;
+      s.face_tau = std::max(s.face_tau, std::abs(row.tau));
+      s.face =
+          s.face && row.contacts == 4 && std::abs(row.f - r.stiffness * kFaceDepth) <= tol.Force(4);
     }
   }
-  roll = roll_ticks > 0 && roll_f_err <= f_tol(2) && roll_tau_err <= tau_tol(2);
+  s.roll = s.roll_ticks > 0 && s.roll_f_err <= tol.Force(2) && s.roll_tau_err <= tol.Torque(2);
+  return s;
+}
+
+// SPEC T3.1 acceptance against the analytic proxy; writes the measured numbers into `numbers`.
+Checks CheckT31(const std::vector<Row>& rows, const engine::RenderingSettings& r, double R_w,
+                nlohmann::json* numbers) {
+  const T31Tally s = TallyT31(rows, T31Tolerances{r, R_w});
   const double peak_an = r.rot_stiffness * kEdgeDepth * kHalf / (R_w + kHalf * kHalf);
-  (*numbers)["edge_onset_ticks"] = onset_ticks;
-  (*numbers)["roll_ticks_compared"] = roll_ticks;
-  (*numbers)["roll_max_force_error_N"] = roll_f_err;
-  (*numbers)["roll_max_torque_error_Nm"] = roll_tau_err;
-  (*numbers)["torque_peak_Nm"] = peak;
-  (*numbers)["torque_peak_angle_deg"] = peak_angle;
+  (*numbers)["edge_onset_ticks"] = s.onset_ticks;
+  (*numbers)["roll_ticks_compared"] = s.roll_ticks;
+  (*numbers)["roll_max_force_error_N"] = s.roll_f_err;
+  (*numbers)["roll_max_torque_error_Nm"] = s.roll_tau_err;
+  (*numbers)["torque_peak_Nm"] = s.peak;
+  (*numbers)["torque_peak_angle_deg"] = s.peak_angle;
   (*numbers)["torque_peak_analytic_Nm"] = peak_an;
-  (*numbers)["face_max_abs_torque_Nm"] = face_tau;
-  return {{"edge_onset_torque_zero_force_kt_depth", onset && onset_ticks > 0},
-          {"roll_force_torque_match_analytic", roll},
-          {"roll_torque_negative_with_lever", sign && roll_ticks > 0},
-          {"torque_peak_just_before_face",
-           peak_angle < kPeakAngleDeg && std::abs(peak - peak_an) <= kPeakTolerance * peak_an},
-          {"face_force_kt_depth_four_contacts", face && face_ticks > 0},
-          {"face_torque_drops", face_tau <= kFaceTorqueFraction * peak}};
+  (*numbers)["face_max_abs_torque_Nm"] = s.face_tau;
+  Checks checks;
+  checks.Add("edge_onset_torque_zero_force_kt_depth", s.onset && s.onset_ticks > 0);
+  checks.Add("roll_force_torque_match_analytic", s.roll);
+  checks.Add("roll_torque_negative_with_lever", s.sign && s.roll_ticks > 0);
+  checks.Add("torque_peak_just_before_face",
+             s.peak_angle < kPeakAngleDeg && std::abs(s.peak - peak_an) <= kPeakTolerance * peak_an,
+             s.peak, peak_an);
+  checks.Add("face_force_kt_depth_four_contacts", s.face && s.face_ticks > 0);
+  checks.Add("face_torque_drops", s.face_tau <= kFaceTorqueFraction * s.peak, s.face_tau,
+             kFaceTorqueFraction * s.peak);
+  return checks;
+}
+
+// The session's isotropic rotation weight R_w (m²). @throws mrh::InvalidArgument naming the
+// file if it is not isotropic (the analytic checks assume it).
+double IsotropicRotationWeight(const engine::RenderingSettings& r,
+                               const std::filesystem::path& file) {
+  const double R_w = r.rotation_weight ? r.rotation_weight->x() : 0.0;
+  if (!r.rotation_weight || !(*r.rotation_weight - Vec3::Constant(R_w)).isZero(0.0)) {
+    throw InvalidArgument(
+        fmt::format("{}: rendering.rotation_weight must be isotropic for the "
+                    "T3.1 analytic checks; set [R, R, R]",
+                    file.string()));
+  }
+  return R_w;
+}
+
+std::vector<Row> AnalyseRun(const ProxyRun& run, const engine::RenderingSettings& r, double R_w) {
+  std::vector<Row> rows;
+  for (const ProxyTick& tick : run.ticks) {
+    rows.push_back(Analyse(tick, r.stiffness, r.rot_stiffness, R_w));
+  }
+  return rows;
+}
+
+// The same motion at the default budget of 50 PGS sweeps (the session converges PGS, SPEC
+// §3.5: "iterations set so that f converges"), shown for comparison, unchecked.
+std::vector<Row> RunBudget(const session::Session& session, double R_w, bool quiet,
+                           double* tau_error) {
+  session::Session budget_session = session;
+  budget_session.engine.rendering.max_iterations = engine::RenderingSettings{}.max_iterations;
+  const std::vector<Row> rows =
+      AnalyseRun(RunProxySession(budget_session, {}, "", quiet), session.engine.rendering, R_w);
+  *tau_error = 0.0;
+  for (const Row& row : rows) {
+    if (row.analytic) *tau_error = std::max(*tau_error, std::abs(row.tau - row.tau_an));
+  }
+  return rows;
+}
+
+void PrintT31(const Row& last, const nlohmann::json& numbers) {
+  std::cout << fmt::format(
+                   "final: height {:.6f} m, angle {:.3f} deg, f_z {:.4f} N, "
+                   "tau_x {:.2e} N m, {} contacts\n",
+                   last.height, last.angle_deg, last.f, last.tau, last.contacts)
+            << fmt::format("torque peak {:.4f} N m at {:.2f} deg (analytic {:.4f})\n",
+                           numbers["torque_peak_Nm"].get<double>(),
+                           numbers["torque_peak_angle_deg"].get<double>(),
+                           numbers["torque_peak_analytic_Nm"].get<double>());
 }
 
 }  // namespace
@@ -310,28 +270,10 @@ int RunT31(const std::filesystem::path& out, bool quiet) {
   if (!quiet) std::cout << "t3.1: running " << file.string() << "...\n";
   const ProxyRun run = RunProxySession(session, out / "run", "T3.1 proxy-6dof", quiet);
   const engine::RenderingSettings& r = session.engine.rendering;
-  const double R_w = r.rotation_weight ? r.rotation_weight->x() : 0.0;
-  if (!r.rotation_weight || !(*r.rotation_weight - Vec3::Constant(R_w)).isZero(0.0)) {
-    throw InvalidArgument(
-        fmt::format("{}: rendering.rotation_weight must be isotropic for the "
-                    "T3.1 analytic checks; set [R, R, R]",
-                    file.string()));
-  }
-  std::vector<Row> rows;
-  for (const ProxyTick& tick : run.ticks) {
-    rows.push_back(Analyse(tick, r.stiffness, r.rot_stiffness, R_w));
-  }
-  // The session converges PGS (SPEC §3.5: "iterations set so that f converges"); the default
-  // budget of 50 sweeps is shown for comparison, unchecked.
-  session::Session budget_session = session;
-  budget_session.engine.rendering.max_iterations = engine::RenderingSettings{}.max_iterations;
-  const ProxyRun budget_run = RunProxySession(budget_session, {}, "", quiet);
-  std::vector<Row> budget;
+  const double R_w = IsotropicRotationWeight(r, file);
+  const std::vector<Row> rows = AnalyseRun(run, r, R_w);
   double budget_tau_error = 0.0;
-  for (const ProxyTick& tick : budget_run.ticks) {
-    const Row& row = budget.emplace_back(Analyse(tick, r.stiffness, r.rot_stiffness, R_w));
-    if (row.analytic) budget_tau_error = std::max(budget_tau_error, std::abs(row.tau - row.tau_an));
-  }
+  const std::vector<Row> budget = RunBudget(session, R_w, quiet, &budget_tau_error);
   // B5 on the same motion (SPEC §1.4 B5): the sum's stiffness doubles as contacts go 2 → 4.
   const std::vector<engine::TickRecord> sum = RunPenaltySumTicks(session);
   WriteT31Files(out, rows, budget, sum, quiet);
@@ -341,29 +283,13 @@ int RunT31(const std::filesystem::path& out, bool quiet) {
   const Row& last = rows.back();
   summary["final"] = {{"t_s", last.t},   {"height_m", last.height}, {"angle_deg", last.angle_deg},
                       {"f_z_N", last.f}, {"tau_x_Nm", last.tau},    {"contacts", last.contacts}};
-  summary["checks"] = CheckT31(rows, r, R_w, &summary["numbers"]);
+  Checks checks = CheckT31(rows, r, R_w, &summary["numbers"]);
   summary["numbers"]["pgs_50_sweeps_max_torque_error_Nm"] = budget_tau_error;
   const PenaltySumWindows windows{r.stiffness, kEdgeDepth, kFaceDepth,
                                   {kEdgeHold[0], kEdgeHold[1]}, kFaceHold};
-  summary["checks"].update(CheckPenaltySumT31(sum, windows, &summary["numbers"]));
-  bool ok = !summary["checks"].empty();  // no checks is a failure, not a pass
-  for (const auto& [name, pass] : summary["checks"].items()) ok = ok && pass.get<bool>();
-  WriteText(out / "summary.json", summary.dump(2) + "\n");
-  if (!quiet) {
-    std::cout << fmt::format(
-                     "final: height {:.6f} m, angle {:.3f} deg, f_z {:.4f} N, "
-                     "tau_x {:.2e} N m, {} contacts\n",
-                     last.height, last.angle_deg, last.f, last.tau, last.contacts)
-              << fmt::format("torque peak {:.4f} N m at {:.2f} deg (analytic {:.4f})\n",
-                             summary["numbers"]["torque_peak_Nm"].get<double>(),
-                             summary["numbers"]["torque_peak_angle_deg"].get<double>(),
-                             summary["numbers"]["torque_peak_analytic_Nm"].get<double>());
-    for (const auto& [name, pass] : summary["checks"].items()) {
-      std::cout << "check " << name << ": " << (pass.get<bool>() ? "pass" : "FAIL") << "\n";
-    }
-    std::cout << "results: " << std::filesystem::absolute(out).string() << "\n";
-  }
-  return ok ? 0 : 1;
+  checks.AddJson(CheckPenaltySumT31(sum, windows, &summary["numbers"]));
+  if (!quiet) PrintT31(last, summary["numbers"]);
+  return FinishExperiment(out, std::move(summary), checks, quiet);
 }
 
 }  // namespace mrh::experiments::internal

@@ -10,12 +10,12 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "mrh/core/stats.h"
-#include "mrh/haptic/methods.h"
-#include "mrh/engine/method.h"
+#include "experiment_table.h"
 #include "experiment_util.h"
 #include "experiments_impl.h"
-#include "mrh/report/report.h"
+#include "mrh/core/stats.h"
+#include "mrh/engine/method.h"
+#include "mrh/haptic/methods.h"
 #include "mrh/world/world.h"
 
 namespace mrh::experiments::internal {
@@ -85,22 +85,95 @@ struct Result {
   bool finite = true;
 };
 
+// The proxy-6dof pair on the N-gon scene, as the engine builds it (the method keeps pointers
+// to the world and the settings: the rig is not movable).
+struct PrismRig {
+  PrismRig(int sides, bool friction)
+      : world(world::World::LoadString(PrismScene(sides), {},
+                                       fmt::format("scenes/t3_4.xml ({}-gon)", sides))),
+        settings(PrismSettings(friction)) {
+    world.set_timestep(kPhysicsDt);
+    const engine::MethodContext context{&world, &settings, world.pointer_body(), kRadius};
+    pair = engine::MakeMethod("proxy-6dof", context);
+  }
+
+  PrismRig(const PrismRig&) = delete;
+  PrismRig& operator=(const PrismRig&) = delete;
+
+  world::World world;
+  engine::EngineSettings settings;
+  engine::Method pair;
+};
+
+// The input of haptic tick `tick`, j-th of the n of its period.
+engine::TickInput PrismTickInput(std::int64_t tick, int j, int n) {
+  engine::TickInput in;
+  in.tick = tick;
+  in.t = static_cast<double>(tick) * kHapticDt;
+  in.j = j;
+  in.n = n;
+  in.dt = kHapticDt;
+  in.X_WP = PrismPose(in.t);
+  in.V_WP.v = Vec3(kSpeed, 0.0, 0.0);
+  return in;
+}
+
+// One tick timed as the haptic thread runs it (engine::HapticSide::Tick): the first tick of a
+// period adopts the new snapshot, the last one closes the period's report. Returns seconds.
+double TimedTick(haptic::MethodHaptic& method, const ir::PhysicsSnapshot& current,
+                 const engine::TickInput& in, ir::HapticReport* report, engine::TickOutput* out) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (in.j == 0) method.Adopt(current);
+  method.HapticTick(in, out);
+  if (in.j == in.n - 1) method.EndPeriod(report);
+  const auto t1 = std::chrono::steady_clock::now();
+  return std::chrono::duration<double>(t1 - t0).count();
+}
+
+// The counted ticks' times (s): all, the first of each period, the others; solver steps.
+struct PrismTimes {
+  std::vector<double> all, first, other;
+  double sweeps = 0.0;
+};
+
+// Counts one tick after the first period: force against the analytic prism, time, contacts.
+void CountTick(const engine::TickOutput& out, const render::ProxyDiagnostics& d, double seconds,
+               int j, const engine::RenderingSettings& rendering, Result* r, PrismTimes* times) {
+  // The base is δ deep and slides at constant speed: the proxy lifts it by δ and, with
+  // friction, trails on the cone boundary, f = k_t δ (−μ x̂ + ẑ) once slipping (after
+  // μδ/v = 5 ms of sticking, inside the uncounted first period).
+  const Vec3 expected = rendering.stiffness * kDepth * Vec3(-rendering.friction, 0.0, 1.0);
+  r->force_error = std::max(r->force_error, (out.w_W.f - expected).norm());
+  times->all.push_back(seconds);
+  (j == 0 ? times->first : times->other).push_back(seconds);
+  r->contacts_min = std::min(r->contacts_min, out.contacts);
+  r->contacts_max = std::max(r->contacts_max, out.contacts);
+  r->rows_max = std::max(r->rows_max, d.rows);
+  times->sweeps += d.iterations;
+  if (!d.converged) ++r->unconverged;
+}
+
+void Summarize(const PrismTimes& t, Result* r) {
+  r->ticks = static_cast<int>(t.all.size());
+  r->p50 = Percentile(t.all, 50.0);
+  r->p99 = Percentile(t.all, 99.0);
+  r->max = t.all.empty() ? 0.0 : *std::max_element(t.all.begin(), t.all.end());
+  r->switch_p50 = Percentile(t.first, 50.0);
+  r->switch_p99 = Percentile(t.first, 99.0);
+  r->steady_p50 = Percentile(t.other, 50.0);
+  r->steady_p99 = Percentile(t.other, 99.0);
+  r->mean_sweeps = t.all.empty() ? 0.0 : t.sweeps / static_cast<double>(t.all.size());
+}
 
 // The engine's lockstep schedule on the method alone: period k renders step k−1's snapshot.
-// Each tick is timed as the haptic thread runs it (Adopt on a period's first tick, HapticTick,
-// EndPeriod on its last); the physics step runs untimed on the same core between periods, so
-// a period's first tick also starts with the caches the physics step left. The first period
-// (contact onset, cold start) is not counted.
+// Each tick is timed as the haptic thread runs it; the physics step runs untimed on the same
+// core between periods, so a period's first tick also starts with the caches the physics step
+// left. The first period (contact onset, cold start) is not counted.
 Result RunPrism(int sides, bool friction, double duration) {
-  world::World world = world::World::LoadString(PrismScene(sides), {},
-                                                fmt::format("scenes/t3_4.xml ({}-gon)", sides));
-  world.set_timestep(kPhysicsDt);
-  const engine::EngineSettings settings = PrismSettings(friction);
-  const engine::MethodContext context{&world, &settings, world.pointer_body(), kRadius};
-  engine::Method pair = engine::MakeMethod("proxy-6dof", context);
-  physics::MethodPhysics& physics = *pair.physics;
-  haptic::MethodHaptic& method = *pair.haptic;
-  const int n = settings.ticks_per_step();
+  const PrismRig rig(sides, friction);
+  physics::MethodPhysics& physics = *rig.pair.physics;
+  haptic::MethodHaptic& method = *rig.pair.haptic;
+  const int n = rig.settings.ticks_per_step();
   auto current = std::make_unique<ir::PhysicsSnapshot>();
   auto next = std::make_unique<ir::PhysicsSnapshot>();
   ir::HapticReport report;
@@ -110,59 +183,23 @@ Result RunPrism(int sides, bool friction, double duration) {
   r.sides = sides;
   r.friction = friction;
   r.contacts_min = 1 << 30;
-  std::vector<double> times, switch_times, steady_times;
-  double sweeps = 0.0;
+  PrismTimes times;
   const auto periods = static_cast<int>(std::lround(duration / kPhysicsDt));
   std::int64_t tick = 0;
   for (int k = 0; k < periods; ++k) {
     physics.PhysicsStep(report, next.get());
     for (int j = 0; j < n; ++j, ++tick) {
-      engine::TickInput in;
-      in.tick = tick;
-      in.t = static_cast<double>(tick) * kHapticDt;
-      in.j = j;
-      in.n = n;
-      in.dt = kHapticDt;
-      in.X_WP = PrismPose(in.t);
-      in.V_WP.v = Vec3(kSpeed, 0.0, 0.0);
       engine::TickOutput out;
-      // Timed as the haptic thread's tick (engine::HapticSide::Tick): the first tick of a
-      // period adopts the new snapshot, the last one closes the period's report.
-      const auto t0 = std::chrono::steady_clock::now();
-      if (j == 0) method.Adopt(*current);
-      method.HapticTick(in, &out);
-      if (j == n - 1) method.EndPeriod(&report);
-      const auto t1 = std::chrono::steady_clock::now();
+      const double seconds = TimedTick(method, *current, PrismTickInput(tick, j, n), &report, &out);
       r.finite = r.finite && IsFinite(out.w_W);
       if (k == 0) continue;
-      // The base is δ deep and slides at constant speed: the proxy lifts it by δ and, with
-      // friction, trails on the cone boundary, f = k_t δ (−μ x̂ + ẑ) once slipping (after
-      // μδ/v = 5 ms of sticking, inside the uncounted first period).
-      const Vec3 expected =
-          settings.rendering.stiffness * kDepth * Vec3(-settings.rendering.friction, 0.0, 1.0);
-      r.force_error = std::max(r.force_error, (out.w_W.f - expected).norm());
-      const render::ProxyDiagnostics& d = haptic::ProxyLastOutput(method)->diagnostics;
-      const double seconds = std::chrono::duration<double>(t1 - t0).count();
-      times.push_back(seconds);
-      (j == 0 ? switch_times : steady_times).push_back(seconds);
-      r.contacts_min = std::min(r.contacts_min, out.contacts);
-      r.contacts_max = std::max(r.contacts_max, out.contacts);
-      r.rows_max = std::max(r.rows_max, d.rows);
-      sweeps += d.iterations;
-      if (!d.converged) ++r.unconverged;
+      CountTick(out, haptic::ProxyLastOutput(method)->diagnostics, seconds, j,
+                rig.settings.rendering, &r, &times);
     }
     report.X_WP = PrismPose(static_cast<double>(tick - 1) * kHapticDt);
     std::swap(current, next);
   }
-  r.ticks = static_cast<int>(times.size());
-  r.p50 = Percentile(times, 50.0);
-  r.p99 = Percentile(times, 99.0);
-  r.max = times.empty() ? 0.0 : *std::max_element(times.begin(), times.end());
-  r.switch_p50 = Percentile(switch_times, 50.0);
-  r.switch_p99 = Percentile(switch_times, 99.0);
-  r.steady_p50 = Percentile(steady_times, 50.0);
-  r.steady_p99 = Percentile(steady_times, 99.0);
-  r.mean_sweeps = times.empty() ? 0.0 : sweeps / static_cast<double>(times.size());
+  Summarize(times, &r);
   return r;
 }
 
@@ -183,75 +220,85 @@ std::pair<double, double> Slopes(const std::vector<Result>& results, bool fricti
   return {exponent, per_contact};
 }
 
+std::string T34Plot() {
+  return fmt::format(
+      "# Thesis fig. 3.17: haptic tick time vs contact points. gnuplot t3_4.gp\n"
+      "set terminal pngcairo size 1000,650 enhanced font ',11'\nset output 't3_4.png'\n"
+      "set datafile separator ','\nset grid\nset logscale xy\nset key top left\n"
+      "set yrange [0.1:3000]\n"
+      "set title 'T3.4: N-gon prism sliding on a floor (proxy-6dof haptic tick)'\n"
+      "set xlabel 'contact points N'\nset ylabel 'time per haptic tick ({{/Symbol m}}s)'\n"
+      "plot 't3_4.csv' using ($2==0?$1:1/0):7 with linespoints lw 2 title 'p50, no friction', "
+      "'' using ($2==0?$1:1/0):8 with linespoints dt 2 title 'p99, no friction', "
+      "'' using ($2==1?$1:1/0):7 with linespoints lw 2 title 'p50, friction (2N rows)', "
+      "'' using ($2==1?$1:1/0):8 with linespoints dt 2 title 'p99, friction', "
+      "'' using ($2==1?$1:1/0):13 with linespoints dt 3 title 'p99, friction, new-snapshot "
+      "ticks', "
+      "{} with lines lc rgb 'red' title 'goal p99 at N = 1000', "
+      "{} with lines lc rgb 'black' title '1 ms budget'\n",
+      kGoalP99 * 1e6, kBudget * 1e6);
+}
+
 void WriteT34Files(const std::filesystem::path& out, const std::vector<Result>& results,
                    bool quiet) {
-  std::string csv =
-      "sides,friction,contacts_min,contacts_max,rows_max,ticks,p50_us,p99_us,"
-      "max_us,mean_solver_steps,unconverged_ticks,switch_p50_us,switch_p99_us,steady_p50_us,"
-      "steady_p99_us\n";
+  Table csv({"sides", "friction", "contacts_min", "contacts_max", "rows_max", "ticks", "p50_us",
+             "p99_us", "max_us", "mean_solver_steps", "unconverged_ticks", "switch_p50_us",
+             "switch_p99_us", "steady_p50_us", "steady_p99_us"});
   for (const Result& r : results) {
-    csv += fmt::format(
-        "{},{},{},{},{},{},{:.3f},{:.3f},{:.3f},{:.2f},{},{:.3f},{:.3f},{:.3f},{:.3f}\n", r.sides,
-        r.friction ? 1 : 0, r.contacts_min, r.contacts_max, r.rows_max, r.ticks, r.p50 * 1e6,
-        r.p99 * 1e6, r.max * 1e6, r.mean_sweeps, r.unconverged, r.switch_p50 * 1e6,
-        r.switch_p99 * 1e6, r.steady_p50 * 1e6, r.steady_p99 * 1e6);
+    csv.AddFormatted("{},{},{},{},{},{},{:.3f},{:.3f},{:.3f},{:.2f},{},{:.3f},{:.3f},{:.3f},{:.3f}",
+                     r.sides, r.friction ? 1 : 0, r.contacts_min, r.contacts_max, r.rows_max,
+                     r.ticks, r.p50 * 1e6, r.p99 * 1e6, r.max * 1e6, r.mean_sweeps, r.unconverged,
+                     r.switch_p50 * 1e6, r.switch_p99 * 1e6, r.steady_p50 * 1e6,
+                     r.steady_p99 * 1e6);
   }
-  WriteText(out / "t3_4.csv", csv);
-  WriteText(
-      out / "t3_4.gp",
-      fmt::format(
-          "# Thesis fig. 3.17: haptic tick time vs contact points. gnuplot t3_4.gp\n"
-          "set terminal pngcairo size 1000,650 enhanced font ',11'\nset output 't3_4.png'\n"
-          "set datafile separator ','\nset grid\nset logscale xy\nset key top left\n"
-          "set yrange [0.1:3000]\n"
-          "set title 'T3.4: N-gon prism sliding on a floor (proxy-6dof haptic tick)'\n"
-          "set xlabel 'contact points N'\nset ylabel 'time per haptic tick ({{/Symbol m}}s)'\n"
-          "plot 't3_4.csv' using ($2==0?$1:1/0):7 with linespoints lw 2 title 'p50, no friction', "
-          "'' using ($2==0?$1:1/0):8 with linespoints dt 2 title 'p99, no friction', "
-          "'' using ($2==1?$1:1/0):7 with linespoints lw 2 title 'p50, friction (2N rows)', "
-          "'' using ($2==1?$1:1/0):8 with linespoints dt 2 title 'p99, friction', "
-          "'' using ($2==1?$1:1/0):13 with linespoints dt 3 title 'p99, friction, new-snapshot "
-          "ticks', "
-          "{} with lines lc rgb 'red' title 'goal p99 at N = 1000', "
-          "{} with lines lc rgb 'black' title '1 ms budget'\n",
-          kGoalP99 * 1e6, kBudget * 1e6));
-  std::string why;
-  if (!report::RunGnuplotScript(out, "t3_4.gp", "t3_4.png", &why) && !quiet) {
-    std::cerr << "mrh: warning: t3_4.png not drawn: " << why << "\n";
-  }
+  WriteText(out / "t3_4.csv", csv.Csv());
+  Plot(out, "t3_4", T34Plot(), quiet);
 }
 
-}  // namespace
-
-int RunT34(const std::filesystem::path& out, bool quiet) {
-  return RunT34(out, quiet, T34Options{});
+void PrintPrism(const Result& r) {
+  std::cout << fmt::format(
+      "t3.4: N = {:4}, {}: p50 {:6.1f} us, p99 {:6.1f} us (new-snapshot ticks p50 {:6.1f}, "
+      "p99 {:6.1f}; others p99 {:6.1f}), {} contacts, {} rows, {:.2f} steps\n",
+      r.sides, r.friction ? "friction   " : "no friction", r.p50 * 1e6, r.p99 * 1e6,
+      r.switch_p50 * 1e6, r.switch_p99 * 1e6, r.steady_p99 * 1e6, r.contacts_max, r.rows_max,
+      r.mean_sweeps);
 }
 
-int RunT34(const std::filesystem::path& out, bool quiet, const T34Options& options) {
-  std::filesystem::create_directories(out);
-  std::vector<Result> results;
+Checks CheckT34(const std::vector<Result>& results) {
   bool ok = true, converged = true, force = true;
-  for (const bool friction : {false, true}) {
-    for (const int sides : options.sides) {
-      const Result r = RunPrism(sides, friction, options.duration);
-      if (!quiet) {
-        std::cout << fmt::format(
-            "t3.4: N = {:4}, {}: p50 {:6.1f} us, p99 {:6.1f} us (new-snapshot ticks p50 {:6.1f}, "
-            "p99 {:6.1f}; others p99 {:6.1f}), {} contacts, {} rows, {:.2f} steps\n",
-            sides, friction ? "friction   " : "no friction", r.p50 * 1e6, r.p99 * 1e6,
-            r.switch_p50 * 1e6, r.switch_p99 * 1e6, r.steady_p99 * 1e6, r.contacts_max, r.rows_max,
-            r.mean_sweeps);
-      }
-      // Every tick sees all N base vertices; with friction every point also gets its row.
-      ok = ok && r.ticks > 0 && r.finite && r.contacts_min == sides && r.contacts_max == sides &&
-           r.rows_max == (friction ? 2 * sides : sides);
-      converged = converged && r.unconverged == 0;
-      force =
-          force && r.force_error <= kPointAccuracy * PrismSettings(friction).rendering.stiffness;
-      results.push_back(r);
-    }
+  for (const Result& r : results) {
+    // Every tick sees all N base vertices; with friction every point also gets its row.
+    ok = ok && r.ticks > 0 && r.finite && r.contacts_min == r.sides && r.contacts_max == r.sides &&
+         r.rows_max == (r.friction ? 2 * r.sides : r.sides);
+    converged = converged && r.unconverged == 0;
+    force =
+        force && r.force_error <= kPointAccuracy * PrismSettings(r.friction).rendering.stiffness;
   }
-  WriteT34Files(out, results, quiet);
+  Checks checks;
+  checks.Add("every_tick_has_N_contacts_and_rows", ok);
+  checks.Add("every_tick_converged", converged);
+  checks.Add("force_is_kt_depth_with_kinetic_friction", force);
+  return checks;
+}
+
+nlohmann::json RunJson(const Result& r) {
+  return {{"sides", r.sides},
+          {"friction", r.friction},
+          {"p50_us", r.p50 * 1e6},
+          {"p99_us", r.p99 * 1e6},
+          {"max_us", r.max * 1e6},
+          {"new_snapshot_ticks_p50_us", r.switch_p50 * 1e6},
+          {"new_snapshot_ticks_p99_us", r.switch_p99 * 1e6},
+          {"other_ticks_p50_us", r.steady_p50 * 1e6},
+          {"other_ticks_p99_us", r.steady_p99 * 1e6},
+          {"contacts", r.contacts_max},
+          {"rows", r.rows_max},
+          {"mean_solver_steps", r.mean_sweeps},
+          {"force_error_N", r.force_error},
+          {"unconverged_ticks", r.unconverged}};
+}
+
+nlohmann::json T34Summary(const std::vector<Result>& results) {
   nlohmann::json summary;
   summary["experiment"] = "t3.4";
   summary["machine"] = MachineTag();
@@ -267,42 +314,43 @@ int RunT34(const std::filesystem::path& out, bool quiet, const T34Options& optio
                              {"us_per_contact_linear_fit", per_contact}};
   }
   for (const Result& r : results) {
-    summary["runs"].push_back({{"sides", r.sides},
-                               {"friction", r.friction},
-                               {"p50_us", r.p50 * 1e6},
-                               {"p99_us", r.p99 * 1e6},
-                               {"max_us", r.max * 1e6},
-                               {"new_snapshot_ticks_p50_us", r.switch_p50 * 1e6},
-                               {"new_snapshot_ticks_p99_us", r.switch_p99 * 1e6},
-                               {"other_ticks_p50_us", r.steady_p50 * 1e6},
-                               {"other_ticks_p99_us", r.steady_p99 * 1e6},
-                               {"contacts", r.contacts_max},
-                               {"rows", r.rows_max},
-                               {"mean_solver_steps", r.mean_sweeps},
-                               {"force_error_N", r.force_error},
-                               {"unconverged_ticks", r.unconverged}});
+    summary["runs"].push_back(RunJson(r));
     if (r.friction && r.sides == 1000)
       summary["goal_p99_100us_at_1000_friction"] = r.p99 <= kGoalP99;
   }
   summary["solver"] = PrismSettings(false).rendering.proxy_solver;
-  summary["checks"] = {{"every_tick_has_N_contacts_and_rows", ok},
-                       {"every_tick_converged", converged},
-                       {"force_is_kt_depth_with_kinetic_friction", force}};
-  WriteText(out / "summary.json", summary.dump(2) + "\n");
-  if (!quiet) {
-    for (const bool friction : {false, true}) {
-      const nlohmann::json& s = summary["slope"][friction ? "friction" : "no_friction"];
-      std::cout << fmt::format("slope ({}): p50 ~ N^{:.2f}, {:.3f} us per contact\n",
-                               friction ? "friction" : "no friction",
-                               s["log_log_exponent_N_ge_50"].get<double>(),
-                               s["us_per_contact_linear_fit"].get<double>());
-    }
-    for (const auto& [name, pass] : summary["checks"].items()) {
-      std::cout << "check " << name << ": " << (pass.get<bool>() ? "pass" : "FAIL") << "\n";
-    }
-    std::cout << "results: " << std::filesystem::absolute(out).string() << "\n";
+  return summary;
+}
+
+void PrintSlopes(const nlohmann::json& summary) {
+  for (const bool friction : {false, true}) {
+    const nlohmann::json& s = summary["slope"][friction ? "friction" : "no_friction"];
+    std::cout << fmt::format("slope ({}): p50 ~ N^{:.2f}, {:.3f} us per contact\n",
+                             friction ? "friction" : "no friction",
+                             s["log_log_exponent_N_ge_50"].get<double>(),
+                             s["us_per_contact_linear_fit"].get<double>());
   }
-  return ok && converged && force ? 0 : 1;
+}
+
+}  // namespace
+
+int RunT34(const std::filesystem::path& out, bool quiet) {
+  return RunT34(out, quiet, T34Options{});
+}
+
+int RunT34(const std::filesystem::path& out, bool quiet, const T34Options& options) {
+  std::filesystem::create_directories(out);
+  std::vector<Result> results;
+  for (const bool friction : {false, true}) {
+    for (const int sides : options.sides) {
+      results.push_back(RunPrism(sides, friction, options.duration));
+      if (!quiet) PrintPrism(results.back());
+    }
+  }
+  WriteT34Files(out, results, quiet);
+  const nlohmann::json summary = T34Summary(results);
+  if (!quiet) PrintSlopes(summary);
+  return FinishExperiment(out, summary, CheckT34(results), quiet);
 }
 
 }  // namespace mrh::experiments::internal

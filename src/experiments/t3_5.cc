@@ -7,9 +7,9 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "experiment_table.h"
 #include "experiment_util.h"
 #include "experiments_impl.h"
-#include "mrh/report/report.h"
 #include "mrh/session/session.h"
 
 namespace mrh::experiments::internal {
@@ -133,51 +133,60 @@ SweepPoint Measure(double multiplier, const ProxyRun& run, const engine::Renderi
   return p;
 }
 
-// Writes t3_5.csv, t3_5.md and t3_5.png; returns the markdown table.
-std::string WriteT35Files(const std::filesystem::path& out, const std::vector<SweepPoint>& points,
-                          bool quiet) {
-  std::string csv =
-      "multiplier,R_w_m2,free_vertex_penetration_mm,at_t_s,"
-      "constrained_vertex_penetration_mm,roll_peak_torque_Nm,"
-      "roll_peak_torque_analytic_Nm,roll_mean_torque_Nm,max_torque_Nm,"
-      "transition_max_force_jump_N,transition_max_torque_jump_Nm,"
-      "mean_pgs_sweeps,unconverged_ticks\n";
-  std::string md =
-      "| multiplier | R_w (m²) | free-vertex penetration (mm) | peak roll torque "
-      "(N·m) | mean roll torque (N·m) | max Δτ/tick in transition (N·m) |\n"
-      "|---|---|---|---|---|---|\n";
+// t3_5.csv: one row per multiplier.
+Table CsvTable(const std::vector<SweepPoint>& points) {
+  Table csv({"multiplier", "R_w_m2", "free_vertex_penetration_mm", "at_t_s",
+             "constrained_vertex_penetration_mm", "roll_peak_torque_Nm",
+             "roll_peak_torque_analytic_Nm", "roll_mean_torque_Nm", "max_torque_Nm",
+             "transition_max_force_jump_N", "transition_max_torque_jump_Nm", "mean_pgs_sweeps",
+             "unconverged_ticks"});
   for (const SweepPoint& p : points) {
-    csv += fmt::format(
+    csv.AddFormatted(
         "{},{:.6g},{:.6f},{:.3f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},"
-        "{:.1f},{}\n",
+        "{:.1f},{}",
         p.multiplier, p.R_w, p.free_penetration * 1e3, p.free_penetration_time,
         p.bound_penetration * 1e3, p.peak_torque, p.peak_torque_analytic, p.mean_torque,
         p.max_torque, p.force_jump, p.torque_jump, p.mean_sweeps, p.unconverged);
-    md += fmt::format("| {} | {:.4g} | {:.4f} | {:.4f} | {:.4f} | {:.4f} |\n", p.multiplier, p.R_w,
-                      p.free_penetration * 1e3, p.peak_torque, p.mean_torque, p.torque_jump);
   }
-  WriteText(out / "t3_5.csv", csv);
+  return csv;
+}
+
+// t3_5.md: the printed subset of t3_5.csv.
+Table MarkdownTable(const std::vector<SweepPoint>& points) {
+  Table md({"multiplier", "R_w (m²)", "free-vertex penetration (mm)", "peak roll torque (N·m)",
+            "mean roll torque (N·m)", "max Δτ/tick in transition (N·m)"});
+  for (const SweepPoint& p : points) {
+    md.Add({fmt::format("{}", p.multiplier), fmt::format("{:.4g}", p.R_w),
+            fmt::format("{:.4f}", p.free_penetration * 1e3), fmt::format("{:.4f}", p.peak_torque),
+            fmt::format("{:.4f}", p.mean_torque), fmt::format("{:.4f}", p.torque_jump)});
+  }
+  return md;
+}
+
+constexpr const char* kPlot =
+    "# Thesis fig. 3.18: rotation weight too small -> unconstrained vertices penetrate,\n"
+    "# too large -> weak torque. Re-run with: gnuplot t3_5.gp\n"
+    "set terminal pngcairo size 1000,800 enhanced font ',11'\nset output 't3_5.png'\n"
+    "set datafile separator ','\nset grid\nset logscale x\nset key top right\n"
+    "set xlabel 'multiplier on the unit-mass inertia (R_w = m a^2/6)'\n"
+    "set multiplot layout 2,1 title 'T3.5: rotation-weight sweep on the T3.1 motion "
+    "(k_t = k_r = 9000)'\n"
+    "set ylabel 'penetration at the proxy (mm)'\n"
+    "plot 't3_5.csv' using 1:3 with linespoints lw 2 title 'unconstrained vertices', "
+    "'' using 1:5 with linespoints dt 2 title 'constrained vertices'\n"
+    "set logscale y\nset ylabel 'torque (N m)'\n"
+    "plot 't3_5.csv' using 1:6 with linespoints lw 2 title 'peak while rolling', "
+    "'' using 1:7 with lines dt 2 title 'analytic single-edge peak', "
+    "'' using 1:11 with linespoints title 'max |{/Symbol D}{/Symbol t}| per tick, edge "
+    "-> face'\nunset multiplot\n";
+
+// Writes t3_5.csv, t3_5.md and t3_5.png; returns the markdown table.
+std::string WriteT35Files(const std::filesystem::path& out, const std::vector<SweepPoint>& points,
+                          bool quiet) {
+  WriteText(out / "t3_5.csv", CsvTable(points).Csv());
+  const std::string md = MarkdownTable(points).Markdown();
   WriteText(out / "t3_5.md", md);
-  WriteText(out / "t3_5.gp",
-            "# Thesis fig. 3.18: rotation weight too small -> unconstrained vertices penetrate,\n"
-            "# too large -> weak torque. Re-run with: gnuplot t3_5.gp\n"
-            "set terminal pngcairo size 1000,800 enhanced font ',11'\nset output 't3_5.png'\n"
-            "set datafile separator ','\nset grid\nset logscale x\nset key top right\n"
-            "set xlabel 'multiplier on the unit-mass inertia (R_w = m a^2/6)'\n"
-            "set multiplot layout 2,1 title 'T3.5: rotation-weight sweep on the T3.1 motion "
-            "(k_t = k_r = 9000)'\n"
-            "set ylabel 'penetration at the proxy (mm)'\n"
-            "plot 't3_5.csv' using 1:3 with linespoints lw 2 title 'unconstrained vertices', "
-            "'' using 1:5 with linespoints dt 2 title 'constrained vertices'\n"
-            "set logscale y\nset ylabel 'torque (N m)'\n"
-            "plot 't3_5.csv' using 1:6 with linespoints lw 2 title 'peak while rolling', "
-            "'' using 1:7 with lines dt 2 title 'analytic single-edge peak', "
-            "'' using 1:11 with linespoints title 'max |{/Symbol D}{/Symbol t}| per tick, edge "
-            "-> face'\nunset multiplot\n");
-  std::string why;
-  if (!report::RunGnuplotScript(out, "t3_5.gp", "t3_5.png", &why) && !quiet) {
-    std::cerr << "mrh: warning: t3_5.png not drawn: " << why << "\n";
-  }
+  Plot(out, "t3_5", kPlot, quiet);
   return md;
 }
 
@@ -186,7 +195,7 @@ std::string WriteT35Files(const std::filesystem::path& out, const std::vector<Sw
 // The analytic comparison uses the ticks where PGS converged with one edge loaded; its
 // tolerance is T3.1's: a displacement error of at most m·κ·tol (κ = R_w/h², m = 2 rows) turns
 // into k_r·m·κ·tol·√2·h/R_w = k_r·2·tol·√2/h of torque.
-nlohmann::json CheckT35(const std::vector<SweepPoint>& points, const engine::RenderingSettings& r) {
+Checks CheckT35(const std::vector<SweepPoint>& points, const engine::RenderingSettings& r) {
   const double tau_tol = r.rot_stiffness * 2.0 * r.solver_tolerance * std::sqrt(2.0) / kHalf;
   bool torque_follows = true, torque_falls = true;
   for (std::size_t i = 0; i < points.size(); ++i) {
@@ -196,9 +205,11 @@ nlohmann::json CheckT35(const std::vector<SweepPoint>& points, const engine::Ren
   }
   const bool penetration =
       points.size() >= 2 && points.front().free_penetration > points.back().free_penetration;
-  return {{"one_edge_torque_matches_analytic", torque_follows},
-          {"torque_falls_as_rotation_weight_grows", torque_falls},
-          {"small_weight_penetrates_more_than_large", penetration}};
+  Checks checks;
+  checks.Add("one_edge_torque_matches_analytic", torque_follows);
+  checks.Add("torque_falls_as_rotation_weight_grows", torque_falls);
+  checks.Add("small_weight_penetrates_more_than_large", penetration);
+  return checks;
 }
 
 }  // namespace
@@ -236,18 +247,8 @@ int RunT35(const std::filesystem::path& out, bool quiet, const T35Options& optio
                                  {"transition_max_torque_jump_Nm", p.torque_jump},
                                  {"unconverged_ticks", p.unconverged}});
   }
-  summary["checks"] = CheckT35(points, session.engine.rendering);
-  bool ok = !summary["checks"].empty();  // no checks is a failure, not a pass
-  for (const auto& [name, pass] : summary["checks"].items()) ok = ok && pass.get<bool>();
-  WriteText(out / "summary.json", summary.dump(2) + "\n");
-  if (!quiet) {
-    std::cout << table;
-    for (const auto& [name, pass] : summary["checks"].items()) {
-      std::cout << "check " << name << ": " << (pass.get<bool>() ? "pass" : "FAIL") << "\n";
-    }
-    std::cout << "results: " << std::filesystem::absolute(out).string() << "\n";
-  }
-  return ok ? 0 : 1;
+  if (!quiet) std::cout << table;
+  return FinishExperiment(out, summary, CheckT35(points, session.engine.rendering), quiet);
 }
 
 }  // namespace mrh::experiments::internal

@@ -10,6 +10,7 @@
 #include <tuple>
 #include <vector>
 
+#include "experiment_table.h"
 #include "experiment_util.h"
 #include "experiments_impl.h"
 #include "mrh/core/error.h"
@@ -174,19 +175,21 @@ ir::Mat63 MeasureAccelerance() {
   throw RuntimeError("t4.1: local-dynamics sent no accelerance for the cube in its first step");
 }
 
-void WriteForceTime(const std::filesystem::path& out, const std::vector<MethodResult>& results) {
-  std::string csv = "t";
-  for (const MethodResult& r : results) csv += "," + r.method;
-  csv += "\n";
+// force_time.csv (the force on the cube per tick, a column per method) and its plot.
+void WriteForceTime(const std::filesystem::path& out, const std::vector<MethodResult>& results,
+                    bool quiet) {
+  std::vector<std::string> columns = {"t"};
+  for (const MethodResult& r : results) columns.push_back(r.method);
+  Table csv(columns);
   const std::size_t rows = results.front().t.size();
   for (std::size_t i = 0; i < rows; ++i) {
-    csv += fmt::format("{}", results.front().t[i]);
+    std::vector<std::string> row = {fmt::format("{}", results.front().t[i])};
     for (const MethodResult& r : results) {
-      csv += fmt::format(",{}", i < r.f_cube.size() ? -r.f_cube[i] : 0.0);
+      row.push_back(fmt::format("{}", i < r.f_cube.size() ? -r.f_cube[i] : 0.0));
     }
-    csv += "\n";
+    csv.Add(std::move(row));
   }
-  WriteText(out / "force_time.csv", csv);
+  WriteText(out / "force_time.csv", csv.Csv());
   std::string plot = fmt::format(
       "# Thesis fig. 4.13: force on the cube vs time. Re-run with: gnuplot force_time.gp\n"
       "set terminal pngcairo size 1000,600 enhanced font ',11'\n"
@@ -198,25 +201,24 @@ void WriteForceTime(const std::filesystem::path& out, const std::vector<MethodRe
     plot += fmt::format("{}'force_time.csv' using 1:{} with lines lw 2 title '{}'",
                         i == 0 ? "" : ", ", i + 2, results[i].method);
   }
-  WriteText(out / "force_time.gp", plot + "\n");
+  Plot(out, "force_time", plot + "\n", quiet);
 }
 
 // Writes one sweep panel's data: x, then the error of each method (columns in `methods` order).
 void WritePanel(const std::filesystem::path& file, const std::vector<std::string>& methods,
                 const std::vector<std::vector<double>>& errors, const double* xs, std::size_t n) {
-  std::string csv = "x";
-  for (const std::string& m : methods) csv += "," + m;
-  csv += "\n";
+  std::vector<std::string> columns = {"x"};
+  columns.insert(columns.end(), methods.begin(), methods.end());
+  Table csv(columns);
   for (std::size_t i = 0; i < n; ++i) {
-    csv += fmt::format("{}", xs[i]);
-    for (const std::vector<double>& e : errors) csv += fmt::format(",{:.6f}", e[i]);
-    csv += "\n";
+    std::vector<std::string> row = {fmt::format("{}", xs[i])};
+    for (const std::vector<double>& e : errors) row.push_back(fmt::format("{:.6f}", e[i]));
+    csv.Add(std::move(row));
   }
-  WriteText(file, csv);
+  WriteText(file, csv.Csv());
 }
 
-void PlotSweep(const std::filesystem::path& out, const std::vector<std::string>& methods,
-               bool quiet) {
+std::string SweepScript(const std::vector<std::string>& methods) {
   std::string plot =
       "# Impulse error (J - 2mv)/2mv per method. Re-run with: gnuplot sweep.gp\n"
       "set terminal pngcairo size 1200,500 enhanced font ',11'\nset output 'sweep.png'\n"
@@ -232,11 +234,7 @@ void PlotSweep(const std::filesystem::path& out, const std::vector<std::string>&
     }
     plot += "\n";
   }
-  WriteText(out / "sweep.gp", plot + "unset multiplot\n");
-  std::string why;
-  if (!report::RunGnuplotScript(out, "sweep.gp", "sweep.png", &why) && !quiet) {
-    std::cerr << "mrh: warning: sweep.png not drawn: " << why << "\n";
-  }
+  return plot + "unset multiplot\n";
 }
 
 // The impulse error (J − 2mv)/2mv of every method over the mass × speed grid (sweep.csv), and
@@ -244,7 +242,8 @@ void PlotSweep(const std::filesystem::path& out, const std::vector<std::string>&
 nlohmann::json RunSweep(const std::filesystem::path& out, const std::vector<std::string>& methods,
                         bool quiet) {
   constexpr std::size_t kNm = std::size(kSweepMasses), kNv = std::size(kSweepSpeeds);
-  std::string csv = "method,mass_kg,speed_mps,elastic_2mv_Ns,impulse_Ns,error,momentum_Ns,ended\n";
+  Table csv({"method", "mass_kg", "speed_mps", "elastic_2mv_Ns", "impulse_Ns", "error",
+             "momentum_Ns", "ended"});
   std::vector<std::vector<double>> vs_mass, vs_speed;
   nlohmann::json worst;
   for (const std::string& method : methods) {
@@ -260,16 +259,16 @@ nlohmann::json RunSweep(const std::filesystem::path& out, const std::vector<std:
         max_error = std::max(max_error, std::abs(error));
         if (c.speed == kSpeed) vs_mass.back()[i] = error;
         if (c.mass == kMass) vs_speed.back()[j] = error;
-        csv += fmt::format("{},{},{},{:.6f},{:.6f},{:.6f},{:.6f},{}\n", method, c.mass, c.speed,
-                           c.elastic(), r.impulse, error, r.momentum, r.ended ? 1 : 0);
+        csv.AddFormatted("{},{},{},{:.6f},{:.6f},{:.6f},{:.6f},{}", method, c.mass, c.speed,
+                         c.elastic(), r.impulse, error, r.momentum, r.ended ? 1 : 0);
       }
     }
     worst[method] = max_error;
   }
-  WriteText(out / "sweep.csv", csv);
+  WriteText(out / "sweep.csv", csv.Csv());
   WritePanel(out / "sweep_vs_mass.csv", methods, vs_mass, kSweepMasses, kNm);
   WritePanel(out / "sweep_vs_speed.csv", methods, vs_speed, kSweepSpeeds, kNv);
-  PlotSweep(out, methods, quiet);
+  Plot(out, "sweep", SweepScript(methods), quiet);
   return worst;
 }
 
@@ -285,68 +284,67 @@ void WriteT41Table(const std::filesystem::path& out, const std::vector<MethodRes
                    nlohmann::json* summary) {
   const MethodResult* single = Find(results, "single-rate");
   const double reference = single != nullptr ? single->impulse : Case{}.elastic();
-  std::string table =
-      "method,impulse_Ns,momentum_Ns,elastic_2mv_Ns,ratio_to_single_rate,"
-      "thesis_Ns,contact_s,peak_force_N\n";
-  std::string md =
-      "| method | impulse (N·s) | ratio to single-rate | thesis (N·s) | contact (s) | "
-      "peak force (N) |\n|---|---|---|---|---|---|\n";
+  Table table({"method", "impulse_Ns", "momentum_Ns", "elastic_2mv_Ns", "ratio_to_single_rate",
+               "thesis_Ns", "contact_s", "peak_force_N"});
+  Table md({"method", "impulse (N·s)", "ratio to single-rate", "thesis (N·s)", "contact (s)",
+            "peak force (N)"});
   for (const MethodResult& r : results) {
-    table += fmt::format("{},{:.6f},{:.6f},{:.6f},{:.4f},{},{:.3f},{:.4f}\n", r.method, r.impulse,
-                         r.momentum, Case{}.elastic(), r.impulse / reference, r.thesis,
-                         r.contact_time, r.peak_force);
-    md += fmt::format("| {} | {:.4f} | {:.3f} | {:.1f} | {:.3f} | {:.3f} |\n", r.method, r.impulse,
-                      r.impulse / reference, r.thesis, r.contact_time, r.peak_force);
+    table.AddFormatted("{},{:.6f},{:.6f},{:.6f},{:.4f},{},{:.3f},{:.4f}", r.method, r.impulse,
+                       r.momentum, Case{}.elastic(), r.impulse / reference, r.thesis,
+                       r.contact_time, r.peak_force);
+    md.Add({r.method, fmt::format("{:.4f}", r.impulse),
+            fmt::format("{:.3f}", r.impulse / reference), fmt::format("{:.1f}", r.thesis),
+            fmt::format("{:.3f}", r.contact_time), fmt::format("{:.3f}", r.peak_force)});
     (*summary)["methods"][r.method] = {{"impulse_Ns", r.impulse},
                                        {"momentum_Ns", r.momentum},
                                        {"contact_s", r.contact_time},
                                        {"peak_force_N", r.peak_force},
                                        {"thesis_Ns", r.thesis}};
   }
-  WriteText(out / "impulse_table.csv", table);
-  WriteText(out / "impulse_table.md", md);
-  (*summary)["impulse_table_md"] = md;
+  WriteText(out / "impulse_table.csv", table.Csv());
+  WriteText(out / "impulse_table.md", md.Markdown());
+  (*summary)["impulse_table_md"] = md.Markdown();
+}
+
+// The free cube's accelerance as local-dynamics measures it against I/m (summary numbers).
+bool AccelerancePasses(nlohmann::json* summary) {
+  const ir::Mat63 A = MeasureAccelerance();
+  const Mat3 expected = Mat3::Identity() / kMass;
+  const double error = (A.topRows<3>() - expected).cwiseAbs().maxCoeff() * kMass;
+  (*summary)["accelerance_linear_diag_per_kg"] = {A(0, 0), A(1, 1), A(2, 2)};
+  (*summary)["accelerance_angular_max"] = A.bottomRows<3>().cwiseAbs().maxCoeff();
+  return error <= kAccelTolerance;
 }
 
 // The checks of SPEC T4.1 on whichever methods ran; writes summary.json, returns the exit code.
 int FinishT41(const std::filesystem::path& out, const std::vector<MethodResult>& results,
               bool quiet, nlohmann::json* summary) {
-  nlohmann::json& checks = (*summary)["checks"];
+  Checks checks;
   const MethodResult* single = Find(results, "single-rate");
   const MethodResult* impulse = Find(results, "impulse");
   const MethodResult* local = Find(results, "local-dynamics");
   if (single != nullptr) {
-    checks["single_rate_within_2_percent_of_2mv"] =
-        std::abs(single->impulse - Case{}.elastic()) <= kSingleRateTolerance * Case{}.elastic();
+    checks.Add(
+        "single_rate_within_2_percent_of_2mv",
+        std::abs(single->impulse - Case{}.elastic()) <= kSingleRateTolerance * Case{}.elastic());
   }
   if (single != nullptr && impulse != nullptr) {
-    checks["impulse_method_above_1.2x_single_rate"] =
-        impulse->impulse > kImpulseMethodMinRatio * single->impulse;
+    checks.Add("impulse_method_above_1.2x_single_rate",
+               impulse->impulse > kImpulseMethodMinRatio * single->impulse);
   }
   if (single != nullptr && local != nullptr) {
-    checks["local_dynamics_within_2_percent_of_single_rate"] =
-        std::abs(local->impulse - single->impulse) <= kLocalDynamicsTolerance * single->impulse;
+    checks.Add(
+        "local_dynamics_within_2_percent_of_single_rate",
+        std::abs(local->impulse - single->impulse) <= kLocalDynamicsTolerance * single->impulse);
   }
   if (local != nullptr) {
-    const ir::Mat63 A = MeasureAccelerance();
-    const Mat3 expected = Mat3::Identity() / kMass;
-    const double error = (A.topRows<3>() - expected).cwiseAbs().maxCoeff() * kMass;
-    (*summary)["accelerance_linear_diag_per_kg"] = {A(0, 0), A(1, 1), A(2, 2)};
-    (*summary)["accelerance_angular_max"] = A.bottomRows<3>().cwiseAbs().maxCoeff();
-    checks["free_cube_accelerance_is_identity_over_60kg"] = error <= kAccelTolerance;
+    checks.Add("free_cube_accelerance_is_identity_over_60kg", AccelerancePasses(summary));
   }
-  bool ok = true;
-  for (const auto& [name, pass] : checks.items()) ok = ok && pass.get<bool>();
-  WriteText(out / "summary.json", summary->dump(2) + "\n");
   if (!quiet) {
     std::cout << (*summary)["impulse_table_md"].get<std::string>()
               << fmt::format("elastic bounce 2mv = {:.3f} N·s\n", Case{}.elastic());
-    for (const auto& [name, pass] : checks.items()) {
-      std::cout << "check " << name << ": " << (pass.get<bool>() ? "pass" : "FAIL") << "\n";
-    }
-    std::cout << "results: " << std::filesystem::absolute(out).string() << "\n";
   }
-  return ok ? 0 : 1;
+  return FinishExperiment(out, std::move(*summary), checks, quiet);
 }
 
 }  // namespace
@@ -362,11 +360,7 @@ int RunT41(const std::filesystem::path& out, bool quiet, const T41Options& optio
     if (!quiet) std::cout << "t4.1: running " << method << "...\n";
     results.push_back(RunCase(CaseSession(method, Case{}, {}), Case{}, out / method, quiet));
   }
-  WriteForceTime(out, results);
-  std::string why;
-  if (!report::RunGnuplotScript(out, "force_time.gp", "force_time.png", &why) && !quiet) {
-    std::cerr << "mrh: warning: force_time.png not drawn: " << why << "\n";
-  }
+  WriteForceTime(out, results, quiet);
   nlohmann::json summary;
   summary["experiment"] = "t4.1";
   summary["machine"] = MachineTag();

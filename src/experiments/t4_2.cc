@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <random>
 
+#include "experiment_table.h"
 #include "experiment_util.h"
 #include "experiments_impl.h"
 #include "mrh/core/error.h"
@@ -139,7 +140,7 @@ double ModelPse(const psychophysics::Study& study, const std::string& method,
 // stimuli.csv: what each stimulus does to the hand, per method and mass.
 void WriteStimuli(const std::filesystem::path& file, const psychophysics::Study& study,
                   const std::filesystem::path& dir, StimulusCache* cache) {
-  std::string csv = "method,mass_kg,momentum_Ns,peak_force_N\n";
+  Table csv({"method", "mass_kg", "momentum_Ns", "peak_force_N"});
   std::vector<std::pair<std::string, double>> cells{
       {study.settings.standard_method, study.settings.standard_mass}};
   for (const std::string& m : study.settings.methods) {
@@ -149,10 +150,10 @@ void WriteStimuli(const std::filesystem::path& file, const psychophysics::Study&
     const session::Session s = psychophysics::StimulusSession(study, method, mass, dir);
     const std::string key = s.engine.method + " " + s.scene.string();
     if (!cache->contains(key)) (*cache)[key] = MeasureStimulus(s);
-    csv += fmt::format("{},{},{:.6f},{:.6f}\n", method, mass, cache->at(key).momentum,
-                       cache->at(key).peak_force);
+    csv.AddFormatted("{},{},{:.6f},{:.6f}", method, mass, cache->at(key).momentum,
+                     cache->at(key).peak_force);
   }
-  WriteText(file, csv);
+  WriteText(file, csv.Csv());
 }
 
 const psychophysics::SubjectFit* FindFit(const std::vector<psychophysics::SubjectFit>& fits,
@@ -171,49 +172,50 @@ std::string Cell(const psychophysics::SubjectFit* f) {
   return fmt::format("{:.1f} ± {:.1f}", f->fit.pse, f->fit.pse_sd);
 }
 
-// Table 4.4, predicted next to published.
-std::string PredictedTable(const std::vector<psychophysics::SubjectFit>& fits,
-                           const std::vector<std::string>& observers, double model_proposed,
-                           double model_conventional) {
-  std::string md =
-      "| subject | proposed: predicted (kg) | proposed: thesis | conventional (B4): predicted | "
-      "conventional: thesis |\n|---|---|---|---|---|\n";
+// Table 4.4, predicted next to published (its last rows: means and the noise-free model).
+Table PredictedTable(const std::vector<psychophysics::SubjectFit>& fits,
+                     const std::vector<std::string>& observers, double model_proposed,
+                     double model_conventional) {
+  Table md({"subject", "proposed: predicted (kg)", "proposed: thesis",
+            "conventional (B4): predicted", "conventional: thesis"});
   for (std::size_t i = 0; i < observers.size(); ++i) {
     const std::string thesis_p =
         i < std::size(kThesis) ? fmt::format("{}", kThesis[i].proposed) : "";
     const std::string thesis_c =
         i < std::size(kThesis) ? fmt::format("{}", kThesis[i].conventional) : "";
-    md += fmt::format("| {} | {} | {} | {} | {} |\n", observers[i],
-                      Cell(FindFit(fits, observers[i], kProposed)), thesis_p,
-                      Cell(FindFit(fits, observers[i], kConventional)), thesis_c);
+    md.Add({observers[i], Cell(FindFit(fits, observers[i], kProposed)), thesis_p,
+            Cell(FindFit(fits, observers[i], kConventional)), thesis_c});
   }
   double mean_p = 0.0, mean_c = 0.0;
   for (const auto& m : psychophysics::MeansByMethod(fits)) {
     if (m.method == kProposed) mean_p = m.mean_pse;
     if (m.method == kConventional) mean_c = m.mean_pse;
   }
-  md += fmt::format("| **mean** | **{:.1f}** | **{}** | **{:.1f}** | **{}** |\n", mean_p,
-                    kThesisMeanProposed, mean_c, kThesisMeanConventional);
-  md += fmt::format("| observer model (noise-free) | {:.1f} | | {:.1f} | |\n", model_proposed,
-                    model_conventional);
+  md.Add({"**mean**", fmt::format("**{:.1f}**", mean_p), fmt::format("**{}**", kThesisMeanProposed),
+          fmt::format("**{:.1f}**", mean_c), fmt::format("**{}**", kThesisMeanConventional)});
+  md.Add({"observer model (noise-free)", fmt::format("{:.1f}", model_proposed), "",
+          fmt::format("{:.1f}", model_conventional), ""});
   return md;
+}
+
+// Steep observers (a 10 % JND against 25 % mass steps) often answer without a single error
+// below and above the standard: such fits have no ML estimate and are counted, not failed.
+void ListUnfitted(const std::vector<psychophysics::SubjectFit>& fits, nlohmann::json* summary) {
+  for (const auto& f : fits) {
+    if (f.fit.status != psychophysics::FitStatus::kOk) {
+      (*summary)["unfitted"].push_back({{"subject", f.subject},
+                                        {"method", f.method},
+                                        {"status", psychophysics::FitStatusName(f.fit.status)}});
+    }
+  }
 }
 
 // The checks: each method's mean fitted PSE agrees with the noise-free model (within
 // kAgreementSigmas standard errors of the mean), and B4 feels heavier than the proposed method.
-void AddChecks(const std::vector<psychophysics::SubjectFit>& fits, double model_proposed,
-               double model_conventional, nlohmann::json* out) {
-  nlohmann::json& summary = *out;
-  nlohmann::json& checks = summary["checks"];
-  // Steep observers (a 10 % JND against 25 % mass steps) often answer without a single error
-  // below and above the standard: such fits have no ML estimate and are counted, not failed.
-  for (const auto& f : fits) {
-    if (f.fit.status != psychophysics::FitStatus::kOk) {
-      summary["unfitted"].push_back({{"subject", f.subject},
-                                     {"method", f.method},
-                                     {"status", psychophysics::FitStatusName(f.fit.status)}});
-    }
-  }
+Checks T42Checks(const std::vector<psychophysics::SubjectFit>& fits, double model_proposed,
+                 double model_conventional, nlohmann::json* summary) {
+  ListUnfitted(fits, summary);
+  Checks checks;
   std::map<std::string, double> mean;
   for (const auto& [method, model] :
        {std::pair{kProposed, model_proposed}, std::pair{kConventional, model_conventional}}) {
@@ -224,13 +226,16 @@ void AddChecks(const std::vector<psychophysics::SubjectFit>& fits, double model_
       sum += f.fit.pse, var += f.fit.pse_sd * f.fit.pse_sd, ++n;
     }
     mean[method] = n > 0 ? sum / n : 0.0;
-    summary["mean_pse_kg"][method] = mean[method];
-    summary["mean_pse_se_kg"][method] = n > 0 ? std::sqrt(var) / n : 0.0;
-    checks[fmt::format("{}_mean_pse_agrees_with_the_observer_model", method)] =
-        n > 0 && std::abs(mean[method] - model) <= kAgreementSigmas * std::sqrt(var) / n;
+    const double se = n > 0 ? std::sqrt(var) / n : 0.0;
+    (*summary)["mean_pse_kg"][method] = mean[method];
+    (*summary)["mean_pse_se_kg"][method] = se;
+    checks.Add(fmt::format("{}_mean_pse_agrees_with_the_observer_model", method),
+               n > 0 && std::abs(mean[method] - model) <= kAgreementSigmas * se,
+               mean[method] - model, kAgreementSigmas * se);
   }
   // The thesis' qualitative finding: the conventional cube feels heavier (a lower PSE).
-  checks["conventional_feels_heavier_than_proposed"] = mean[kConventional] < mean[kProposed];
+  checks.Add("conventional_feels_heavier_than_proposed", mean[kConventional] < mean[kProposed]);
+  return checks;
 }
 
 int FinishT42(const std::filesystem::path& out, bool quiet,
@@ -245,20 +250,10 @@ int FinishT42(const std::filesystem::path& out, bool quiet,
   summary["thesis_mean_pse_kg"] = {{kProposed, kThesisMeanProposed},
                                    {kConventional, kThesisMeanConventional}};
   summary["predicted_table_md"] = table;
-  AddChecks(fits, model_proposed, model_conventional, &summary);
-  const nlohmann::json& checks = summary["checks"];
-  bool ok = true;
-  for (const auto& [name, pass] : checks.items()) ok = ok && pass.get<bool>();
+  const Checks checks = T42Checks(fits, model_proposed, model_conventional, &summary);
   WriteText(out / "predicted_table.md", table);
-  WriteText(out / "summary.json", summary.dump(2) + "\n");
-  if (!quiet) {
-    std::cout << table;
-    for (const auto& [name, pass] : checks.items()) {
-      std::cout << "check " << name << ": " << (pass.get<bool>() ? "pass" : "FAIL") << "\n";
-    }
-    std::cout << "results: " << std::filesystem::absolute(out).string() << "\n";
-  }
-  return ok ? 0 : 1;
+  if (!quiet) std::cout << table;
+  return FinishExperiment(out, std::move(summary), checks, quiet);
 }
 
 }  // namespace
@@ -294,12 +289,14 @@ int RunT42(const std::filesystem::path& out, bool quiet, const T42Options& optio
   const std::filesystem::path stimuli = out / "trials" / options.observers.front() / "stimuli";
   const double model_p = ModelPse(study, kProposed, stimuli, &cache, &Measure::momentum);
   const double model_c = ModelPse(study, kConventional, stimuli, &cache, &Measure::momentum);
-  std::string table = PredictedTable(fits, options.observers, model_p, model_c);
-  table += fmt::format("| peak-force cue instead (noise-free) | {:.1f} | | {:.1f} | |\n",
-                       ModelPse(study, kProposed, stimuli, &cache, &Measure::peak_force),
-                       ModelPse(study, kConventional, stimuli, &cache, &Measure::peak_force));
+  Table table = PredictedTable(fits, options.observers, model_p, model_c);
+  table.Add(
+      {"peak-force cue instead (noise-free)",
+       fmt::format("{:.1f}", ModelPse(study, kProposed, stimuli, &cache, &Measure::peak_force)), "",
+       fmt::format("{:.1f}", ModelPse(study, kConventional, stimuli, &cache, &Measure::peak_force)),
+       ""});
   WriteStimuli(out / "stimuli.csv", study, stimuli, &cache);
-  return FinishT42(out, quiet, fits, options, model_p, model_c, table);
+  return FinishT42(out, quiet, fits, options, model_p, model_c, table.Markdown());
 }
 
 }  // namespace mrh::experiments::internal

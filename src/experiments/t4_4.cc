@@ -9,12 +9,12 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "experiment_table.h"
 #include "experiment_util.h"
 #include "experiments_impl.h"
 #include "mrh/core/error.h"
 #include "mrh/engine/engine.h"
 #include "mrh/ir/snapshot.h"
-#include "mrh/report/report.h"
 #include "mrh/session/session.h"
 #include "mrh/world/world.h"
 
@@ -221,32 +221,26 @@ EdgeResult Edge(const RunData& run) {
   return r;
 }
 
-std::string Slug(const std::string& variant) {
-  std::string s = variant;
-  std::replace(s.begin(), s.end(), '/', '-');
-  return s;
-}
-
 void WriteRunCsv(const std::filesystem::path& dir, const std::string& variant, const RunData& line,
                  const RunData& edge) {
-  std::string ticks = "t,f_cube_x\n";
+  Table ticks({"t", "f_cube_x"});
   for (std::size_t i = 0; i < line.tap.t.size(); ++i) {
-    ticks += fmt::format("{:.3f},{:.6f}\n", line.tap.t[i], -line.tap.f[i].x());
+    ticks.AddFormatted("{:.3f},{:.6f}", line.tap.t[i], -line.tap.f[i].x());
   }
-  WriteText(dir / fmt::format("line_{}.csv", Slug(variant)), ticks);
-  std::string steps = "t,cube1_vx,felt_mass_A_kg\n";
+  WriteText(dir / fmt::format("line_{}.csv", Slug(variant)), ticks.Csv());
+  Table steps({"t", "cube1_vx", "felt_mass_A_kg"});
   for (const StepState& s : line.tap.steps) {
-    steps += fmt::format("{:.3f},{:.6f},{:.6f}\n", s.t, s.v1.x(), s.felt_mass_A);
+    steps.AddFormatted("{:.3f},{:.6f},{:.6f}", s.t, s.v1.x(), s.felt_mass_A);
   }
-  WriteText(dir / fmt::format("line_steps_{}.csv", Slug(variant)), steps);
-  std::string e = "t,edge_vx,edge_wz,edge_yaw\n";
+  WriteText(dir / fmt::format("line_steps_{}.csv", Slug(variant)), steps.Csv());
+  Table e({"t", "edge_vx", "edge_wz", "edge_yaw"});
   for (const StepState& s : edge.tap.steps) {
-    e += fmt::format("{:.3f},{:.6f},{:.6f},{:.6f}\n", s.t, s.edge_vx, s.edge_wz, s.edge_yaw);
+    e.AddFormatted("{:.3f},{:.6f},{:.6f},{:.6f}", s.t, s.edge_vx, s.edge_wz, s.edge_yaw);
   }
-  WriteText(dir / fmt::format("edge_{}.csv", Slug(variant)), e);
+  WriteText(dir / fmt::format("edge_{}.csv", Slug(variant)), e.Csv());
 }
 
-void Plot(const std::filesystem::path& out, const std::vector<std::string>& variants, bool quiet) {
+std::string T44Script(const std::vector<std::string>& variants) {
   std::string plot =
       "# T4.4: force on the pushed cube, its accelerance's felt mass, and the edge push.\n"
       "# Re-run with: gnuplot t4_4.gp\n"
@@ -283,10 +277,67 @@ void Plot(const std::filesystem::path& out, const std::vector<std::string>& vari
     plot += fmt::format("{}'runs/edge_{}.csv' using 1:4 with lines lw 1.5 title '{}'",
                         i == 0 ? "" : ", ", Slug(variants[i]), variants[i]);
   }
-  WriteText(out / "t4_4.gp", plot + "\nunset multiplot\n");
-  std::string why;
-  if (!report::RunGnuplotScript(out, "t4_4.gp", "t4_4.png", &why) && !quiet) {
-    std::cerr << "mrh: warning: t4_4.png not drawn: " << why << "\n";
+  return plot + "\nunset multiplot\n";
+}
+
+// felt_mass.csv, felt_mass.md and edge.md: a row per window / per variant.
+struct T44Tables {
+  Table csv{{"variant", "cubes", "t_from", "t_to", "force_N", "accel_mps2", "felt_mass_kg",
+             "expected_kg", "felt_mass_A_kg"}};
+  Table md{{"variant", "cubes", "force (N)", "accel (m/s²)", "felt mass (kg)", "expected (kg)",
+            "1/A_xx (kg)"}};
+  Table edge_md{{"variant", "ω_z at end (rad/s)", "yaw at end (rad)", "ω_z/v_x early (1/m)",
+                 "analytic (1/m)"}};
+};
+
+// The line push of one variant: each window's felt mass (from force / acceleration and from
+// the snapshot's accelerance) against k·m. Sets *masses_ok and *accelerance_ok.
+void LineWindows(const std::string& variant, const RunData& line, T44Tables* tables,
+                 nlohmann::json* summary, bool* masses_ok, bool* accelerance_ok) {
+  *masses_ok = true;
+  *accelerance_ok = true;
+  for (const Window& w : FeltMass(line)) {
+    const double expected = w.cubes * kCubeMass;
+    *masses_ok = *masses_ok && std::abs(w.felt_mass - expected) <= kMassTolerance * expected;
+    *accelerance_ok =
+        *accelerance_ok && std::abs(w.felt_mass_A - expected) <= kMassTolerance * expected;
+    tables->csv.AddFormatted("{},{},{:.3f},{:.3f},{:.6f},{:.6f},{:.4f},{},{:.4f}", variant, w.cubes,
+                             w.t_a, w.t_b, w.force, w.accel, w.felt_mass, expected, w.felt_mass_A);
+    tables->md.Add({variant, fmt::format("{}", w.cubes), fmt::format("{:.4f}", w.force),
+                    fmt::format("{:.4f}", w.accel), fmt::format("{:.3f}", w.felt_mass),
+                    fmt::format("{:.0f}", expected), fmt::format("{:.3f}", w.felt_mass_A)});
+    (*summary)["felt_mass_kg"].push_back(w.felt_mass);
+    (*summary)["felt_mass_A_kg"].push_back(w.felt_mass_A);
+  }
+  (*summary)["felt_mass_within_5_percent"] = *masses_ok;
+  (*summary)["accelerance_within_5_percent"] = *accelerance_ok;
+}
+
+// Sign from the lever (τ_z = −y·f_x < 0); size from the free-cube ratio while barely turned.
+bool EdgeTurns(const EdgeResult& e) {
+  return e.wz_end < 0.0 && e.yaw_end < 0.0 &&
+         std::abs(e.ratio_early - AnalyticEdgeRatio()) <= kMassTolerance * -AnalyticEdgeRatio();
+}
+
+// Runs one variant's line and edge pushes; the local-dynamics variant adds the checks.
+void RunVariant(const std::filesystem::path& out, const std::string& variant, bool quiet,
+                T44Tables* tables, nlohmann::json* summary, Checks* checks) {
+  if (!quiet) std::cout << "t4.4: " << variant << "...\n";
+  const RunData line = Run(variant, false), edge = Run(variant, true);
+  WriteRunCsv(out / "runs", variant, line, edge);
+  nlohmann::json& v = (*summary)["variants"][variant];
+  bool masses_ok = true, accelerance_ok = true;
+  LineWindows(variant, line, tables, &v, &masses_ok, &accelerance_ok);
+  const EdgeResult e = Edge(edge);
+  tables->edge_md.Add({variant, fmt::format("{:.4f}", e.wz_end), fmt::format("{:.4f}", e.yaw_end),
+                       fmt::format("{:.2f}", e.ratio_early),
+                       fmt::format("{:.2f}", AnalyticEdgeRatio())});
+  v["edge"] = {{"wz_end", e.wz_end}, {"yaw_end", e.yaw_end}, {"wz_over_vx_early", e.ratio_early}};
+  if (variant == "local-dynamics") {
+    checks->Add("local_dynamics_felt_mass_steps_with_each_cube", masses_ok);
+    checks->Add("local_dynamics_accelerance_includes_the_pushed_cubes", accelerance_ok);
+    checks->Add("local_dynamics_edge_push_turns_the_cube", EdgeTurns(e), e.ratio_early,
+                AnalyticEdgeRatio());
   }
 }
 
@@ -298,67 +349,21 @@ int RunT44(const std::filesystem::path& out, bool quiet) {
 
 int RunT44(const std::filesystem::path& out, bool quiet, const T44Options& options) {
   std::filesystem::create_directories(out / "runs");
-  std::string csv =
-      "variant,cubes,t_from,t_to,force_N,accel_mps2,felt_mass_kg,expected_kg,"
-      "felt_mass_A_kg\n";
-  std::string md =
-      "| variant | cubes | force (N) | accel (m/s²) | felt mass (kg) | expected (kg) | "
-      "1/A_xx (kg) |\n|---|---|---|---|---|---|---|\n";
-  std::string edge_md =
-      "| variant | ω_z at end (rad/s) | yaw at end (rad) | ω_z/v_x early (1/m) | "
-      "analytic (1/m) |\n|---|---|---|---|---|\n";
+  T44Tables tables;
   nlohmann::json summary;
+  Checks checks;
   for (const std::string& variant : options.variants) {
-    if (!quiet) std::cout << "t4.4: " << variant << "...\n";
-    const RunData line = Run(variant, false), edge = Run(variant, true);
-    WriteRunCsv(out / "runs", variant, line, edge);
-    bool masses_ok = true, accelerance_ok = true;
-    for (const Window& w : FeltMass(line)) {
-      const double expected = w.cubes * kCubeMass;
-      masses_ok = masses_ok && std::abs(w.felt_mass - expected) <= kMassTolerance * expected;
-      accelerance_ok =
-          accelerance_ok && std::abs(w.felt_mass_A - expected) <= kMassTolerance * expected;
-      csv += fmt::format("{},{},{:.3f},{:.3f},{:.6f},{:.6f},{:.4f},{},{:.4f}\n", variant, w.cubes,
-                         w.t_a, w.t_b, w.force, w.accel, w.felt_mass, expected, w.felt_mass_A);
-      md += fmt::format("| {} | {} | {:.4f} | {:.4f} | {:.3f} | {:.0f} | {:.3f} |\n", variant,
-                        w.cubes, w.force, w.accel, w.felt_mass, expected, w.felt_mass_A);
-      summary["variants"][variant]["felt_mass_kg"].push_back(w.felt_mass);
-      summary["variants"][variant]["felt_mass_A_kg"].push_back(w.felt_mass_A);
-    }
-    const EdgeResult e = Edge(edge);
-    edge_md += fmt::format("| {} | {:.4f} | {:.4f} | {:.2f} | {:.2f} |\n", variant, e.wz_end,
-                           e.yaw_end, e.ratio_early, AnalyticEdgeRatio());
-    summary["variants"][variant]["edge"] = {
-        {"wz_end", e.wz_end}, {"yaw_end", e.yaw_end}, {"wz_over_vx_early", e.ratio_early}};
-    summary["variants"][variant]["felt_mass_within_5_percent"] = masses_ok;
-    summary["variants"][variant]["accelerance_within_5_percent"] = accelerance_ok;
-    if (variant == "local-dynamics") {
-      summary["checks"]["local_dynamics_felt_mass_steps_with_each_cube"] = masses_ok;
-      summary["checks"]["local_dynamics_accelerance_includes_the_pushed_cubes"] = accelerance_ok;
-      // Sign from the lever (τ_z = −y·f_x < 0); size from the free-cube ratio while barely turned.
-      summary["checks"]["local_dynamics_edge_push_turns_the_cube"] =
-          e.wz_end < 0.0 && e.yaw_end < 0.0 &&
-          std::abs(e.ratio_early - AnalyticEdgeRatio()) <= kMassTolerance * -AnalyticEdgeRatio();
-    }
+    RunVariant(out, variant, quiet, &tables, &summary, &checks);
   }
-  WriteText(out / "felt_mass.csv", csv);
-  WriteText(out / "felt_mass.md", md);
-  WriteText(out / "edge.md", edge_md);
-  Plot(out, options.variants, quiet);
+  WriteText(out / "felt_mass.csv", tables.csv.Csv());
+  WriteText(out / "felt_mass.md", tables.md.Markdown());
+  WriteText(out / "edge.md", tables.edge_md.Markdown());
+  Plot(out, "t4_4", T44Script(options.variants), quiet);
   summary["experiment"] = "t4.4";
   summary["machine"] = MachineTag();
   summary["analytic_edge_wz_over_vx"] = AnalyticEdgeRatio();
-  bool ok = !summary["checks"].empty();  // no checks is a failure, not a pass
-  for (const auto& [name, pass] : summary["checks"].items()) ok = ok && pass.get<bool>();
-  WriteText(out / "summary.json", summary.dump(2) + "\n");
-  if (!quiet) {
-    std::cout << md << "\n" << edge_md;
-    for (const auto& [name, pass] : summary["checks"].items()) {
-      std::cout << "check " << name << ": " << (pass.get<bool>() ? "pass" : "FAIL") << "\n";
-    }
-    std::cout << "results: " << std::filesystem::absolute(out).string() << "\n";
-  }
-  return ok ? 0 : 1;
+  if (!quiet) std::cout << tables.md.Markdown() << "\n" << tables.edge_md.Markdown();
+  return FinishExperiment(out, std::move(summary), checks, quiet);
 }
 
 }  // namespace mrh::experiments::internal

@@ -8,11 +8,11 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "experiment_table.h"
 #include "experiment_util.h"
 #include "experiments_impl.h"
 #include "mrh/core/stats.h"
 #include "mrh/engine/engine.h"
-#include "mrh/report/report.h"
 #include "mrh/session/session.h"
 
 namespace mrh::experiments::internal {
@@ -124,6 +124,26 @@ struct Result {
   bool finite = true;
 };
 
+// The timings of a run: ticks after the first period (it renders the initial snapshot, built
+// before any step) and the once-per-period calls.
+void Summarize(const MethodTimings& timings, int n, Result* r) {
+  std::vector<double> tick_us;
+  r->min_contacts = r->balls;
+  for (std::size_t i = static_cast<std::size_t>(n); i < timings.tick_wall_us.size(); ++i) {
+    tick_us.push_back(timings.tick_wall_us[i]);
+    r->min_contacts = std::min(r->min_contacts, static_cast<double>(timings.tick_contacts[i]));
+  }
+  r->tick_p50 = Percentile(tick_us, 50.0);
+  r->tick_p99 = Percentile(tick_us, 99.0);
+  r->tick_max = Percentile(tick_us, 100.0);
+  r->adopt_p50 = Percentile(timings.adopt_wall_us, 50.0);
+  r->end_period_p50 = Percentile(timings.end_period_wall_us, 50.0);
+  r->worst_tick = r->tick_max + Percentile(timings.adopt_wall_us, 100.0) +
+                  Percentile(timings.end_period_wall_us, 100.0);
+  r->step_cpu_p50 = Percentile(timings.step_cpu_ms, 50.0);
+  r->finite = !tick_us.empty() && std::isfinite(r->worst_tick) && std::isfinite(r->step_cpu_p50);
+}
+
 Result RunOne(const std::filesystem::path& scene, const std::string& method, int balls,
               double duration) {
   const auto timings = std::make_shared<MethodTimings>();
@@ -133,31 +153,15 @@ Result RunOne(const std::filesystem::path& scene, const std::string& method, int
   StepTap tap;
   engine->Run(&tap);
   Result r{method, balls};
-  const int n = engine->settings().ticks_per_step();
-  // The first period renders the initial snapshot, built before any step: leave it out.
-  std::vector<double> tick_us;
-  r.min_contacts = balls;
-  for (std::size_t i = static_cast<std::size_t>(n); i < timings->tick_wall_us.size(); ++i) {
-    tick_us.push_back(timings->tick_wall_us[i]);
-    r.min_contacts = std::min(r.min_contacts, static_cast<double>(timings->tick_contacts[i]));
-  }
   r.min_neighbors = balls;
   for (std::size_t k = 1; k < tap.neighbors.size(); ++k) {
     r.min_neighbors = std::min(r.min_neighbors, tap.neighbors[k]);
   }
-  r.tick_p50 = Percentile(tick_us, 50.0);
-  r.tick_p99 = Percentile(tick_us, 99.0);
-  r.tick_max = Percentile(tick_us, 100.0);
-  r.adopt_p50 = Percentile(timings->adopt_wall_us, 50.0);
-  r.end_period_p50 = Percentile(timings->end_period_wall_us, 50.0);
-  r.worst_tick = r.tick_max + Percentile(timings->adopt_wall_us, 100.0) +
-                 Percentile(timings->end_period_wall_us, 100.0);
-  r.step_cpu_p50 = Percentile(timings->step_cpu_ms, 50.0);
-  r.finite = !tick_us.empty() && std::isfinite(r.worst_tick) && std::isfinite(r.step_cpu_p50);
+  Summarize(*timings, engine->settings().ticks_per_step(), &r);
   return r;
 }
 
-void Plot(const std::filesystem::path& out, const std::vector<std::string>& methods, bool quiet) {
+std::string T45Script(const std::vector<std::string>& methods) {
   std::string plot =
       "# T4.5: haptic tick cost and physics occupancy vs neighbors simulated locally.\n"
       "# Re-run with: gnuplot neighbors.gp\n"
@@ -182,11 +186,55 @@ void Plot(const std::filesystem::path& out, const std::vector<std::string>& meth
         "title '{}'",
         m, m);
   }
-  WriteText(out / "neighbors.gp", plot + "\nunset multiplot\n");
-  std::string why;
-  if (!report::RunGnuplotScript(out, "neighbors.gp", "neighbors.png", &why) && !quiet) {
-    std::cerr << "mrh: warning: neighbors.png not drawn: " << why << "\n";
+  return plot + "\nunset multiplot\n";
+}
+
+double Occupancy(const Result& r) {
+  return r.step_cpu_p50 / (kPhysicsDt * 1e3);
+}
+
+// neighbors.csv and neighbors.md (a row per run); returns the Markdown.
+std::string WriteT45Tables(const std::filesystem::path& out, const std::vector<Result>& results) {
+  Table csv({"method", "neighbors", "min_neighbors", "min_contacts", "tick_p50_us", "tick_p99_us",
+             "tick_max_us", "adopt_p50_us", "end_period_p50_us", "worst_tick_us",
+             "occupancy_cpu_p50"});
+  Table md({"method", "neighbors", "simulated", "tick p50 (µs)", "p99", "max", "adopt p50",
+            "worst tick bound", "occupancy (CPU)"});
+  for (const Result& r : results) {
+    csv.AddFormatted("{},{},{},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.6f}", r.method,
+                     r.balls, r.min_neighbors, r.min_contacts, r.tick_p50, r.tick_p99, r.tick_max,
+                     r.adopt_p50, r.end_period_p50, r.worst_tick, Occupancy(r));
+    md.Add({r.method, fmt::format("{}", r.balls), fmt::format("{}", r.min_neighbors),
+            fmt::format("{:.2f}", r.tick_p50), fmt::format("{:.2f}", r.tick_p99),
+            fmt::format("{:.1f}", r.tick_max), fmt::format("{:.2f}", r.adopt_p50),
+            fmt::format("{:.1f}", r.worst_tick), fmt::format("{:.4f}", Occupancy(r))});
   }
+  WriteText(out / "neighbors.csv", csv.Csv());
+  WriteText(out / "neighbors.md", md.Markdown());
+  return md.Markdown();
+}
+
+// summary.json's runs and goals; the check: local-dynamics simulated and rendered every
+// neighbor, every run with finite timings.
+Checks T45Summary(const std::vector<Result>& results, nlohmann::json* summary) {
+  bool ok = true;
+  for (const Result& r : results) {
+    (*summary)["runs"][r.method][std::to_string(r.balls)] = {
+        {"min_neighbors", r.min_neighbors}, {"min_contacts", r.min_contacts},
+        {"tick_p50_us", r.tick_p50},        {"tick_p99_us", r.tick_p99},
+        {"tick_max_us", r.tick_max},        {"worst_tick_us", r.worst_tick},
+        {"occupancy_cpu_p50", Occupancy(r)}};
+    ok = ok && r.finite;
+    // Wall-clock goal: reported, never checked (this VM stalls for milliseconds at random).
+    if (r.method == "local-dynamics") {
+      ok = ok && r.min_neighbors == r.balls && r.min_contacts == r.balls;
+      (*summary)["goals"]["local_dynamics_tick_p99_within_1ms"][std::to_string(r.balls)] =
+          r.tick_p99 < kTickBudgetUs;
+    }
+  }
+  Checks checks;
+  checks.Add("local_dynamics_simulates_and_renders_every_neighbor", ok);
+  return checks;
 }
 
 }  // namespace
@@ -206,44 +254,14 @@ int RunT45(const std::filesystem::path& out, bool quiet, const T45Options& optio
       results.push_back(RunOne(scene, method, balls, options.duration));
     }
   }
-  std::string csv =
-      "method,neighbors,min_neighbors,min_contacts,tick_p50_us,tick_p99_us,"
-      "tick_max_us,adopt_p50_us,end_period_p50_us,worst_tick_us,occupancy_cpu_p50\n";
-  std::string md =
-      "| method | neighbors | simulated | tick p50 (µs) | p99 | max | adopt p50 | "
-      "worst tick bound | occupancy (CPU) |\n|---|---|---|---|---|---|---|---|---|\n";
+  const std::string md = WriteT45Tables(out, results);
+  Plot(out, "neighbors", T45Script(options.methods), quiet);
   nlohmann::json summary;
-  bool ok = true;
-  for (const Result& r : results) {
-    const double occupancy = r.step_cpu_p50 / (kPhysicsDt * 1e3);
-    csv += fmt::format("{},{},{},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.6f}\n", r.method,
-                       r.balls, r.min_neighbors, r.min_contacts, r.tick_p50, r.tick_p99, r.tick_max,
-                       r.adopt_p50, r.end_period_p50, r.worst_tick, occupancy);
-    md += fmt::format("| {} | {} | {} | {:.2f} | {:.2f} | {:.1f} | {:.2f} | {:.1f} | {:.4f} |\n",
-                      r.method, r.balls, r.min_neighbors, r.tick_p50, r.tick_p99, r.tick_max,
-                      r.adopt_p50, r.worst_tick, occupancy);
-    summary["runs"][r.method][std::to_string(r.balls)] = {
-        {"min_neighbors", r.min_neighbors}, {"min_contacts", r.min_contacts},
-        {"tick_p50_us", r.tick_p50},        {"tick_p99_us", r.tick_p99},
-        {"tick_max_us", r.tick_max},        {"worst_tick_us", r.worst_tick},
-        {"occupancy_cpu_p50", occupancy}};
-    ok = ok && r.finite;
-    // Wall-clock goal: reported, never checked (this VM stalls for milliseconds at random).
-    if (r.method == "local-dynamics") {
-      ok = ok && r.min_neighbors == r.balls && r.min_contacts == r.balls;
-      summary["goals"]["local_dynamics_tick_p99_within_1ms"][std::to_string(r.balls)] =
-          r.tick_p99 < kTickBudgetUs;
-    }
-  }
-  WriteText(out / "neighbors.csv", csv);
-  WriteText(out / "neighbors.md", md);
-  Plot(out, options.methods, quiet);
+  const Checks checks = T45Summary(results, &summary);
   summary["experiment"] = "t4.5";
   summary["machine"] = MachineTag();
-  summary["checks"]["local_dynamics_simulates_and_renders_every_neighbor"] = ok;
-  WriteText(out / "summary.json", summary.dump(2) + "\n");
-  if (!quiet) std::cout << md << "results: " << std::filesystem::absolute(out).string() << "\n";
-  return ok ? 0 : 1;
+  if (!quiet) std::cout << md;
+  return FinishExperiment(out, std::move(summary), checks, quiet);
 }
 
 }  // namespace mrh::experiments::internal

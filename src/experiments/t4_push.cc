@@ -9,10 +9,10 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "experiment_table.h"
 #include "experiment_util.h"
 #include "experiments_impl.h"
 #include "mrh/engine/engine.h"
-#include "mrh/report/report.h"
 #include "mrh/session/session.h"
 #include "mrh/world/world.h"
 
@@ -87,23 +87,18 @@ PushResult Analyze(const Tap& tap) {
 }
 
 void WriteRun(const std::filesystem::path& dir, const std::string& slug, const Tap& tap) {
-  std::string f = "t,force_N\n";
-  for (std::size_t i = 0; i < tap.t.size(); ++i) f += fmt::format("{:.3f},{:.5f}\n", tap.t[i], tap.f[i]);
-  WriteText(dir / (slug + "_force.csv"), f);
-  std::string b = "t,x,y,z,spin\n";
+  Table f({"t", "force_N"});
+  for (std::size_t i = 0; i < tap.t.size(); ++i)
+    f.AddFormatted("{:.3f},{:.5f}", tap.t[i], tap.f[i]);
+  WriteText(dir / (slug + "_force.csv"), f.Csv());
+  Table b({"t", "x", "y", "z", "spin"});
   for (const Tap::Step& s : tap.steps) {
-    b += fmt::format("{:.3f},{:.6f},{:.6f},{:.6f},{:.5f}\n", s.t, s.p.x(), s.p.y(), s.p.z(), s.spin);
+    b.AddFormatted("{:.3f},{:.6f},{:.6f},{:.6f},{:.5f}", s.t, s.p.x(), s.p.y(), s.p.z(), s.spin);
   }
-  WriteText(dir / (slug + "_box.csv"), b);
+  WriteText(dir / (slug + "_box.csv"), b.Csv());
 }
 
-std::string Slug(const std::string& s) {
-  std::string out = s;
-  std::replace(out.begin(), out.end(), '/', '_');
-  return out;
-}
-
-void Plot(const std::filesystem::path& out, const PushOptions& o, bool quiet) {
+std::string PushScript(const PushOptions& o) {
   std::string gp =
       "# t4.push: |f|(t) per method and the box trajectory, per case. gnuplot t4_push.gp\n"
       "set terminal pngcairo size 1400,"
@@ -113,21 +108,17 @@ void Plot(const std::filesystem::path& out, const PushOptions& o, bool quiet) {
   for (const PushCase& c : o.cases) {
     gp += "set title '" + c.name + ": |f| (N)'\nset xlabel 't (s)'\nplot ";
     for (std::size_t i = 0; i < o.methods.size(); ++i) {
-      gp += fmt::format("{}'runs/{}_{}_force.csv' using 1:2 with lines title '{}'",
-                        i ? ", " : "", c.name, Slug(o.methods[i]), o.methods[i]);
+      gp += fmt::format("{}'runs/{}_{}_force.csv' using 1:2 with lines title '{}'", i ? ", " : "",
+                        c.name, Slug(o.methods[i], '_'), o.methods[i]);
     }
     gp += "\nset title '" + c.name + ": box x (m)'\nplot ";
     for (std::size_t i = 0; i < o.methods.size(); ++i) {
       gp += fmt::format("{}'runs/{}_{}_box.csv' using 1:2 with lines title '{}'", i ? ", " : "",
-                        c.name, Slug(o.methods[i]), o.methods[i]);
+                        c.name, Slug(o.methods[i], '_'), o.methods[i]);
     }
     gp += "\n";
   }
-  WriteText(out / "t4_push.gp", gp + "unset multiplot\n");
-  std::string why;
-  if (!report::RunGnuplotScript(out, "t4_push.gp", "t4_push.png", &why) && !quiet) {
-    std::cerr << "mrh: warning: t4_push.png not drawn: " << why << "\n";
-  }
+  return gp + "unset multiplot\n";
 }
 
 // The bars for local-dynamics against single-rate.
@@ -162,7 +153,7 @@ std::vector<std::vector<PushResult>> RunPushCases(const std::filesystem::path& o
       auto engine = session::MakeEngine(MakeSession(c, m));
       Tap tap;
       engine->Run(&tap);
-      WriteRun(out / "runs", c.name + "_" + Slug(m), tap);
+      WriteRun(out / "runs", c.name + "_" + Slug(m, '_'), tap);
       results.back().push_back(Analyze(tap));
     }
   }
@@ -173,54 +164,63 @@ int RunT4Push(const std::filesystem::path& out, bool quiet) {
   return RunT4Push(out, quiet, DefaultPushOptions());
 }
 
+namespace {
+
+// t4_push.csv and t4_push.md: a row per case × method.
+struct PushTables {
+  Table csv{{"case", "method", "mean_force_N", "mean_vs_single_rate", "sd_force_N", "sd_ratio",
+             "contact_lost", "position_error_m", "peak_spin_radps"}};
+  Table md{{"case", "method", "mean |f| (N)", "vs single-rate", "sd (N)", "sd ratio",
+            "contact lost", "pos. error at 5 s (m)", "peak spin (rad/s)"}};
+};
+
+// One case × method against the case's single-rate run `ref`; returns whether it meets the bars.
+bool Compare(const std::string& name, const std::string& method, const PushResult& r,
+             const PushResult& ref, PushTables* tables, nlohmann::json* summary) {
+  const double rel = r.mean_force / ref.mean_force - 1.0;
+  const double sd_ratio = ref.sd_force > 0.0 ? r.sd_force / ref.sd_force : 0.0;
+  const double err = (r.position - ref.position).norm();
+  const bool bars = MeetsBars(r, ref);
+  tables->csv.AddFormatted("{},{},{:.4f},{:.4f},{:.4f},{:.3f},{:.4f},{:.4f},{:.3f}", name, method,
+                           r.mean_force, rel, r.sd_force, sd_ratio, r.contact_lost, err,
+                           r.peak_spin);
+  tables->md.Add({name, method, fmt::format("{:.3f}", r.mean_force),
+                  fmt::format("{:+.1f} %", 100 * rel), fmt::format("{:.3f}", r.sd_force),
+                  fmt::format("{:.2f}", sd_ratio), fmt::format("{:.1f} %", 100 * r.contact_lost),
+                  fmt::format("{:.4f}", err), fmt::format("{:.2f}", r.peak_spin)});
+  (*summary)["cases"][name][method] = {
+      {"mean_force_N", r.mean_force},   {"mean_vs_single_rate", rel},
+      {"sd_force_N", r.sd_force},       {"sd_ratio", sd_ratio},
+      {"contact_lost", r.contact_lost}, {"position_error_m", err},
+      {"peak_spin_radps", r.peak_spin}, {"meets_bars", bars}};
+  return bars;
+}
+
+}  // namespace
+
 int RunT4Push(const std::filesystem::path& out, bool quiet, const PushOptions& o) {
   const auto results = RunPushCases(out, o, quiet);
   nlohmann::json summary;
-  std::string csv = "case,method,mean_force_N,mean_vs_single_rate,sd_force_N,sd_ratio,"
-                    "contact_lost,position_error_m,peak_spin_radps\n";
-  std::string md = "| case | method | mean |f| (N) | vs single-rate | sd (N) | sd ratio | "
-                   "contact lost | pos. error at 5 s (m) | peak spin (rad/s) |\n"
-                   "|---|---|---|---|---|---|---|---|---|\n";
-  bool ok = true;
+  PushTables tables;
+  Checks checks;
   for (std::size_t ci = 0; ci < o.cases.size(); ++ci) {
     const PushResult& ref = results[ci][0];  // methods[0] is single-rate
     for (std::size_t mi = 0; mi < o.methods.size(); ++mi) {
-      const PushResult& r = results[ci][mi];
-      const double rel = r.mean_force / ref.mean_force - 1.0;
-      const double sd_ratio = ref.sd_force > 0.0 ? r.sd_force / ref.sd_force : 0.0;
-      const double err = (r.position - ref.position).norm();
-      const bool bars = MeetsBars(r, ref);
-      csv += fmt::format("{},{},{:.4f},{:.4f},{:.4f},{:.3f},{:.4f},{:.4f},{:.3f}\n", o.cases[ci].name,
-                         o.methods[mi], r.mean_force, rel, r.sd_force, sd_ratio, r.contact_lost,
-                         err, r.peak_spin);
-      md += fmt::format("| {} | {} | {:.3f} | {:+.1f} % | {:.3f} | {:.2f} | {:.1f} % | {:.4f} | "
-                        "{:.2f} |\n", o.cases[ci].name, o.methods[mi], r.mean_force, 100 * rel,
-                        r.sd_force, sd_ratio, 100 * r.contact_lost, err, r.peak_spin);
-      summary["cases"][o.cases[ci].name][o.methods[mi]] = {
-          {"mean_force_N", r.mean_force}, {"mean_vs_single_rate", rel},
-          {"sd_force_N", r.sd_force}, {"sd_ratio", sd_ratio}, {"contact_lost", r.contact_lost},
-          {"position_error_m", err}, {"peak_spin_radps", r.peak_spin}, {"meets_bars", bars}};
+      const bool bars =
+          Compare(o.cases[ci].name, o.methods[mi], results[ci][mi], ref, &tables, &summary);
       if (o.methods[mi] == "local-dynamics") {
-        summary["checks"]["local_dynamics_meets_bars_" + o.cases[ci].name] = bars;
-        ok = ok && bars;
+        checks.Add("local_dynamics_meets_bars_" + o.cases[ci].name, bars);
       }
     }
   }
-  WriteText(out / "t4_push.csv", csv);
-  WriteText(out / "t4_push.md", md);
-  Plot(out, o, quiet);
+  WriteText(out / "t4_push.csv", tables.csv.Csv());
+  WriteText(out / "t4_push.md", tables.md.Markdown());
+  Plot(out, "t4_push", PushScript(o), quiet);
   summary["experiment"] = "t4.push";
   summary["machine"] = MachineTag();
   summary["window_s"] = {kFrom, kTo};
-  WriteText(out / "summary.json", summary.dump(2) + "\n");
-  if (!quiet) {
-    std::cout << md;
-    for (const auto& [name, pass] : summary["checks"].items()) {
-      std::cout << "check " << name << ": " << (pass.get<bool>() ? "pass" : "FAIL") << "\n";
-    }
-    std::cout << "results: " << std::filesystem::absolute(out).string() << "\n";
-  }
-  return ok ? 0 : 1;
+  if (!quiet) std::cout << tables.md.Markdown();
+  return FinishExperiment(out, std::move(summary), checks, quiet);
 }
 
 }  // namespace mrh::experiments::internal

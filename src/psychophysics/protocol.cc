@@ -12,11 +12,10 @@
 #include "mrh/core/error.h"
 #include "mrh/psychophysics/study.h"
 #include "mrh/psychophysics/trials.h"
+#include "mrh/session/mjcf_text.h"
 
 namespace mrh::psychophysics {
 namespace {
-
-constexpr std::string_view kXmlSpace = " \t\n\r";
 
 // The value of attribute="..." of the first <element ... name="name" ...> in the MJCF text,
 // comments skipped: its offset and length, or nullopt.
@@ -24,41 +23,10 @@ std::optional<std::pair<std::size_t, std::size_t>> FindAttribute(const std::stri
                                                                  std::string_view element,
                                                                  std::string_view name,
                                                                  std::string_view attribute) {
-  const auto value_in =
-      [](std::string_view tag,
-         std::string_view key) -> std::optional<std::pair<std::size_t, std::size_t>> {
-    const std::string pattern = fmt::format("{}=\"", key);
-    for (std::size_t at = tag.find(pattern); at != std::string_view::npos;
-         at = tag.find(pattern, at + 1)) {
-      if (at == 0 || kXmlSpace.find(tag[at - 1]) == std::string_view::npos) continue;
-      const std::size_t begin = at + pattern.size();
-      const std::size_t end = tag.find('"', begin);
-      if (end == std::string_view::npos) return std::nullopt;
-      return std::pair{begin, end - begin};
-    }
-    return std::nullopt;
-  };
-  const std::string open = fmt::format("<{}", element);
-  for (std::size_t at = text.find('<'); at != std::string::npos; at = text.find('<', at + 1)) {
-    if (text.compare(at, 4, "<!--") == 0) {
-      at = text.find("-->", at);
-      if (at == std::string::npos) break;
-      continue;
-    }
-    const std::size_t end = text.find('>', at);
-    if (end == std::string::npos) break;
-    const std::string_view tag = std::string_view(text).substr(at, end - at);
-    if (tag.substr(0, open.size()) != open || tag.size() <= open.size() ||
-        kXmlSpace.find(tag[open.size()]) == std::string_view::npos) {
-      continue;
-    }
-    const auto n = value_in(tag, "name");
-    if (!n || tag.substr(n->first, n->second) != name) continue;
-    const auto v = value_in(tag, attribute);
-    if (!v) return std::nullopt;
-    return std::pair{at + v->first, v->second};
-  }
-  return std::nullopt;
+  const session::MjcfAttributeSpan span =
+      session::FindMjcfAttribute(text, element, name, attribute);
+  if (!span.found) return std::nullopt;
+  return std::pair{span.offset, span.size};
 }
 
 // The scene text with the geom's mass and the keyframe's qvel rescaled to `speed`.
