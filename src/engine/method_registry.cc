@@ -78,6 +78,14 @@ Method VirtualCoupling(const MethodContext& c) {
                 {"virtual_coupling.bad_input"}};  // haptic::kVirtualCouplingBadInput
 }
 
+// B2: single-rate; the whole scene is one penalty simulation (session::LoadWorld switches
+// MuJoCo's contacts off), the device connected directly to the pointer.
+Method ContactVolume(const MethodContext& c) {
+  return Method{"contact-volume", true, physics::MakeContactVolumePhysics(c),
+                haptic::MakeContactVolumeHaptic(),
+                {"contact_volume.bad_input"}};  // haptic::kContactVolumeBadInput
+}
+
 // rendering.local_model picks the local model: "contact" (default; free-jointed scenes only)
 // or the thesis' "perturbation".
 Method LocalDynamics(const MethodContext& c) {
@@ -116,6 +124,10 @@ void RegisterBuiltins() {
                    "B3: pointer as a dynamic tool in MuJoCo at the haptic rate, spring-damper to "
                    "the device (the tool's inertia is felt)",
                    VirtualCoupling);
+    RegisterMethod("contact-volume",
+                   "B2: whole scene as one penalty simulation at the haptic rate, force "
+                   "k·(V/A)·n per intersection volume, anchored friction; device on the pointer",
+                   ContactVolume);
     RegisterMethod("local-dynamics",
                    "Ch. 4: neighbors simulated at the haptic rate; rendering.local_model "
                    "\"contact\" (their contact island with friction, default) or "

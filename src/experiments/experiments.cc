@@ -22,6 +22,10 @@ constexpr Entry kExperiments[] = {
      internal::RunT31},
     {"t3.2", "6-DOF proxy friction: strokes and twist with mu = 0.5 (figs. 3.13-3.14)",
      internal::RunT32},
+    {"t3.3",
+     "real-time computation ratio vs cubes: proxy-6dof, contact-volume (B2), virtual-coupling "
+     "(B3), penalty-sum (B5) (figs. 3.15-3.16); --full: 3-30 cubes",
+     internal::RunT33, internal::RunT33Full},
     {"t3.4", "6-DOF proxy tick time vs contact points, N-gon prism, with/without friction "
              "(fig. 3.17)",
      internal::RunT34},

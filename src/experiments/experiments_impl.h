@@ -31,6 +31,25 @@ class Method;
 
 namespace mrh::experiments::internal {
 
+/// T3.3 (issue 15): real-time computation ratio per method and cube count (rows of 3 resting
+/// cubes, the first row pushed by a box pointer). Lockstep; a method's ratio is its mean haptic
+/// compute per tick (run wall time − physics step time, over the ticks: engine bookkeeping
+/// included) / 1 ms plus its p50 physics step / physics_dt (20 ms; 1 ms for the single-rate
+/// contact-volume and virtual-coupling, whose step is their haptic loop); the p99 step gives
+/// ratio_p99 and max_realtime_cubes_p99 (on a shared VM the p99 is mostly its stalls). Returns 0 if every
+/// ratio is finite, proxy-6dof is cheaper than contact-volume at every count and
+/// contact-volume's ratio grows from the smallest to the largest count.
+struct T33Options {
+  std::vector<std::string> methods = {"proxy-6dof", "contact-volume", "virtual-coupling",
+                                      "penalty-sum"};
+  std::vector<int> cubes = {3, 9, 18};
+  double duration = 0.3;  ///< s simulated per run
+};
+int RunT33(const std::filesystem::path& out, bool quiet);
+int RunT33(const std::filesystem::path& out, bool quiet, const T33Options& options);
+/// `mrh experiment t3.3 --full`: 3–30 cubes in steps of 3, 1 s per run.
+int RunT33Full(const std::filesystem::path& out, bool quiet);
+
 /// T4.1: single-rate, impulse and local-dynamics on the moving 60 kg cube, plus a mass × speed
 /// sweep of the impulse error. Returns 0 if its checks pass.
 int RunT41(const std::filesystem::path& out, bool quiet);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "geometry/deepest_point.h"
+#include "geometry/region_vertices.h"
 
 namespace mrh::geometry {
 namespace {
@@ -146,6 +147,21 @@ void AppendUnique(std::vector<Vec3>& points, std::vector<double>& depths, const 
 }
 
 }  // namespace
+
+namespace internal {
+
+std::optional<std::vector<Vec3>> RegionVertices(const ConvexPolyhedron& a, const Pose& X_WA,
+                                                const ConvexPolyhedron& b, const Pose& X_WB,
+                                                const DistanceResult& d,
+                                                double touching_tolerance) {
+  if (a.unbounded() || d.distance >= -touching_tolerance) return std::nullopt;
+  const std::vector<Halfspace> halfspaces = PairHalfspaces(a, X_WA, b, X_WB);
+  const Interior interior = InteriorPoint(halfspaces, d, touching_tolerance);
+  if (!interior.point) return std::nullopt;
+  return IntersectHalfspaces(halfspaces, *interior.point);
+}
+
+}  // namespace internal
 
 ContactRegion ComputeContactRegion(const ConvexPolyhedron& pointer, const Pose& X_WP,
                                    const ConvexPolyhedron& object, const Pose& X_WO,

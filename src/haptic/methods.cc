@@ -2,6 +2,7 @@
 // Factories of the built-in methods' haptic halves.
 #include "mrh/haptic/methods.h"
 
+#include "contact_volume_haptic.h"
 #include "local_contact_haptic.h"
 #include "local_dynamics_haptic.h"
 #include "penalty_sum_haptic.h"
@@ -22,6 +23,10 @@ std::unique_ptr<MethodHaptic> MakeProxyHaptic(const render::ProxyRendererSetting
 
 std::unique_ptr<MethodHaptic> MakePenaltySumHaptic(const render::PenaltySumSettings& settings) {
   return std::make_unique<internal::PenaltySumHaptic>(settings);
+}
+
+std::unique_ptr<MethodHaptic> MakeContactVolumeHaptic() {
+  return std::make_unique<internal::ContactVolumeHaptic>();
 }
 
 std::unique_ptr<MethodHaptic> MakeVirtualCouplingHaptic(const render::CouplingGains& gains) {

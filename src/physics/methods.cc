@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "contact_volume_physics.h"
 #include "local_contact_physics.h"
 #include "local_dynamics_physics.h"
 #include "mrh/core/error.h"
@@ -50,6 +51,10 @@ const LocalDynamicsCounters* LocalDynamicsCountersOf(const MethodPhysics& method
 const world::PerturberCounters* PerturberCountersOf(const MethodPhysics& method) noexcept {
   const auto* ld = dynamic_cast<const internal::LocalDynamicsPhysics*>(&method);
   return ld == nullptr ? nullptr : &ld->perturber_counters();
+}
+
+std::unique_ptr<MethodPhysics> MakeContactVolumePhysics(const MethodContext& context) {
+  return std::make_unique<internal::ContactVolumePhysics>(context);
 }
 
 std::unique_ptr<MethodPhysics> MakeVirtualCouplingPhysics(const MethodContext& context) {

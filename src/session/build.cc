@@ -48,7 +48,9 @@ world::World LoadWorld(const Session& session) {
       world::LoadOptions{.pointer_body = session.engine.pointer.body,
                          .dynamic_pointer = tool,
                          .tool_mass = r.tool_mass,
-                         .tool_inertia = r.tool_inertia.value_or(Vec3::Zero())});
+                         .tool_inertia = r.tool_inertia.value_or(Vec3::Zero()),
+                         // B2 replaces MuJoCo's contacts by its contact-volume penalty.
+                         .penalty_contacts = session.engine.method == "contact-volume"});
   if (!session.keyframe.empty()) world.ApplyKeyframe(session.keyframe);
   if (session.gravity) world.set_gravity(*session.gravity);
   return world;

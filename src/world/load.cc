@@ -360,6 +360,8 @@ void InitializeState(ModelPtr model, const std::string& origin, const LoadOption
                      "); lower <size> or remove it (mrhaptics sizes the buffers from the scene)");
   }
   if (options.dynamic_pointer) mj_setConst(model.get(), impl->data.get());
+  // B2 computes every contact itself (contact-volume penalty, physics::ContactVolumePhysics).
+  if (options.penalty_contacts) model->opt.disableflags |= mjDSBL_CONTACT;
   impl->model = std::move(model);
   impl->snapshot_size = SnapshotSize(*impl->model);
   // Everything derived from qpos (poses, contacts) is valid right after loading.

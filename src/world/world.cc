@@ -169,6 +169,10 @@ Pose World::geom_pose(int geom) const {
   return Pose{ToVec3(d->geom_xpos + 3 * geom), Quat(q[0], q[1], q[2], q[3])};
 }
 
+bool World::penalty_contacts() const {
+  return (impl_->model->opt.disableflags & mjDSBL_CONTACT) != 0;
+}
+
 int World::num_contacts() const {
   return impl_->data->ncon;
 }

@@ -61,7 +61,9 @@ class Ticks final : public Recorder {
 
 std::vector<TickRecord> RunPressedIntoFloor(const std::string& method) {
   const Pose X_WP{Vec3(0.02, -0.03, kHalf - kDepth), Quat::Identity()};
-  Engine engine(world::World::LoadString(kFloorScene), device::MakeFixedDevice(X_WP), {},
+  // contact-volume replaces MuJoCo's contacts by its own penalty (session::LoadWorld).
+  const world::LoadOptions options{.penalty_contacts = method == "contact-volume"};
+  Engine engine(world::World::LoadString(kFloorScene, options), device::MakeFixedDevice(X_WP), {},
                 FloorSettings(method));
   Ticks recorder;
   (void)engine.Run(&recorder);

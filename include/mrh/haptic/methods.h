@@ -37,6 +37,14 @@ inline constexpr std::uint32_t kVirtualCouplingBadInput = 1u << 0;
 /// Haptic half of "virtual-coupling" (B3): the spring–damper to the tool of the snapshot.
 std::unique_ptr<MethodHaptic> MakeVirtualCouplingHaptic(const render::CouplingGains& gains);
 
+/// Status bit of "contact-volume"'s haptic half: the snapshot's pointer wrench was not finite
+/// (zero output this tick).
+inline constexpr std::uint32_t kContactVolumeBadInput = 1u << 0;
+
+/// Haptic half of "contact-volume" (B2): displays the penalty wrench on the pointer that the
+/// newest snapshot carries (ir::PhysicsSnapshot::pointer_wrench_W). RT-safe after construction.
+std::unique_ptr<MethodHaptic> MakeContactVolumeHaptic();
+
 /// Haptic half of "local-dynamics": local simulation of the neighbors, 3-DOF penalty as above.
 std::unique_ptr<MethodHaptic> MakeLocalDynamicsHaptic(double radius, double stiffness,
                                                       double damping);

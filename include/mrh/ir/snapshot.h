@@ -107,6 +107,11 @@ struct PhysicsSnapshot {
   FixedVector<PairPoint, kMaxPairPoints> points;
   /// The contact local model (local-dynamics with rendering.local_model "contact", issue 13).
   LocalContactModel local_model;
+  /// contact-volume (B2): the penalty wrench the scene exerts on the pointer during the step
+  /// (world frame, torque about the pointer origin) and its number of penetrating pairs; zero
+  /// for the other methods.
+  Wrench pointer_wrench_W;
+  int pointer_contacts = 0;
   std::uint32_t status = kStatusOk;
 };
 

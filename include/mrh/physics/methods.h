@@ -23,6 +23,12 @@ std::unique_ptr<MethodPhysics> MakeProxyPhysics(const MethodContext& context);
 /// @throws mrh::SceneError if the pointer is not a free body. Not RT-safe.
 std::unique_ptr<MethodPhysics> MakeVirtualCouplingPhysics(const MethodContext& context);
 
+/// Physics half of "contact-volume" (B2): the whole scene, pointer included, as one
+/// contact-volume penalty simulation at the haptic rate (MuJoCo's contacts off).
+/// @throws mrh::SceneError if the world was loaded without world::LoadOptions::
+/// penalty_contacts. Not RT-safe.
+std::unique_ptr<MethodPhysics> MakeContactVolumePhysics(const MethodContext& context);
+
 /// Physics half of "local-dynamics": overwrite, global step, plane IR and perturbations.
 std::unique_ptr<MethodPhysics> MakeLocalDynamicsPhysics(const MethodContext& context);
 

@@ -29,6 +29,9 @@ struct LoadOptions {
   /// With dynamic_pointer: the tool's principal inertia (kg·m², body-axes diagonal) instead of
   /// the geoms' (all zero: keep the geoms', scaled by tool_mass / geom mass if tool_mass > 0).
   Vec3 tool_inertia = Vec3::Zero();
+  /// Contact-volume penalty (B2): MuJoCo's own contacts are switched off for the whole scene
+  /// (mjDSBL_CONTACT); the method applies its penalty wrenches with AddForceAtPoint instead.
+  bool penalty_contacts = false;
 };
 
 /// A geom of a body, as a convex shape fixed in the body frame.
@@ -135,6 +138,9 @@ class World {
   /// World pose of a geom.
   Pose geom_pose(int geom) const;
 
+  /// True when the world was loaded with LoadOptions::penalty_contacts (MuJoCo computes no
+  /// contacts).
+  bool penalty_contacts() const;
   /// Contacts in the last step (MuJoCo ncon) and constraint solver iterations used.
   int num_contacts() const;
   int solver_iterations() const;

@@ -1,0 +1,204 @@
+// SPDX-License-Identifier: Apache-2.0
+// Experiment t3.3 (thesis §3.3.4, figs. 3.15–3.16; issue 15 item 4): real-time computation ratio
+// vs cube count for proxy-6dof, contact-volume (B2), virtual-coupling (B3) and penalty-sum (B5).
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "experiment_util.h"
+#include "experiments_impl.h"
+#include "mrh/engine/engine.h"
+#include "mrh/report/report.h"
+#include "mrh/session/session.h"
+
+namespace mrh::experiments::internal {
+namespace {
+
+constexpr double kHalf = 0.05;      // m, cube half side
+constexpr double kRowPitch = 0.25;  // m between rows (along y)
+constexpr double kSpeed = 0.1;      // m/s, pointer along +x
+constexpr double kPhysicsDt = 0.02; // s, multi-rate methods
+
+bool SingleRate(const std::string& m) { return m == "contact-volume" || m == "virtual-coupling"; }
+
+// Rows of 3 resting 10 cm, 0.5 kg cubes (1 mm apart along x), the box pointer 5 mm from the first
+// row's first cube at its COM height.
+std::string Scene(int cubes) {
+  std::string bodies;
+  for (int i = 0; i < cubes; ++i) {
+    bodies += fmt::format(
+        "    <body name=\"cube{}\" pos=\"{} {} {}\"><freejoint/>"
+        "<geom type=\"box\" size=\"{} {} {}\" mass=\"0.5\"/></body>\n",
+        i, (i % 3) * (2 * kHalf + 0.001), (i / 3) * kRowPitch, kHalf, kHalf, kHalf, kHalf);
+  }
+  return fmt::format(R"(<mujoco model="t3_3">
+  <option timestep="0.02" gravity="0 0 -9.81"/>
+  <default><geom condim="3" friction="0.5 0.005 0.0001"/></default>
+  <worldbody>
+    <geom name="floor" type="plane" size="5 5 0.1"/>
+{}    <body name="pointer" mocap="true" pos="-0.065 0 0.05">
+      <geom name="pointer" type="box" size="0.01 0.03 0.02" density="1000" contype="0" conaffinity="0"/>
+    </body>
+  </worldbody>
+</mujoco>
+)",
+                     bodies);
+}
+
+session::Session MakeSession(const std::filesystem::path& dir, int cubes, const std::string& m,
+                             double duration) {
+  nlohmann::json j;
+  j["scene"] = fmt::format("t3_3_{}.xml", cubes);
+  j["method"] = m;
+  j["mode"] = "lockstep";
+  j["physics_dt"] = SingleRate(m) ? 0.001 : kPhysicsDt;
+  j["haptic_dt"] = 0.001;
+  j["duration"] = duration;
+  j["rendering"] = {{"stiffness", 2000.0}, {"damping", 5.0},   {"rot_stiffness", 20.0},
+                    {"rot_damping", 0.1},  {"friction", 0.5}, {"tool_mass", 0.5}};
+  j["safety"] = {{"ramp", false}};
+  const double x0 = -0.065, x1 = x0 + kSpeed * duration;
+  j["device"] = {{"type", "scripted"},
+                 {"keyframes", {{0.0, x0, 0.0, 0.05, 1, 0, 0, 0}, {duration, x1, 0.0, 0.05, 1, 0, 0, 0}}}};
+  return session::ParseSession(j.dump(), dir, {}, fmt::format("t3.3 {} cubes ({})", cubes, m));
+}
+
+struct Ratio {
+  double haptic_ms = 0.0;   // mean haptic compute per tick: (run wall − Σ step wall) / ticks
+  double physics_ms = 0.0;  // p50 physics step wall time
+  double physics_p99_ms = 0.0;
+  double ratio = 0.0;      // with the p50 step (this shared VM stalls 4-26 ms now and then)
+  double ratio_p99 = 0.0;  // with the p99 step
+};
+
+struct StepSum final : engine::Recorder {
+  void OnTick(const engine::TickRecord&) override {}
+  void OnStep(const engine::StepRecord& step, const world::World&) override {
+    total_ms += step.compute_ms;
+  }
+  double total_ms = 0.0;
+};
+
+// The thesis' ratio: compute per update ÷ period, summed over the two loops of a multi-rate
+// method; a single-rate method's whole 1 ms step is its haptic loop.
+Ratio Measure(const session::Session& s, const std::string& m) {
+  auto engine = session::MakeEngine(s);
+  StepSum sum;
+  const auto t0 = std::chrono::steady_clock::now();
+  const engine::RunStats stats = engine->Run(&sum);
+  const double wall_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  Ratio r;
+  r.physics_ms = stats.step_ms_p50;
+  r.physics_p99_ms = stats.step_ms_p99;
+  r.haptic_ms = stats.ticks > 0 ? std::max(0.0, wall_ms - sum.total_ms) / static_cast<double>(stats.ticks) : 0.0;
+  const double period_ms = SingleRate(m) ? 1.0 : kPhysicsDt * 1e3;
+  r.ratio = r.haptic_ms / 1.0 + r.physics_ms / period_ms;
+  r.ratio_p99 = r.haptic_ms / 1.0 + r.physics_p99_ms / period_ms;
+  return r;
+}
+
+void Plot(const std::filesystem::path& out, const T33Options& o, bool quiet) {
+  std::string gp =
+      "# t3.3: real-time computation ratio vs cubes. gnuplot t3_3.gp\n"
+      "set terminal pngcairo size 900,600 enhanced font ',10'\nset output 't3_3.png'\n"
+      "set datafile separator ','\nset grid\nset key top left\nset xlabel 'cubes'\n"
+      "set ylabel 'real-time computation ratio'\nset logscale y\nplot 1 with lines dt 2 lw 2 "
+      "title 'real-time limit 1.0'";
+  for (std::size_t i = 0; i < o.methods.size(); ++i) {
+    gp += fmt::format(", 't3_3.csv' using 1:($2=={} ? $6 : 1/0) with linespoints title '{}'", i,
+                      o.methods[i]);
+  }
+  WriteText(out / "t3_3.gp", gp + "\n");
+  std::string why;
+  if (!report::RunGnuplotScript(out, "t3_3.gp", "t3_3.png", &why) && !quiet) {
+    std::cerr << "mrh: warning: t3_3.png not drawn: " << why << "\n";
+  }
+}
+
+// The thesis' ordering and the cost ratios at the largest count (thesis: ~5x, ~20x more cubes).
+void AddChecks(const T33Options& o, bool finite, nlohmann::json* out) {
+  nlohmann::json& summary = *out;
+  const nlohmann::json& runs = summary["runs"];
+  const std::string first = std::to_string(o.cubes.front()), last = std::to_string(o.cubes.back());
+  // The thesis' ordering, per count: the proxy costs less than the penalty simulation.
+  bool cheaper = true;
+  for (const int n : o.cubes) {
+    const std::string c = std::to_string(n);
+    cheaper = cheaper && runs["proxy-6dof"][c]["ratio"].get<double>() <
+                             runs["contact-volume"][c]["ratio"].get<double>();
+  }
+  // Ratios between the methods' costs at the largest count (thesis: ~5x, ~20x more cubes).
+  for (const std::string& m : o.methods) {
+    summary["cost_vs_proxy_at_max_cubes"][m] =
+        runs[m][last]["ratio"].get<double>() / runs["proxy-6dof"][last]["ratio"].get<double>();
+  }
+  summary["checks"]["ratios_finite"] = finite;
+  summary["checks"]["proxy_cheaper_than_contact_volume_at_every_count"] = cheaper;
+  summary["checks"]["contact_volume_grows_with_count"] =
+      o.cubes.size() < 2 || runs["contact-volume"][last]["ratio"].get<double>() >
+                                runs["contact-volume"][first]["ratio"].get<double>();
+}
+
+}  // namespace
+
+int RunT33(const std::filesystem::path& out, bool quiet) { return RunT33(out, quiet, T33Options{}); }
+
+int RunT33Full(const std::filesystem::path& out, bool quiet) {
+  T33Options o;
+  o.cubes = {3, 6, 9, 12, 15, 18, 21, 24, 27, 30};
+  o.duration = 1.0;
+  return RunT33(out, quiet, o);
+}
+
+int RunT33(const std::filesystem::path& out, bool quiet, const T33Options& o) {
+  std::filesystem::create_directories(out);
+  nlohmann::json summary;
+  std::string csv = "cubes,method_index,method,haptic_ms,physics_p50_ms,ratio,physics_p99_ms,"
+                    "ratio_p99\n";
+  bool finite = true;
+  for (const int n : o.cubes) {
+    WriteText(out / fmt::format("t3_3_{}.xml", n), Scene(n));
+    for (std::size_t mi = 0; mi < o.methods.size(); ++mi) {
+      const std::string& m = o.methods[mi];
+      if (!quiet) std::cout << "t3.3: " << n << " cubes / " << m << "...\n";
+      const Ratio r = Measure(MakeSession(out, n, m, o.duration), m);
+      finite = finite && std::isfinite(r.ratio) && r.ratio > 0.0;
+      csv = csv + fmt::format("{},{},{},{:.5f},{:.5f},{:.5f},{:.5f},{:.5f}\n", n, mi, m,
+                              r.haptic_ms, r.physics_ms, r.ratio, r.physics_p99_ms, r.ratio_p99);
+      summary["runs"][m][std::to_string(n)] = {
+          {"haptic_ms", r.haptic_ms}, {"physics_p50_ms", r.physics_ms}, {"ratio", r.ratio},
+          {"physics_p99_ms", r.physics_p99_ms}, {"ratio_p99", r.ratio_p99}};
+      if (r.ratio <= 1.0) summary["max_realtime_cubes"][m] = n;
+      if (r.ratio_p99 <= 1.0) summary["max_realtime_cubes_p99"][m] = n;
+    }
+  }
+  for (const std::string& m : o.methods) {
+    if (!summary["max_realtime_cubes"].contains(m)) summary["max_realtime_cubes"][m] = 0;
+    if (!summary["max_realtime_cubes_p99"].contains(m)) summary["max_realtime_cubes_p99"][m] = 0;
+  }
+  WriteText(out / "t3_3.csv", csv);
+  Plot(out, o, quiet);
+  AddChecks(o, finite, &summary);
+  summary["experiment"] = "t3.3";
+  summary["machine"] = MachineTag();
+  summary["thesis"] = {{"cubes_vs_penalty", 5.0}, {"cubes_vs_virtual_coupling", 20.0}};
+  WriteText(out / "summary.json", summary.dump(2) + "\n");
+  bool ok = true;
+  for (const auto& [name, pass] : summary["checks"].items()) {
+    ok = ok && pass.get<bool>();
+    if (!quiet) std::cout << "check " << name << ": " << (pass.get<bool>() ? "pass" : "FAIL") << "\n";
+  }
+  if (!quiet) {
+    std::cout << csv << "max_realtime_cubes: " << summary["max_realtime_cubes"].dump() << "\n"
+              << "results: " << std::filesystem::absolute(out).string() << "\n";
+  }
+  return ok ? 0 : 1;
+}
+
+}  // namespace mrh::experiments::internal
