@@ -109,16 +109,20 @@ void ProxyLocalReaction::Substep(double h, const Pose& X_WP) {
   }
 }
 
-// The impulse that gives the world's body the local run's displacement over the step: MuJoCo's
-// semi-implicit step moves the body by the velocity at the step's end, so that velocity is
-// the local run's mean velocity (rotation likewise), less what the rest of the world adds.
+// The impulse that gives the world's body the reaction's share of the local run's displacement.
+// MuJoCo's semi-implicit step moves a body by its end-of-step velocity, so J sets that velocity
+// to the local run's mean velocity less the mean the rest of the world's wrench alone gives
+// over the substeps (v0 + a h (n + 1)/2); the world step adds that wrench itself. Rotation
+// likewise, to first order.
 Wrench ProxyLocalReaction::DisplacementImpulse(const LocalBody& b) const {
+  const double h = physics_dt_ / substeps_;
+  const double other = h * (substeps_ + 1) / 2.0;
   const Vec3 v_mean = (b.com - b.com0) / physics_dt_;
   const Vec3 w_mean = RotationVectorFromQuat((b.q * b.q0.conjugate()).normalized()) / physics_dt_;
   const Mat3 R = b.q0.toRotationMatrix();
   const Mat3 inertia_W = R * b.inertia_B * R.transpose();
-  return Wrench{b.mass * (v_mean - b.v0 - b.a_other * physics_dt_),
-                inertia_W * (w_mean - b.w0 - b.alpha_other * physics_dt_)};
+  return Wrench{b.mass * (v_mean - b.v0 - other * b.a_other),
+                inertia_W * (w_mean - b.w0 - other * b.alpha_other)};
 }
 
 void ProxyLocalReaction::Finish(world::World& world) {
