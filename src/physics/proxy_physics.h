@@ -19,8 +19,8 @@ using engine::RenderingSettings;
 /// of haptic period k−1 as the constant wrench J/Δt^G about each body's COM over this step
 /// (SPEC §3.6, I5: the reaction arrives one physics step late, as in the thesis); with "local"
 /// (default, issue 14), the reaction of a physics-side proxy run over the step against the
-/// objects' predicted poses (ProxyLocalReaction) — then remembers the poses before the step, steps the world, and
-/// builds the geometric IR for the pointer pose of the report (GeometricIrBuilder).
+/// objects' predicted poses (ProxyLocalReaction) — then remembers the poses before the step,
+/// steps the world, and builds the geometric IR for the pointer pose of the report (GeometricIrBuilder).
 /// PhysicsStart builds from the initial state without stepping. Its haptic half is
 /// haptic::internal::ProxyHaptic.
 class ProxyPhysics final : public MethodPhysics {
