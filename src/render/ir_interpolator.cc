@@ -23,6 +23,24 @@ Vec3 BlendNormal(const Vec3& previous, const Vec3& next, double alpha) noexcept 
   return n / length;
 }
 
+// Points are fixed on the pointer: re-posed with this tick's pointer pose, never blended.
+// depth = n·(c − v) = n·c − n·v.
+void AppendPoints(const ir::PhysicsSnapshot& snapshot, const ir::GeometricPair& pair,
+                  const TickPair& tick, int index, const Mat3& R_WP, const Vec3& p_WP,
+                  TickIr* out) noexcept {
+  const double n_dot_c = tick.n_W.dot(tick.c_W);
+  for (int k = pair.first_point; k < pair.first_point + pair.num_points; ++k) {
+    if (k < 0 || static_cast<std::size_t>(k) >= snapshot.points.size()) break;
+    const ir::PairPoint& point = snapshot.points[static_cast<std::size_t>(k)];
+    TickPoint p;
+    p.p_PV = point.p_PV;
+    p.v_W = R_WP * point.p_PV + p_WP;
+    p.depth = n_dot_c - tick.n_W.dot(p.v_W);
+    p.pair = index;
+    if (!out->points.PushBack(p)) break;
+  }
+}
+
 }  // namespace
 
 // Each persisting pair starts its blend from the normal it was last rendered with, so the
@@ -76,20 +94,7 @@ void IrInterpolator::Evaluate(double alpha, const Pose& X_WP, TickIr* out) noexc
     tick.first = static_cast<int>(out->points.size());
     tick.new_pair = new_pair_[i];
     rendered_n_[i] = tick.n_W;
-    const int index = static_cast<int>(out->pairs.size());
-    // Points are fixed on the pointer: re-posed with this tick's pointer pose, never blended.
-    // depth = n·(c − v) = n·c − n·v.
-    const double n_dot_c = tick.n_W.dot(tick.c_W);
-    for (int k = pair.first_point; k < pair.first_point + pair.num_points; ++k) {
-      if (k < 0 || static_cast<std::size_t>(k) >= snapshot_.points.size()) break;
-      const ir::PairPoint& point = snapshot_.points[static_cast<std::size_t>(k)];
-      TickPoint p;
-      p.p_PV = point.p_PV;
-      p.v_W = R_WP * point.p_PV + X_WP.p;
-      p.depth = n_dot_c - tick.n_W.dot(p.v_W);
-      p.pair = index;
-      if (!out->points.PushBack(p)) break;
-    }
+    AppendPoints(snapshot_, pair, tick, static_cast<int>(out->pairs.size()), R_WP, X_WP.p, out);
     tick.count = static_cast<int>(out->points.size()) - tick.first;
     (void)out->pairs.PushBack(tick);
   }

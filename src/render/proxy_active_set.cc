@@ -225,6 +225,66 @@ int ProxyActiveSetSolver::MostViolated(double tolerance, double* violation) cons
   return lowest < -tolerance ? static_cast<int>(best) : -1;
 }
 
+// z: the part of n_p orthogonal to the active normals (two Gram–Schmidt passes), d = Qᵀ n_p.
+void ProxyActiveSetSolver::Project(const Vec6& n_p, std::array<double, kDim>* d,
+                                   Vec6* z) const noexcept {
+  *z = n_p;
+  for (int pass = 0; pass < 2; ++pass) {
+    for (int i = 0; i < count_; ++i) {
+      const auto iu = static_cast<std::size_t>(i);
+      const double c = Dot(q_[iu], *z);
+      (*d)[iu] += c;
+      SubtractScaled(z, c, q_[iu]);
+    }
+  }
+}
+
+// r = R⁻¹ d: the change of the active multipliers per unit of λ_p.
+std::array<double, ProxyActiveSetSolver::kDim> ProxyActiveSetSolver::BackSolve(
+    const std::array<double, kDim>& d) const noexcept {
+  std::array<double, kDim> r{};
+  for (int i = count_ - 1; i >= 0; --i) {
+    const auto iu = static_cast<std::size_t>(i);
+    double s = d[iu];
+    for (int k = i + 1; k < count_; ++k)
+      s -= r_[iu][static_cast<std::size_t>(k)] * r[static_cast<std::size_t>(k)];
+    r[iu] = s / r_[iu][iu];
+  }
+  return r;
+}
+
+// Partial step: the first active multiplier to reach zero (its slot in *drop, −1 if none).
+double ProxyActiveSetSolver::PartialStep(const std::array<double, kDim>& r,
+                                         int* drop) const noexcept {
+  double t_partial = std::numeric_limits<double>::infinity();
+  *drop = -1;
+  for (int i = 0; i < count_; ++i) {
+    const auto iu = static_cast<std::size_t>(i);
+    if (r[iu] > kDualTolerance) {
+      const double ratio = std::max(0.0, lambda_[iu]) / r[iu];
+      if (ratio < t_partial) {
+        t_partial = ratio;
+        *drop = i;
+      }
+    }
+  }
+  return t_partial;
+}
+
+// Row p joins the active set with multiplier lambda_p; Q and R grow by z's direction.
+void ProxyActiveSetSolver::Activate(int p, double lambda_p, const std::array<double, kDim>& d,
+                                    const Vec6& z, double zz) noexcept {
+  const auto slot = static_cast<std::size_t>(count_);
+  active_[slot] = p;
+  lambda_[slot] = lambda_p;
+  ++count_;
+  for (int i = 0; i < count_ - 1; ++i)
+    r_[static_cast<std::size_t>(i)][slot] = d[static_cast<std::size_t>(i)];
+  const double rest = std::sqrt(zz);
+  r_[slot][slot] = rest;
+  for (std::size_t i = 0; i < 6; ++i) q_[slot][i] = z[i] / rest;
+}
+
 // One Goldfarb–Idnani major iteration for row p: steps until p is active (true), or the step
 // budget runs out / the rows are infeasible (false). Each step is a full step (p becomes
 // active) or a partial one (an active row's multiplier reaches 0 and the row is dropped).
@@ -234,39 +294,12 @@ bool ProxyActiveSetSolver::AddRow(int p, int* steps, int max_steps) noexcept {
   double lambda_p = 0.0;
   while (*steps < max_steps) {
     ++*steps;
-    // z: the part of n_p orthogonal to the active normals; r = R⁻¹ Qᵀ n_p, the change of the
-    // active multipliers per unit of λ_p.
     std::array<double, kDim> d{};
-    Vec6 z = n_p;
-    for (int pass = 0; pass < 2; ++pass) {
-      for (int i = 0; i < count_; ++i) {
-        const auto iu = static_cast<std::size_t>(i);
-        const double c = Dot(q_[iu], z);
-        d[iu] += c;
-        SubtractScaled(&z, c, q_[iu]);
-      }
-    }
-    std::array<double, kDim> r{};
-    for (int i = count_ - 1; i >= 0; --i) {
-      const auto iu = static_cast<std::size_t>(i);
-      double s = d[iu];
-      for (int k = i + 1; k < count_; ++k)
-        s -= r_[iu][static_cast<std::size_t>(k)] * r[static_cast<std::size_t>(k)];
-      r[iu] = s / r_[iu][iu];
-    }
-    // Partial step: the first active multiplier to reach zero.
-    double t_partial = std::numeric_limits<double>::infinity();
+    Vec6 z;
+    Project(n_p, &d, &z);
+    const std::array<double, kDim> r = BackSolve(d);
     int drop = -1;
-    for (int i = 0; i < count_; ++i) {
-      const auto iu = static_cast<std::size_t>(i);
-      if (r[iu] > kDualTolerance) {
-        const double ratio = std::max(0.0, lambda_[iu]) / r[iu];
-        if (ratio < t_partial) {
-          t_partial = ratio;
-          drop = i;
-        }
-      }
-    }
+    const double t_partial = PartialStep(r, &drop);
     // Full step: to where row p holds with equality.
     const double zz = Dot(z, z);
     const bool independent = zz > kRankTolerance * length2;
@@ -284,15 +317,7 @@ bool ProxyActiveSetSolver::AddRow(int p, int* steps, int max_steps) noexcept {
     }
     lambda_p += t;
     if (full) {
-      const auto slot = static_cast<std::size_t>(count_);
-      active_[slot] = p;
-      lambda_[slot] = lambda_p;
-      ++count_;
-      for (int i = 0; i < count_ - 1; ++i)
-        r_[static_cast<std::size_t>(i)][slot] = d[static_cast<std::size_t>(i)];
-      const double rest = std::sqrt(zz);
-      r_[slot][slot] = rest;
-      for (std::size_t i = 0; i < 6; ++i) q_[slot][i] = z[i] / rest;
+      Activate(p, lambda_p, d, z, zz);
       return true;
     }
     DropActive(drop);

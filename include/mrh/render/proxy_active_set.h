@@ -77,6 +77,11 @@ class ProxyActiveSetSolver {
   void SolveEqualityActive() noexcept;
   int MostViolated(double tolerance, double* violation) const noexcept;
   bool AddRow(int row, int* steps, int max_steps) noexcept;
+  void Project(const Vec6& n_p, std::array<double, kDim>* d, Vec6* z) const noexcept;
+  std::array<double, kDim> BackSolve(const std::array<double, kDim>& d) const noexcept;
+  double PartialStep(const std::array<double, kDim>& r, int* drop) const noexcept;
+  void Activate(int p, double lambda_p, const std::array<double, kDim>& d, const Vec6& z,
+                double zz) noexcept;
   void DropActive(int slot) noexcept;
   Vec6 Normal(int row) const noexcept;
   bool IsActive(std::size_t row) const noexcept;

@@ -207,10 +207,14 @@ class ProxyRenderer {
   // one word. A collision only changes a start value, never the solution.
   using RowId = std::uint64_t;
 
+  struct PairFrame;  // proxy_rows.cc
+
+  void Solve(ProxyOutput* out) noexcept;
   int SweepBudget() const noexcept;
   bool InputIsFinite(const TickIr& ir, const Pose& X_WP, double dt) const noexcept;
   void CarryPreviousProxy(const TickIr& ir, const Pose& X_WP) noexcept;
   bool BuildRows(const TickIr& ir, const Pose& X_WP, ProxyDiagnostics* diag) noexcept;
+  bool LoadPair(const TickIr& ir, int pair, PairFrame* frame) const noexcept;
   void ComputeReactions(const TickIr& ir, const Pose& X_WP, double dt, ProxyOutput* out) noexcept;
   void Remember(const TickIr& ir, const ProxyOutput& out) noexcept;
   void Fault(const Pose& X_WP, ProxyOutput* out) noexcept;
