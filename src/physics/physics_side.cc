@@ -27,19 +27,24 @@ void PhysicsSide::Start(const ir::HapticReport& initial) {
   exchange_.snapshots->Publish();
 }
 
-void PhysicsSide::Step(std::int64_t k) {
-  for (const ir::BodyImpulse& impulse : input_.impulses) {
+void PhysicsSide::AddToTotals(const ir::HapticReport& report) {
+  for (const ir::BodyImpulse& impulse : report.impulses) {
     BodyImpulseTotal& total = impulses_[impulse.body];
     total.body = impulse.body;
     total.linear += impulse.linear;
     total.angular += impulse.angular;
   }
+}
+
+void PhysicsSide::Step(std::int64_t k) {
   ir_status_ |= input_.status;
   ir::PhysicsSnapshot& out = exchange_.snapshots->write_slot();
   out.status = ir::kStatusOk;
   const auto t0 = std::chrono::steady_clock::now();
   method_->PhysicsStep(input_, &out);
   const auto t1 = std::chrono::steady_clock::now();
+  const ir::HapticReport* applied = method_->applied_reaction();
+  AddToTotals(applied != nullptr ? *applied : input_);
   out.step = k;
   ir_status_ |= out.status;
   if (recorder_ != nullptr) recorder_->OnSnapshot(out);
@@ -89,14 +94,10 @@ void PhysicsSide::RecordStep() {
 }
 
 void PhysicsSide::Finish(PhysicsStats* stats) {
-  // Reports of the last periods were never stepped, but their impulses were delivered.
+  // Reports of the last periods were never stepped, but their impulses were delivered (unless
+  // the method applies its own reaction instead of the reports').
   TakeReports();
-  for (const ir::BodyImpulse& impulse : input_.impulses) {
-    BodyImpulseTotal& total = impulses_[impulse.body];
-    total.body = impulse.body;
-    total.linear += impulse.linear;
-    total.angular += impulse.angular;
-  }
+  if (method_->applied_reaction() == nullptr) AddToTotals(input_);
   DrainTickRecords();
   stats->steps = steps_;
   stats->step_ms_p50 = Percentile(step_ms_, 50.0);

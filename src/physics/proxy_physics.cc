@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "mrh/core/error.h"
 #include "mrh/physics/methods.h"
 #include "mrh/world/world.h"
@@ -63,6 +65,15 @@ ProxyPhysics::ProxyPhysics(const MethodContext& context)
       pointer_body_(context.pointer_body),
       physics_dt_(context.settings->physics_dt) {
   builder_.emplace(*world_, pointer_body_, context.settings->rendering);
+  const engine::RenderingSettings& rendering = context.settings->rendering;
+  // At physics_dt = haptic_dt the plain reaction is the single-rate reference; "local" is for
+  // multi-rate runs.
+  const double haptic_dt = context.settings->haptic_dt;
+  if (rendering.proxy_reaction == "local" && std::lround(physics_dt_ / haptic_dt) > 1) {
+    local_.emplace(*world_, pointer_body_, rendering,
+                   ProxySettingsFor(*world_, pointer_body_, rendering), physics_dt_,
+                   haptic_dt);
+  }
 }
 
 void ProxyPhysics::Build(const Pose& X_WP, ir::PhysicsSnapshot* out) {
@@ -82,7 +93,11 @@ void ProxyPhysics::PhysicsStart(const ir::HapticReport& initial, ir::PhysicsSnap
 void ProxyPhysics::PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot* out) {
   // SPEC §3.6 / I5: what the user pushed during the last period acts as a constant wrench over
   // this whole step, so the objects answer one physics step late (the chapter-3 design).
-  ApplyReportImpulses(*world_, report, physics_dt_);
+  if (local_) {
+    local_->Apply(*world_, report);
+  } else {
+    ApplyReportImpulses(*world_, report, physics_dt_);
+  }
   world_->SetMocapPose(pointer_body_, report.X_WP);
   builder_->CapturePreviousPoses(*world_);
   auto t0 = std::chrono::steady_clock::now();

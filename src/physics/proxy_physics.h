@@ -7,6 +7,7 @@
 
 #include "geometric_ir_builder.h"
 #include "mrh/physics/method_physics.h"
+#include "proxy_local_reaction.h"
 
 namespace mrh::physics::internal {
 
@@ -14,10 +15,12 @@ using engine::RenderingSettings;
 
 /// The physics half of the chapter-3 method (SPEC §3.1–3.11), registered as "proxy-6dof".
 ///
-/// PhysicsStep k: applies the reaction impulses J of haptic period k−1 as the constant wrench
-/// J/Δt^G about each body's COM over this step (SPEC §3.6, I5: the reaction arrives one physics
-/// step late, as in the thesis), remembers the poses before the step, steps the world, and
-/// builds the geometric IR for the pointer pose of the report (GeometricIrBuilder).
+/// PhysicsStep k: applies the reaction — with rendering.proxy_reaction "impulse", the impulses J
+/// of haptic period k−1 as the constant wrench J/Δt^G about each body's COM over this step
+/// (SPEC §3.6, I5: the reaction arrives one physics step late, as in the thesis); with "local"
+/// (default, issue 14), the reaction of a physics-side proxy run over the step against the
+/// objects' predicted poses (ProxyLocalReaction) — then remembers the poses before the step,
+/// steps the world, and builds the geometric IR for the pointer pose of the report (GeometricIrBuilder).
 /// PhysicsStart builds from the initial state without stepping. Its haptic half is
 /// haptic::internal::ProxyHaptic.
 class ProxyPhysics final : public MethodPhysics {
@@ -29,6 +32,12 @@ class ProxyPhysics final : public MethodPhysics {
   void PhysicsStart(const ir::HapticReport& initial, ir::PhysicsSnapshot* out) override;
   void PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot* out) override;
   PhaseTimes last_phases() const noexcept override { return phases_; }
+  const ir::HapticReport* applied_reaction() const noexcept override {
+    return local_ ? &local_->applied() : nullptr;
+  }
+
+  /// The physics-side reaction ("local" only; nullptr with "impulse"), for tests.
+  const ProxyLocalReaction* local_reaction() const { return local_ ? &*local_ : nullptr; }
 
   /// The work of the last IR build.
   const GeometricIrStats& ir_stats() const { return builder_->stats(); }
@@ -41,6 +50,7 @@ class ProxyPhysics final : public MethodPhysics {
   double physics_dt_;
   PhaseTimes phases_;
   std::optional<GeometricIrBuilder> builder_;
+  std::optional<ProxyLocalReaction> local_;
 };
 
 }  // namespace mrh::physics::internal

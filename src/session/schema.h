@@ -42,7 +42,7 @@ inline constexpr std::array<Field<engine::PointerSettings>, 2> kPointerFields{{
 }};
 
 /// `rendering` block.
-inline constexpr std::array<Field<engine::RenderingSettings>, 20> kRenderingFields{{
+inline constexpr std::array<Field<engine::RenderingSettings>, 21> kRenderingFields{{
     {"stiffness", &engine::RenderingSettings::stiffness, "N/m", "penalty spring k (eq. 4.11)"},
     {"damping", &engine::RenderingSettings::damping, "N*s/m", "penalty damper d (eq. 4.11)"},
     {"neighbor_distance", &engine::RenderingSettings::neighbor_distance, "m",
@@ -64,6 +64,8 @@ inline constexpr std::array<Field<engine::RenderingSettings>, 20> kRenderingFiel
      "proxy solver sweeps (pgs) or steps (active-set) per tick at most"},
     {"solver_tolerance", &engine::RenderingSettings::solver_tolerance, "m",
      "proxy solver tolerance: multiplier change (pgs) or row violation (active-set)"},
+    {"proxy_reaction", &engine::RenderingSettings::proxy_reaction, "",
+     "proxy-6dof reaction in the physics step: \"local\" (default) or \"impulse\" (J/dt)"},
     {"perturbation", &engine::RenderingSettings::perturbation, "",
      "measure A and b by perturbation simulations (local-dynamics)"},
     {"perturbation_force", &engine::RenderingSettings::perturbation_force, "N",

@@ -80,6 +80,11 @@ void ValidateRendering(const RenderingSettings& r) {
       RequirePositive((*r.tool_inertia)[i], "rendering.tool_inertia", "kg*m^2", 1e3);
     }
   }
+  if (r.proxy_reaction != "local" && r.proxy_reaction != "impulse") {
+    throw InvalidArgument(fmt::format(
+        "rendering.proxy_reaction = \"{}\"; expected \"local\" (default) or \"impulse\"",
+        r.proxy_reaction));
+  }
   if (r.local_model != "contact" && r.local_model != "perturbation") {
     throw InvalidArgument(fmt::format(
         "rendering.local_model = \"{}\"; expected \"contact\" (default) or \"perturbation\"",

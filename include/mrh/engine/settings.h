@@ -61,6 +61,12 @@ struct RenderingSettings {
   /// Tolerance of the proxy solve (m): PGS stops when no multiplier changed more than this in a
   /// sweep; active-set stops when no row is violated by more than this.
   double solver_tolerance = 1e-10;
+  /// How the physics step applies proxy-6dof's reaction (issue 14): "local" (default: a
+  /// physics-side proxy run at the haptic rate over the step against the touched objects'
+  /// predicted poses, physics::internal::ProxyLocalReaction; stable on light objects at 20 ms)
+  /// or "impulse" (the thesis' constant wrench J/Δt^G of the haptic period, SPEC I5; flings
+  /// light objects when k Δt²/I ≳ 1).
+  std::string proxy_reaction = "local";
 
   // Local simulation (method local-dynamics, SPEC §4.5–4.8).
   /// Run the perturbation simulations that measure A and b. false: A from the object's own

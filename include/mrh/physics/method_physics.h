@@ -59,6 +59,12 @@ class MethodPhysics {
 
   /// The phases of the latest PhysicsStep (or PhysicsStart). Default: none measured.
   virtual PhaseTimes last_phases() const noexcept { return {}; }
+
+  /// The reaction impulses the latest PhysicsStep actually applied (world frame, angular about
+  /// each body's COM), when they are not the report's (proxy-6dof with rendering.proxy_reaction
+  /// "local"); nullptr (default): the step applied the report's impulses. PhysicsSide's totals
+  /// (RunStats::impulses) count these.
+  virtual const ir::HapticReport* applied_reaction() const noexcept { return nullptr; }
 };
 
 }  // namespace mrh::physics

@@ -63,6 +63,8 @@ class PhysicsSide {
   std::int64_t steps() const { return steps_; }
 
  private:
+  void AddToTotals(const ir::HapticReport& report);
+
   MethodPhysics* method_;
   world::World* world_;
   Exchange exchange_;

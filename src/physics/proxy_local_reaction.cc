@@ -1,0 +1,168 @@
+// SPDX-License-Identifier: Apache-2.0
+// proxy-6dof's reaction from a physics-side proxy run against the objects' predicted poses.
+#include "proxy_local_reaction.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "mrh/world/world.h"
+
+namespace mrh::physics::internal {
+
+ProxyLocalReaction::ProxyLocalReaction(const world::World& world, int pointer_body,
+                                       const engine::RenderingSettings& rendering,
+                                       const render::ProxyRendererSettings& settings,
+                                       double physics_dt, double haptic_dt)
+    : builder_(world, pointer_body, rendering),
+      snapshot_(std::make_unique<ir::PhysicsSnapshot>()),
+      renderer_(settings),
+      physics_dt_(physics_dt),
+      substeps_(std::max(1, static_cast<int>(std::lround(physics_dt / haptic_dt)))) {}
+
+ProxyLocalReaction::LocalBody* ProxyLocalReaction::Find(int body) {
+  for (LocalBody& b : bodies_) {
+    if (b.body == body) return &b;
+  }
+  return nullptr;
+}
+
+// The rest of the world's wrench on the body during its last step, as accelerations: the
+// velocity change the applied reaction does not explain. Zero for a body not touched then.
+void ProxyLocalReaction::EstimateOtherWrench(LocalBody* body) const {
+  for (const BodyMemory& m : memory_) {
+    if (m.body != body->body) continue;
+    const Mat3 R = body->q.toRotationMatrix();
+    const Mat3 inertia_W = R * body->inertia_B * R.transpose();
+    body->a_other = (body->v - m.v) / physics_dt_ - m.impulse.f / (body->mass * physics_dt_);
+    body->alpha_other =
+        (body->w - m.w) / physics_dt_ - inertia_W.inverse() * m.impulse.tau / physics_dt_;
+    return;
+  }
+}
+
+void ProxyLocalReaction::StartBodies(const world::World& world) {
+  bodies_.Clear();
+  for (const render::TickPair& pair : base_.pairs) {
+    if (pair.is_static || pair.body < 0 || Find(pair.body) != nullptr) continue;
+    const world::BodyInfo& info = world.body(pair.body);
+    const world::BodyState state = world.body_state(pair.body);
+    LocalBody b;
+    b.body = pair.body;
+    b.mass = info.mass;
+    b.inertia_B = info.inertia_B;
+    b.p_BCm = info.p_BCm;
+    b.q = state.X_WB.q.normalized();
+    b.com = state.p_WCm;
+    b.com0 = state.p_WCm;
+    b.v = state.V_WCm.v;
+    b.w = state.V_WCm.w;
+    b.q0 = b.q;
+    b.v0 = b.v;
+    b.w0 = b.w;
+    EstimateOtherWrench(&b);
+    if (!(b.mass > 0.0) || !bodies_.PushBack(b)) continue;
+  }
+}
+
+// ir_ = base_ with every touched object at its local pose and the points at pointer pose X_WP.
+void ProxyLocalReaction::PoseIr(const Pose& X_WP) {
+  ir_ = base_;
+  for (render::TickPair& pair : ir_.pairs) {
+    const LocalBody* b = pair.is_static ? nullptr : Find(pair.body);
+    if (b == nullptr) continue;
+    const Quat dq = b->q * pair.X_WB.q.normalized().conjugate();
+    pair.n_W = (dq * pair.n_W).normalized();
+    pair.X_WB = Pose{b->com - b->q * b->p_BCm, b->q};
+    pair.c_W = pair.X_WB * pair.p_BC;
+    pair.p_WCm = b->com;
+  }
+  for (render::TickPoint& point : ir_.points) {
+    const render::TickPair& pair = ir_.pairs[static_cast<std::size_t>(point.pair)];
+    point.v_W = X_WP * point.p_PV;
+    point.depth = pair.n_W.dot(pair.c_W - point.v_W);
+  }
+}
+
+// One renderer tick of length h, then each touched body moves under its reaction and the rest
+// of the world's wrench (semi-implicit Euler, as MuJoCo's).
+void ProxyLocalReaction::Substep(double h, const Pose& X_WP) {
+  PoseIr(X_WP);
+  renderer_.Tick(ir_, X_WP, h, &output_);
+  pointer_impulse_.f += output_.w_W.f * h;
+  pointer_impulse_.tau += (output_.w_W.tau + (X_WP.p - pointer_origin_).cross(output_.w_W.f)) * h;
+  for (LocalBody& b : bodies_) {
+    Wrench w;  // on the body, about its current COM
+    for (const render::ProxyPairReaction& r : output_.reactions) {
+      if (r.is_static || r.body != b.body) continue;
+      w.f += r.w_W.f;
+      w.tau += r.w_W.tau;
+    }
+    b.last_force = w.f;
+    b.impulse.f += w.f * h;
+    b.impulse.tau += (w.tau + (b.com - b.com0).cross(w.f)) * h;
+    const Mat3 R = b.q.toRotationMatrix();
+    const Mat3 inertia_W = R * b.inertia_B * R.transpose();
+    b.v += h * (w.f / b.mass + b.a_other);
+    b.w += h * (inertia_W.inverse() * w.tau + b.alpha_other);
+    b.com += h * b.v;
+    b.q = (QuatFromRotationVector(h * b.w) * b.q).normalized();
+  }
+}
+
+// The impulse that gives the world's body the reaction's share of the local run's displacement.
+// MuJoCo's semi-implicit step moves a body by its end-of-step velocity, so J sets that velocity
+// to the local run's mean velocity less the mean the rest of the world's wrench alone gives
+// over the substeps (v0 + a h (n + 1)/2); the world step adds that wrench itself. Rotation
+// likewise, to first order.
+Wrench ProxyLocalReaction::DisplacementImpulse(const LocalBody& b) const {
+  const double h = physics_dt_ / substeps_;
+  const double other = h * (substeps_ + 1) / 2.0;
+  const Vec3 v_mean = (b.com - b.com0) / physics_dt_;
+  const Vec3 w_mean = RotationVectorFromQuat((b.q * b.q0.conjugate()).normalized()) / physics_dt_;
+  const Mat3 R = b.q0.toRotationMatrix();
+  const Mat3 inertia_W = R * b.inertia_B * R.transpose();
+  return Wrench{b.mass * (v_mean - b.v0 - other * b.a_other),
+                inertia_W * (w_mean - b.w0 - other * b.alpha_other)};
+}
+
+void ProxyLocalReaction::Finish(world::World& world) {
+  applied_.impulses.Clear();
+  proxy_.impulses.Clear();
+  memory_.Clear();
+  for (const LocalBody& b : bodies_) {
+    const bool touched = !(b.impulse.f.isZero(0.0) && b.impulse.tau.isZero(0.0));
+    const Wrench J = touched ? DisplacementImpulse(b) : Wrench{};
+    const world::BodyState state = world.body_state(b.body);
+    (void)memory_.PushBack(BodyMemory{b.body, state.V_WCm.v, state.V_WCm.w, J});
+    if (!touched) continue;
+    proxy_.AddImpulse(b.body, b.impulse.f, b.impulse.tau, b.last_force);
+    world.AddWrenchAtCom(b.body, Wrench{J.f / physics_dt_, J.tau / physics_dt_});
+    applied_.AddImpulse(b.body, J.f, J.tau, b.last_force);
+  }
+}
+
+void ProxyLocalReaction::Apply(world::World& world, const ir::HapticReport& report) {
+  pointer_impulse_ = Wrench{};
+  pointer_origin_ = report.X_WP.p;
+  // The pointer during this step: the report's pose moved on with the report's velocity.
+  const Quat q_WP = report.X_WP.q.normalized();
+  const auto pointer_at = [&](double t) {
+    return Pose{report.X_WP.p + t * report.V_WP.v,
+                (QuatFromRotationVector(t * report.V_WP.w) * q_WP).normalized()};
+  };
+  // The IR of the objects as they are now, for the pointer where it will be at the step's end,
+  // so the contact points cover the region it will penetrate (the snapshot's IR, built for the
+  // report's pose, may hold only a closest point when the pointer is just arriving).
+  const Pose X_WP_end = pointer_at(physics_dt_);
+  snapshot_->status = ir::kStatusOk;
+  builder_.CapturePreviousPoses(world);
+  builder_.Build(world, X_WP_end, snapshot_.get());
+  interpolator_.Adopt(*snapshot_);
+  interpolator_.Evaluate(1.0, X_WP_end, &base_);
+  StartBodies(world);
+  const double h = physics_dt_ / substeps_;
+  for (int s = 0; s < substeps_; ++s) Substep(h, pointer_at((s + 1) * h));
+  Finish(world);
+}
+
+}  // namespace mrh::physics::internal
