@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
+#include "experiment_table.h"
 #include "experiment_util.h"
 #include "experiments_impl.h"
 #include "mrh/engine/engine.h"
-#include "mrh/report/report.h"
 #include "mrh/session/session.h"
 
 namespace mrh::experiments::internal {
@@ -103,7 +103,7 @@ Ratio Measure(const session::Session& s, const std::string& m) {
   return r;
 }
 
-void Plot(const std::filesystem::path& out, const T33Options& o, bool quiet) {
+void PlotT33(const std::filesystem::path& out, const T33Options& o, bool quiet) {
   std::string gp =
       "# t3.3: real-time computation ratio vs cubes. gnuplot t3_3.gp\n"
       "set terminal pngcairo size 900,600 enhanced font ',10'\nset output 't3_3.png'\n"
@@ -114,15 +114,11 @@ void Plot(const std::filesystem::path& out, const T33Options& o, bool quiet) {
     gp += fmt::format(", 't3_3.csv' using 1:($2=={} ? $6 : 1/0) with linespoints title '{}'", i,
                       o.methods[i]);
   }
-  WriteText(out / "t3_3.gp", gp + "\n");
-  std::string why;
-  if (!report::RunGnuplotScript(out, "t3_3.gp", "t3_3.png", &why) && !quiet) {
-    std::cerr << "mrh: warning: t3_3.png not drawn: " << why << "\n";
-  }
+  Plot(out, "t3_3", gp + "\n", quiet);
 }
 
 // The thesis' ordering and the cost ratios at the largest count (thesis: ~5x, ~20x more cubes).
-void AddChecks(const T33Options& o, bool finite, nlohmann::json* out) {
+Checks CheckT33(const T33Options& o, bool finite, nlohmann::json* out) {
   nlohmann::json& summary = *out;
   const nlohmann::json& runs = summary["runs"];
   const std::string first = std::to_string(o.cubes.front()), last = std::to_string(o.cubes.back());
@@ -138,11 +134,43 @@ void AddChecks(const T33Options& o, bool finite, nlohmann::json* out) {
     summary["cost_vs_proxy_at_max_cubes"][m] =
         runs[m][last]["ratio"].get<double>() / runs["proxy-6dof"][last]["ratio"].get<double>();
   }
-  summary["checks"]["ratios_finite"] = finite;
-  summary["checks"]["proxy_cheaper_than_contact_volume_at_every_count"] = cheaper;
-  summary["checks"]["contact_volume_grows_with_count"] =
-      o.cubes.size() < 2 || runs["contact-volume"][last]["ratio"].get<double>() >
-                                runs["contact-volume"][first]["ratio"].get<double>();
+  Checks checks;
+  checks.Add("ratios_finite", finite);
+  checks.Add("proxy_cheaper_than_contact_volume_at_every_count", cheaper);
+  checks.Add("contact_volume_grows_with_count",
+             o.cubes.size() < 2 || runs["contact-volume"][last]["ratio"].get<double>() >
+                                       runs["contact-volume"][first]["ratio"].get<double>());
+  return checks;
+}
+
+// Every count × method: the scenes, the CSV rows and summary["runs"] / max_realtime_cubes.
+// False if a ratio is not finite and positive.
+bool MeasureAll(const std::filesystem::path& out, const T33Options& o, bool quiet,
+                std::string* csv, nlohmann::json* summary) {
+  bool finite = true;
+  for (const int n : o.cubes) {
+    WriteText(out / fmt::format("t3_3_{}.xml", n), Scene(n));
+    for (std::size_t mi = 0; mi < o.methods.size(); ++mi) {
+      const std::string& m = o.methods[mi];
+      if (!quiet) std::cout << "t3.3: " << n << " cubes / " << m << "...\n";
+      const Ratio r = Measure(MakeSession(out, n, m, o.duration), m);
+      finite = finite && std::isfinite(r.ratio) && r.ratio > 0.0;
+      *csv += fmt::format("{},{},{},{:.5f},{:.5f},{:.5f},{:.5f},{:.5f}\n", n, mi, m, r.haptic_ms,
+                          r.physics_ms, r.ratio, r.physics_p99_ms, r.ratio_p99);
+      (*summary)["runs"][m][std::to_string(n)] = {
+          {"haptic_ms", r.haptic_ms}, {"physics_p50_ms", r.physics_ms}, {"ratio", r.ratio},
+          {"physics_p99_ms", r.physics_p99_ms}, {"ratio_p99", r.ratio_p99}};
+      if (r.ratio <= 1.0) (*summary)["max_realtime_cubes"][m] = n;
+      if (r.ratio_p99 <= 1.0) (*summary)["max_realtime_cubes_p99"][m] = n;
+    }
+  }
+  for (const std::string& m : o.methods) {
+    if (!(*summary)["max_realtime_cubes"].contains(m)) (*summary)["max_realtime_cubes"][m] = 0;
+    if (!(*summary)["max_realtime_cubes_p99"].contains(m)) {
+      (*summary)["max_realtime_cubes_p99"][m] = 0;
+    }
+  }
+  return finite;
 }
 
 }  // namespace
@@ -161,44 +189,17 @@ int RunT33(const std::filesystem::path& out, bool quiet, const T33Options& o) {
   nlohmann::json summary;
   std::string csv = "cubes,method_index,method,haptic_ms,physics_p50_ms,ratio,physics_p99_ms,"
                     "ratio_p99\n";
-  bool finite = true;
-  for (const int n : o.cubes) {
-    WriteText(out / fmt::format("t3_3_{}.xml", n), Scene(n));
-    for (std::size_t mi = 0; mi < o.methods.size(); ++mi) {
-      const std::string& m = o.methods[mi];
-      if (!quiet) std::cout << "t3.3: " << n << " cubes / " << m << "...\n";
-      const Ratio r = Measure(MakeSession(out, n, m, o.duration), m);
-      finite = finite && std::isfinite(r.ratio) && r.ratio > 0.0;
-      csv = csv + fmt::format("{},{},{},{:.5f},{:.5f},{:.5f},{:.5f},{:.5f}\n", n, mi, m,
-                              r.haptic_ms, r.physics_ms, r.ratio, r.physics_p99_ms, r.ratio_p99);
-      summary["runs"][m][std::to_string(n)] = {
-          {"haptic_ms", r.haptic_ms}, {"physics_p50_ms", r.physics_ms}, {"ratio", r.ratio},
-          {"physics_p99_ms", r.physics_p99_ms}, {"ratio_p99", r.ratio_p99}};
-      if (r.ratio <= 1.0) summary["max_realtime_cubes"][m] = n;
-      if (r.ratio_p99 <= 1.0) summary["max_realtime_cubes_p99"][m] = n;
-    }
-  }
-  for (const std::string& m : o.methods) {
-    if (!summary["max_realtime_cubes"].contains(m)) summary["max_realtime_cubes"][m] = 0;
-    if (!summary["max_realtime_cubes_p99"].contains(m)) summary["max_realtime_cubes_p99"][m] = 0;
-  }
+  const bool finite = MeasureAll(out, o, quiet, &csv, &summary);
   WriteText(out / "t3_3.csv", csv);
-  Plot(out, o, quiet);
-  AddChecks(o, finite, &summary);
+  PlotT33(out, o, quiet);
+  const Checks checks = CheckT33(o, finite, &summary);
   summary["experiment"] = "t3.3";
   summary["machine"] = MachineTag();
   summary["thesis"] = {{"cubes_vs_penalty", 5.0}, {"cubes_vs_virtual_coupling", 20.0}};
-  WriteText(out / "summary.json", summary.dump(2) + "\n");
-  bool ok = true;
-  for (const auto& [name, pass] : summary["checks"].items()) {
-    ok = ok && pass.get<bool>();
-    if (!quiet) std::cout << "check " << name << ": " << (pass.get<bool>() ? "pass" : "FAIL") << "\n";
-  }
   if (!quiet) {
-    std::cout << csv << "max_realtime_cubes: " << summary["max_realtime_cubes"].dump() << "\n"
-              << "results: " << std::filesystem::absolute(out).string() << "\n";
+    std::cout << csv << "max_realtime_cubes: " << summary["max_realtime_cubes"].dump() << "\n";
   }
-  return ok ? 0 : 1;
+  return FinishExperiment(out, std::move(summary), checks, quiet);
 }
 
 }  // namespace mrh::experiments::internal
