@@ -7,18 +7,54 @@
 #include <cmath>
 #include <memory>
 #include <numbers>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "mrh/core/stats.h"
 #include "mrh/render/proxy_renderer.h"
+#include "mrh/session/mjcf_text.h"
 
 namespace mrh::render {
 namespace {
 
-// The pointer: an N-gonal prism of radius 5 cm and height 10 cm standing on its base (SPEC
-// T3.4, I16), pressed ~1 mm into a static floor z = 0 and slid along x at 0.1 m/s.
-constexpr double kRadius = 0.05;
-constexpr double kHalfHeight = 0.05;
+// The pointer: the N-gonal prism of scenes/t3_4.xml (SPEC T3.4, I16; the experiment and the
+// viewer read the same file), standing on its base, pressed ~1 mm into a static floor z = 0 and
+// slid along x at 0.1 m/s.
+struct Prism {
+  double radius = 0.0;       // circumradius of the N-gon (m)
+  double half_height = 0.0;  // (m)
+};
+
+// The circumradius and half height of the scene's mesh "prism" (its vertex list).
+Prism LoadPrism() {
+  const std::string path = std::string(MRH_SOURCE_DIR) + "/scenes/t3_4.xml";
+  std::ifstream file(path);
+  std::stringstream text;
+  text << file.rdbuf();
+  const std::string mjcf = text.str();
+  const session::MjcfAttributeSpan span = session::FindMjcfAttribute(mjcf, "mesh", "prism", "vertex");
+  if (!span.found) throw std::runtime_error(path + ": no <mesh name=\"prism\" vertex=\"...\">");
+  std::istringstream values(mjcf.substr(span.offset, span.size));
+  Prism prism;
+  double x = 0.0, y = 0.0, z = 0.0;
+  while (values >> x >> y >> z) {
+    prism.radius = std::max(prism.radius, std::hypot(x, y));
+    prism.half_height = std::max(prism.half_height, std::abs(z));
+  }
+  if (!(prism.radius > 0.0 && prism.half_height > 0.0)) {
+    throw std::runtime_error(path + ": mesh \"prism\" has no extent");
+  }
+  return prism;
+}
+
+const Prism& ThePrism() {
+  static const Prism prism = LoadPrism();
+  return prism;
+}
+
 constexpr double kDt = 1e-3;
 constexpr double kSpeed = 0.1;
 constexpr int kWarmupTicks = 200;
@@ -31,8 +67,8 @@ constexpr std::size_t kMaxSamples = 1 << 20;
 constexpr double kModeTolerance[] = {1e-7, 1e-10, 0.0};
 
 ProxyRendererSettings BenchSettings(bool friction, int mode) {
-  const double r2 = kRadius * kRadius;
-  const double l2 = 4.0 * kHalfHeight * kHalfHeight;
+  const double r2 = ThePrism().radius * ThePrism().radius;
+  const double l2 = 4.0 * ThePrism().half_height * ThePrism().half_height;
   const Vec3 inertia(r2 / 4.0 + l2 / 12.0, r2 / 4.0 + l2 / 12.0, r2 / 2.0);
   ProxyRendererSettings s;
   s.k_t = 9000.0;
@@ -65,7 +101,7 @@ void FillIr(const std::vector<Vec3>& points_P, const Pose& X_WP, TickIr* ir) {
 Pose PointerAt(int i) {
   const double t = kDt * i;
   const double depth = 1e-3 + 2e-4 * std::sin(2.0 * std::numbers::pi * 2.0 * t);
-  return Pose{Vec3(kSpeed * t, 0.0, kHalfHeight - depth), Quat::Identity()};
+  return Pose{Vec3(kSpeed * t, 0.0, ThePrism().half_height - depth), Quat::Identity()};
 }
 
 
@@ -75,7 +111,8 @@ void BM_ProxyTick(benchmark::State& state) {
   std::vector<Vec3> points_P;
   for (int i = 0; i < n; ++i) {
     const double angle = 2.0 * std::numbers::pi * i / n;
-    points_P.emplace_back(kRadius * std::cos(angle), kRadius * std::sin(angle), -kHalfHeight);
+    points_P.emplace_back(ThePrism().radius * std::cos(angle), ThePrism().radius * std::sin(angle),
+                          -ThePrism().half_height);
   }
   ProxyRenderer renderer(BenchSettings(state.range(1) != 0, static_cast<int>(state.range(2))));
   auto ir = std::make_unique<TickIr>();
