@@ -70,11 +70,8 @@ Method PenaltySum(const MethodContext& c) {
 
 // B3: single-rate; the tool is a free body of the world (session::LoadWorld).
 Method VirtualCoupling(const MethodContext& c) {
-  const RenderingSettings& r = c.settings->rendering;
   return Method{"virtual-coupling", true, physics::MakeVirtualCouplingPhysics(c),
-                haptic::MakeVirtualCouplingHaptic(render::CouplingGains{
-                    r.coupling_stiffness, r.coupling_damping, r.coupling_rot_stiffness,
-                    r.coupling_rot_damping}),
+                haptic::MakeVirtualCouplingHaptic(physics::ResolveCouplingGains(c)),
                 {"virtual_coupling.bad_input"}};  // haptic::kVirtualCouplingBadInput
 }
 

@@ -61,6 +61,11 @@ std::unique_ptr<MethodPhysics> MakeVirtualCouplingPhysics(const MethodContext& c
   return std::make_unique<internal::VirtualCouplingPhysics>(context);
 }
 
+render::CouplingGains ResolveCouplingGains(const MethodContext& context) {
+  return internal::ResolveCouplingGains(context.world->body(context.pointer_body),
+                                        context.settings->rendering);
+}
+
 std::unique_ptr<MethodPhysics> MakeLocalContactPhysics(const MethodContext& context) {
   return std::make_unique<internal::LocalContactPhysics>(context);
 }

@@ -33,27 +33,37 @@ double WeakestInertia(const Mat3& inertia_B) {
 
 }  // namespace
 
+// Unset rotational gains: the translational a = k h²/m and c = b h/m on the weakest axis.
+render::CouplingGains ResolveCouplingGains(const world::BodyInfo& tool,
+                                           const engine::RenderingSettings& r) {
+  const double ratio = WeakestInertia(tool.inertia_B) / tool.mass;  // m²
+  return render::CouplingGains{
+      .k = r.coupling_stiffness,
+      .b = r.coupling_damping,
+      .k_r = r.coupling_rot_stiffness.value_or(r.coupling_stiffness * ratio),
+      .b_r = r.coupling_rot_damping.value_or(r.coupling_damping * ratio)};
+}
+
 // The free tool under the coupling must not grow (render::CouplingGrowthPerTick): an unstable
 // coupling makes MuJoCo reset its state ("bad number in qacc") and the device fade or clamp,
 // so it is refused at setup with gains that would work instead.
-void CheckCouplingStable(const world::BodyInfo& tool, const engine::RenderingSettings& r,
-                         double h, const std::string& origin) {
+void CheckCouplingStable(const world::BodyInfo& tool, const render::CouplingGains& g, double h,
+                         const std::string& origin) {
   const double m = tool.mass;
-  const double growth = render::CouplingGrowthPerTick(r.coupling_stiffness * h * h / m,
-                                                      r.coupling_damping * h / m);
+  const double growth = render::CouplingGrowthPerTick(g.k * h * h / m, g.b * h / m);
   if (growth > kMaxGrowth) {
     throw InvalidArgument(fmt::format(
         "{}: rendering.coupling_stiffness = {} N/m with coupling_damping = {} N*s/m makes the "
         "{} kg tool '{}' unstable at haptic_dt {} s (its motion grows {}x per tick); expected a "
         "stable pair such as coupling_stiffness {} and coupling_damping {}, or a heavier tool "
         "(rendering.tool_mass)",
-        origin, FormatNumber(r.coupling_stiffness), FormatNumber(r.coupling_damping),
-        FormatNumber(m), tool.name, FormatNumber(h), FormatNumber(growth),
-        FormatNumber(StableStiffness(m, h)), FormatNumber(StableDamping(m, h))));
+        origin, FormatNumber(g.k), FormatNumber(g.b), FormatNumber(m), tool.name, FormatNumber(h),
+        FormatNumber(growth), FormatNumber(StableStiffness(m, h)),
+        FormatNumber(StableDamping(m, h))));
   }
   const double inertia = WeakestInertia(tool.inertia_B);
-  const double rot_growth = render::CouplingGrowthPerTick(
-      r.coupling_rot_stiffness * h * h / inertia, r.coupling_rot_damping * h / inertia);
+  const double rot_growth =
+      render::CouplingGrowthPerTick(g.k_r * h * h / inertia, g.b_r * h / inertia);
   if (rot_growth > kMaxGrowth) {
     throw InvalidArgument(fmt::format(
         "{}: rendering.coupling_rot_stiffness = {} N*m/rad with coupling_rot_damping = {} "
@@ -61,8 +71,8 @@ void CheckCouplingStable(const world::BodyInfo& tool, const engine::RenderingSet
         "haptic_dt {} s (its rotation grows {}x per tick); expected a stable pair such as "
         "coupling_rot_stiffness {} and coupling_rot_damping {}, or a larger "
         "rendering.tool_inertia",
-        origin, FormatNumber(r.coupling_rot_stiffness), FormatNumber(r.coupling_rot_damping),
-        tool.name, FormatNumber(inertia), FormatNumber(h), FormatNumber(rot_growth),
+        origin, FormatNumber(g.k_r), FormatNumber(g.b_r), tool.name, FormatNumber(inertia),
+        FormatNumber(h), FormatNumber(rot_growth),
         FormatNumber(StableStiffness(inertia, h)), FormatNumber(StableDamping(inertia, h))));
   }
 }
@@ -79,8 +89,8 @@ VirtualCouplingPhysics::VirtualCouplingPhysics(const MethodContext& context)
         "\"virtual-coupling\")",
         info.name));
   }
-  CheckCouplingStable(info, context.settings->rendering, context.settings->haptic_dt,
-                      world_->origin());
+  CheckCouplingStable(info, ResolveCouplingGains(info, context.settings->rendering),
+                      context.settings->haptic_dt, world_->origin());
 }
 
 void VirtualCouplingPhysics::Publish(ir::PhysicsSnapshot* out) const {

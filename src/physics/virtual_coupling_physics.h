@@ -6,6 +6,7 @@
 
 #include "mrh/engine/settings.h"
 #include "mrh/physics/method_physics.h"
+#include "mrh/render/virtual_coupling.h"
 #include "mrh/world/world.h"
 
 namespace mrh::physics::internal {
@@ -23,8 +24,13 @@ namespace mrh::physics::internal {
 /// translation with the tool's mass, rotation about its weakest principal axis) at haptic period
 /// h (s). @throws mrh::InvalidArgument naming the scene (`origin`), the keys, their values and
 /// a stable pair of gains.
-void CheckCouplingStable(const world::BodyInfo& tool, const engine::RenderingSettings& r,
-                         double h, const std::string& origin);
+void CheckCouplingStable(const world::BodyInfo& tool, const render::CouplingGains& g, double h,
+                         const std::string& origin);
+
+/// rendering.coupling_* with unset rotational gains derived from the tool (see
+/// physics::ResolveCouplingGains). Not RT-safe.
+render::CouplingGains ResolveCouplingGains(const world::BodyInfo& tool,
+                                           const engine::RenderingSettings& r);
 
 class VirtualCouplingPhysics final : public MethodPhysics {
  public:

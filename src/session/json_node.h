@@ -109,7 +109,7 @@ void ReadFields(const Node& object, const Table& fields, S* out) {
         [&](auto member) {
           auto& target = out->*member;
           using T = std::remove_reference_t<decltype(target)>;
-          if constexpr (std::is_same_v<T, double>) {
+          if constexpr (std::is_same_v<T, double> || std::is_same_v<T, std::optional<double>>) {
             target = node->Number(field.unit);
           } else if constexpr (std::is_same_v<T, int>) {
             target = node->Integer();

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <variant>
@@ -20,7 +21,8 @@ namespace mrh::session::internal {
 template <typename S>
 struct Field {
   std::string_view key;
-  std::variant<double S::*, int S::*, bool S::*, std::string S::*> member;
+  std::variant<double S::*, int S::*, bool S::*, std::string S::*, std::optional<double> S::*>
+      member;
   std::string_view unit;  ///< SI unit of a number, for messages ("" for flags and strings)
   std::string_view doc;   ///< one line, for readers of this table
 };
@@ -77,9 +79,9 @@ inline constexpr std::array<Field<engine::RenderingSettings>, 21> kRenderingFiel
     {"coupling_damping", &engine::RenderingSettings::coupling_damping, "N*s/m",
      "virtual-coupling damper b_vc"},
     {"coupling_rot_stiffness", &engine::RenderingSettings::coupling_rot_stiffness, "N*m/rad",
-     "virtual-coupling rotational spring"},
+     "virtual-coupling rotational spring; unset: k_vc I_min / m_t"},
     {"coupling_rot_damping", &engine::RenderingSettings::coupling_rot_damping, "N*m*s/rad",
-     "virtual-coupling rotational damper"},
+     "virtual-coupling rotational damper; unset: b_vc I_min / m_t"},
     {"tool_mass", &engine::RenderingSettings::tool_mass, "kg",
      "virtual-coupling tool mass; 0: the pointer body's"},
 }};

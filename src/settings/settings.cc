@@ -70,10 +70,14 @@ void ValidateRendering(const RenderingSettings& r) {
   RequireInRange(r.perturbation_force, 1e-3, 1e3, "rendering.perturbation_force", "N");
   RequireNonNegative(r.coupling_stiffness, "rendering.coupling_stiffness", "N/m", kMaxStiffness);
   RequireNonNegative(r.coupling_damping, "rendering.coupling_damping", "N*s/m", kMaxDamping);
-  RequireNonNegative(r.coupling_rot_stiffness, "rendering.coupling_rot_stiffness", "N*m/rad",
-                     kMaxStiffness);
-  RequireNonNegative(r.coupling_rot_damping, "rendering.coupling_rot_damping", "N*m*s/rad",
-                     kMaxDamping);
+  if (r.coupling_rot_stiffness) {
+    RequireNonNegative(*r.coupling_rot_stiffness, "rendering.coupling_rot_stiffness", "N*m/rad",
+                       kMaxStiffness);
+  }
+  if (r.coupling_rot_damping) {
+    RequireNonNegative(*r.coupling_rot_damping, "rendering.coupling_rot_damping", "N*m*s/rad",
+                       kMaxDamping);
+  }
   RequireNonNegative(r.tool_mass, "rendering.tool_mass", "kg", 1e3);
   if (r.tool_inertia) {
     for (int i = 0; i < 3; ++i) {

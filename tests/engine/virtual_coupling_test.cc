@@ -14,6 +14,8 @@
 #include "mrh/core/error.h"
 #include "mrh/device/simulated.h"
 #include "mrh/engine/engine.h"
+#include "mrh/physics/methods.h"
+#include "mrh/render/virtual_coupling.h"
 #include "mrh/world/world.h"
 
 namespace mrh::engine {
@@ -172,29 +174,57 @@ RunStats RunLightTool(const RenderingSettings& rendering) {
   return engine.Run(nullptr);
 }
 
-// The default rotational gains (1 N·m/rad, 0.01 N·m·s/rad) on this tool: a_r = k_r h²/I = 0.79,
+// The light tool: a 1.5 cm sphere of density 1000, I = 0.4 m r² about every axis.
+constexpr double kLightRadius = 0.015;
+const double kLightMass = 1000.0 * 4.0 / 3.0 * std::numbers::pi * std::pow(kLightRadius, 3);
+const double kLightInertia = 0.4 * kLightMass * kLightRadius * kLightRadius;
+
+// Unset rotational gains come from the tool: k_r = k I/m = k · 0.4 r², b_r = b · 0.4 r² (the
+// translational a = k h²/m and c = b h/m on the rotation), computed here from the sphere.
+TEST(VirtualCoupling, UnsetRotationalGainsFollowTheToolInertia) {
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() / "mrh_virtual_coupling_gains.xml";
+  std::ofstream(file) << kLightScene;
+  world::World world = world::World::LoadFile(
+      file, world::LoadOptions{.pointer_body = "pointer", .dynamic_pointer = true});
+  EngineSettings s = CouplingSettings(1.0);
+  const physics::MethodContext context{.world = &world,
+                                       .settings = &s,
+                                       .pointer_body = world.FindBody("pointer")};
+  const render::CouplingGains g = physics::ResolveCouplingGains(context);
+  EXPECT_EQ(g.k, kK);
+  EXPECT_EQ(g.b, kB);
+  EXPECT_NEAR(g.k_r, kK * kLightInertia / kLightMass, 1e-9 * g.k_r);
+  EXPECT_NEAR(g.b_r, kB * kLightInertia / kLightMass, 1e-9 * g.b_r);
+  s.rendering.coupling_rot_stiffness = 0.5;  // given gains are kept
+  s.rendering.coupling_rot_damping = 0.0;
+  const render::CouplingGains given = physics::ResolveCouplingGains(context);
+  EXPECT_EQ(given.k_r, 0.5);
+  EXPECT_EQ(given.b_r, 0.0);
+}
+
+// The old fixed rotational gains (1 N·m/rad, 0.01 N·m·s/rad) on this tool: a_r = k_r h²/I = 0.79,
 // c_r = b_r h/I = 7.9, far outside the stable loop (MuJoCo resets the tool with "bad number in
-// qacc"): refused at setup, naming the key; the gains it suggests (a = 0.05, c = 0.3 of the
-// tool's inertia, computed here from the sphere) run without a warning.
-TEST(VirtualCoupling, UnstableGainsForALightToolAreRefusedAndTheSuggestedOnesRun) {
-  const RenderingSettings defaults;
+// qacc"): refused at setup, naming the key. With the gains unset (the default) the tool's own
+// gains run without a warning, and pressed 1 cm below the resting tool the force is about the
+// coupling spring's k·0.01 = 10 N, not a blow-up.
+TEST(VirtualCoupling, UnstableGainsForALightToolAreRefusedAndTheDefaultsRun) {
+  RenderingSettings fixed;
+  fixed.coupling_rot_stiffness = 1.0;
+  fixed.coupling_rot_damping = 0.01;
   try {
-    (void)RunLightTool(defaults);
+    (void)RunLightTool(fixed);
     FAIL() << "unstable rotational coupling accepted";
   } catch (const InvalidArgument& e) {
     EXPECT_NE(std::string(e.what()).find("rendering.coupling_rot_stiffness = 1 "),
               std::string::npos)
         << e.what();
   }
-  const double m = 1000.0 * 4.0 / 3.0 * std::numbers::pi * std::pow(0.015, 3);
-  const double inertia = 0.4 * m * 0.015 * 0.015;
-  RenderingSettings stable = defaults;
-  stable.coupling_rot_stiffness = 0.05 * inertia / (kDt * kDt);
-  stable.coupling_rot_damping = 0.3 * inertia / kDt;
-  const RunStats stats = RunLightTool(stable);
+  const RenderingSettings defaults;
+  ASSERT_FALSE(defaults.coupling_rot_stiffness.has_value());
+  const RunStats stats = RunLightTool(defaults);
   EXPECT_TRUE(stats.warnings.empty()) << stats.warnings.front();
   EXPECT_EQ(stats.fault_nonfinite_wrench, 0);
-  // Pressed 1 cm below the resting tool: about the coupling spring's k·0.01 = 10 N, not a blow-up.
   EXPECT_LT(stats.max_force, 2.0 * defaults.coupling_stiffness * 0.01);
   EXPECT_GT(stats.max_force, 0.5 * defaults.coupling_stiffness * 0.01);
 }

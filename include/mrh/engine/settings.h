@@ -82,8 +82,11 @@ struct RenderingSettings {
   // Virtual coupling (B3, SPEC §1.4): the spring–damper between the device pose and the tool.
   double coupling_stiffness = 1000.0;  ///< k_vc (N/m, >= 0)
   double coupling_damping = 10.0;      ///< b_vc (N·s/m, >= 0)
-  double coupling_rot_stiffness = 1.0; ///< k_vc,r (N·m/rad, >= 0)
-  double coupling_rot_damping = 0.01;  ///< b_vc,r (N·m·s/rad, >= 0)
+  /// k_vc,r (N·m/rad, >= 0). Unset: k_vc · I_min / m_t, the translational coupling's natural
+  /// frequency on the tool's weakest principal axis (physics::ResolveCouplingGains).
+  std::optional<double> coupling_rot_stiffness;
+  /// b_vc,r (N·m·s/rad, >= 0). Unset: b_vc · I_min / m_t, the translational damping ratio.
+  std::optional<double> coupling_rot_damping;
   /// Tool mass m_t (kg, >= 0); 0: the pointer body's MJCF mass.
   double tool_mass = 0.0;
   /// Tool principal inertia (kg·m², body-axes diagonal, each > 0); empty: the MJCF's (scaled

@@ -7,6 +7,7 @@
 #include "mrh/engine/settings.h"
 #include "mrh/physics/method_physics.h"
 #include "mrh/render/proxy_renderer.h"
+#include "mrh/render/virtual_coupling.h"
 
 namespace mrh::physics {
 
@@ -22,6 +23,13 @@ std::unique_ptr<MethodPhysics> MakeProxyPhysics(const MethodContext& context);
 /// rate under the reported coupling impulse, its weight compensated.
 /// @throws mrh::SceneError if the pointer is not a free body. Not RT-safe.
 std::unique_ptr<MethodPhysics> MakeVirtualCouplingPhysics(const MethodContext& context);
+
+/// The virtual-coupling gains for the pointer tool of `context`: rendering.coupling_* as given,
+/// and an unset rotational gain from the tool, so that its rotation about the weakest principal
+/// axis (inertia I_min, kg·m²) has the translational coupling's natural frequency and damping
+/// ratio: k_r = k_vc I_min / m_t, b_r = b_vc I_min / m_t (m_t the tool's mass, kg). A stable
+/// translational pair therefore gives a stable rotational one. Not RT-safe (setup).
+render::CouplingGains ResolveCouplingGains(const MethodContext& context);
 
 /// Physics half of "contact-volume" (B2): the whole scene, pointer included, as one
 /// contact-volume penalty simulation at the haptic rate (MuJoCo's contacts off).
