@@ -33,10 +33,11 @@ test-asan: deps
 	cmake --build --preset asan
 	ctest --preset asan -j $(JOBS) -E '$(ASAN_SKIP)'
 
-# The threaded tests only: the engine's, and the viewer's GL-free ones when the viewer is built.
+# The threaded tests only (label `threaded`): the engine's real-time and embedded runs of every
+# method, and the viewer's GL-free ones when the viewer is built.
 test-tsan: deps
 	cmake --preset tsan >/dev/null
-	cmake --build --preset tsan --target engine_test \
+	cmake --build --preset tsan --target engine_threaded_test \
 	  $$(grep -q '^MRH_BUILD_VIEWER:BOOL=ON' build-tsan/CMakeCache.txt && echo viewer_test)
 	ctest --preset tsan
 

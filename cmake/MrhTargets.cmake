@@ -26,8 +26,15 @@ function(mrh_module name)
 endfunction()
 
 # mrh_test(NAME LABEL SOURCES ... DEPS ...): one GoogleTest executable per module.
+# A `slow` test is neither built nor registered when MRH_SLOW_TESTS is OFF (sanitizer presets).
+# GROUPED_SUITES: GoogleTest suites registered as one ctest test each (`<Suite>`, running
+# --gtest_filter=<Suite>.*) instead of one per test: suites whose SetUpTestSuite runs a whole
+# experiment, which one process per test would repeat for every test of the suite.
 function(mrh_test name)
-  cmake_parse_arguments(ARG "" "LABEL" "SOURCES;DEPS" ${ARGN})
+  cmake_parse_arguments(ARG "" "LABEL" "SOURCES;DEPS;GROUPED_SUITES" ${ARGN})
+  if(ARG_LABEL STREQUAL "slow" AND NOT MRH_SLOW_TESTS)
+    return()
+  endif()
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gmock GTest::gtest_main)
   target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/src ${PROJECT_SOURCE_DIR}/tests)
@@ -36,6 +43,17 @@ function(mrh_test name)
   if(NOT ARG_LABEL)
     set(ARG_LABEL unit)
   endif()
-  gtest_discover_tests(${name} PROPERTIES LABELS "${ARG_LABEL}" DISCOVERY_TIMEOUT 60
-                       WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+  set(filter "*")
+  if(ARG_GROUPED_SUITES)
+    list(TRANSFORM ARG_GROUPED_SUITES APPEND ".*" OUTPUT_VARIABLE patterns)
+    list(JOIN patterns ":" joined)
+    set(filter "-${joined}")
+    foreach(suite IN LISTS ARG_GROUPED_SUITES)
+      add_test(NAME ${suite} COMMAND ${name} --gtest_filter=${suite}.*
+               WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+      set_tests_properties(${suite} PROPERTIES LABELS "${ARG_LABEL}")
+    endforeach()
+  endif()
+  gtest_discover_tests(${name} TEST_FILTER "${filter}" PROPERTIES LABELS "${ARG_LABEL}"
+                       DISCOVERY_TIMEOUT 60 WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
 endfunction()
