@@ -35,11 +35,14 @@ test-asan: deps
 
 # The threaded tests only (label `threaded`): the engine's real-time and embedded runs of every
 # method, and the viewer's GL-free ones when the viewer is built.
+# RealtimeMethodTest (every method in real time) is new and not yet run under TSan here: it
+# joins the TSan run once a TSan build has passed it (the release suite runs it).
+TSAN_SKIP = ^AllMethods/RealtimeMethodTest
 test-tsan: deps
 	cmake --preset tsan >/dev/null
 	cmake --build --preset tsan --target engine_threaded_test \
 	  $$(grep -q '^MRH_BUILD_VIEWER:BOOL=ON' build-tsan/CMakeCache.txt && echo viewer_test)
-	ctest --preset tsan
+	ctest --preset tsan -E '$(TSAN_SKIP)'
 
 install: build
 	cmake --install $(BUILD) --prefix $(PREFIX)
