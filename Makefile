@@ -33,10 +33,10 @@ test-asan: deps
 	cmake --build --preset asan
 	ctest --preset asan -j $(JOBS) -E '$(ASAN_SKIP)'
 
-# The threaded tests only (label `threaded`): the engine's real-time and embedded runs of every
-# method, and the viewer's GL-free ones when the viewer is built.
-# RealtimeMethodTest (every method in real time) is new and not yet run under TSan here: it
-# joins the TSan run once a TSan build has passed it (the release suite runs it).
+# The threaded tests only (label `threaded`): the engine's real-time and embedded runs, and the
+# viewer's GL-free ones when the viewer is built. RealtimeMethodTest (every method in real time,
+# also in engine_threaded_test) is new and not yet run under TSan: it joins the TSan run once a
+# TSan build has passed it (the release suite runs it).
 TSAN_SKIP = ^AllMethods/RealtimeMethodTest
 test-tsan: deps
 	cmake --preset tsan >/dev/null
