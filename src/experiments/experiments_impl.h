@@ -165,13 +165,18 @@ struct LatencyOptions {
 };
 int RunLatency(const std::filesystem::path& out, bool quiet, const LatencyOptions& options);
 
-/// A t4.push case (issue 13): scene scenes/t4_push_<name>.xml, pointer height z (m), the time
-/// the pointer stops pushing (s) and the run length (s).
+/// A t4.push case (issue 13): scene scenes/t4_push_<scene or name>.xml, pointer height z (m),
+/// the time the pointer stops pushing (s), the run length (s), the pointer's lateral offset y
+/// (m) and whether local-dynamics is held to the issue's bars on it (`checked`; false for the
+/// free row, whose single-rate reference is chaotic, and its probes).
 struct PushCase {
   std::string name;
   double z = 0.05;
   double push_until = 6.0;
   double duration = 6.0;
+  double y = 0.0;
+  bool checked = true;
+  std::string scene;  ///< empty: name
 };
 
 /// What RunT4Push runs; methods[0] must be single-rate (the reference).
