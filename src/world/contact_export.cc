@@ -147,6 +147,8 @@ std::uint32_t ContactExporter::AddRows(ir::LocalContactModel* out) {
     }
     row.dist0 = con.dist;
     row.mu = con.dim >= 3 ? con.friction[0] : 0.0;
+    for (int i = 0; i < 2; ++i) row.solref[i] = con.solref[i];
+    for (int i = 0; i < 5; ++i) row.solimp[i] = con.solimp[i];
     if (!out->contacts.PushBack(row)) return ir::kStatusContactsFull;
   }
   return ir::kStatusOk;

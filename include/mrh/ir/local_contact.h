@@ -46,6 +46,10 @@ struct LocalContactRow {
   /// a tilt, and the loop through the synchronization then rocks).
   double dist0 = 0.0;
   double mu = 0.0;             ///< Coulomb friction coefficient (0: frictionless, condim 1)
+  /// MuJoCo's soft-constraint parameters of the contact (mjContact solref, solimp; MuJoCo's
+  /// defaults here): the local solve reproduces the reference's soft contacts with them.
+  double solref[2] = {0.02, 1.0};
+  double solimp[5] = {0.9, 0.95, 0.001, 0.5, 2.0};
 };
 
 /// Everything the contact local model needs for one period (physics → haptic, in the snapshot).
