@@ -195,7 +195,8 @@ struct PushResult {
   double peak_spin = 0.0;     ///< rad/s
 };
 
-/// The five cases of the issue (one box, heavy box, row of three, wall, tip).
+/// The issue's cases (one box, heavy box, row of three, wall, tip), plus the row's two
+/// chaos probes (10 µm lateral pointer offsets) and the row between rails (row_guided).
 PushOptions DefaultPushOptions();
 
 /// Runs every case × method (runs/ CSVs under `out`); results[case][method].

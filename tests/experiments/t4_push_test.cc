@@ -78,9 +78,8 @@ TEST(T4PushTest, FreeRowReferenceIsChaotic) {
   EXPECT_GT((results[0][0].position - results[1][0].position).norm(), kPositionTolerance);
 }
 
-// Not yet within the bars (issue 13, open): the tipping box (single-rate's box slides about
-// 5 mm further at each landing than the local hard contacts let it: 2.1 cm after four tips, and
-// contact is lost 47.7 % of the ticks against 45.8 %).
+// Not yet within the bars (issue 13, open): the tipping box meets the mean (+0.9 %), sd (1.14×)
+// and position (1.7 cm) bars but loses contact in 46.6 % of the ticks against 45.8 %.
 
 // The thesis' linearised model on the same push: the force chatters and contact is lost.
 TEST(T4PushTest, PerturbationModelFailsTheBarsOnTheOneBoxCase) {
