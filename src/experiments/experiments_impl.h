@@ -165,13 +165,18 @@ struct LatencyOptions {
 };
 int RunLatency(const std::filesystem::path& out, bool quiet, const LatencyOptions& options);
 
-/// A t4.push case (issue 13): scene scenes/t4_push_<name>.xml, pointer height z (m), the time
-/// the pointer stops pushing (s) and the run length (s).
+/// A t4.push case (issue 13): scene scenes/t4_push_<scene or name>.xml, pointer height z (m),
+/// the time the pointer stops pushing (s), the run length (s), the pointer's lateral offset y
+/// (m) and whether local-dynamics is held to the issue's bars on it (`checked`; false for the
+/// free row, whose single-rate reference is chaotic, and its probes).
 struct PushCase {
   std::string name;
   double z = 0.05;
   double push_until = 6.0;
   double duration = 6.0;
+  double y = 0.0;
+  bool checked = true;
+  std::string scene;  ///< empty: name
 };
 
 /// What RunT4Push runs; methods[0] must be single-rate (the reference).
@@ -190,7 +195,8 @@ struct PushResult {
   double peak_spin = 0.0;     ///< rad/s
 };
 
-/// The five cases of the issue (one box, heavy box, row of three, wall, tip).
+/// The issue's cases (one box, heavy box, row of three, wall, tip), plus the row's two
+/// chaos probes (10 µm lateral pointer offsets) and the row between rails (row_guided).
 PushOptions DefaultPushOptions();
 
 /// Runs every case × method (runs/ CSVs under `out`); results[case][method].

@@ -32,6 +32,7 @@ LocalContactPhysics::LocalContactPhysics(const MethodContext& context)
   failed_.reserve(capacity);
   owned_.reserve(capacity);
   owned_before_.reserve(capacity);
+  written_.reserve(capacity);
 }
 
 void LocalContactPhysics::PhysicsStart(const ir::HapticReport& initial, ir::PhysicsSnapshot* out) {
@@ -53,6 +54,7 @@ void LocalContactPhysics::PhysicsStep(const ir::HapticReport& report, ir::Physic
   world_->SetMocapPose(pointer_body_, report.X_WP);
   builder_->CapturePreviousPoses(*world_);
   world_->Step();
+  HoldOwnedBodies();
   phases_.world_step_ms = MsSince(t0);
   t0 = std::chrono::steady_clock::now();
   builder_->Build(*world_, report.X_WP, out);
@@ -69,6 +71,7 @@ void LocalContactPhysics::PhysicsStep(const ir::HapticReport& report, ir::Physic
 // body outside the island (no free joint) gets the period's reaction as an impulse (B4).
 void LocalContactPhysics::Overwrite(const ir::HapticReport& report) {
   failed_.clear();
+  written_.clear();
   // The local simulation owns an island body from the first period in which the pointer pushed
   // the island until the body leaves the island; a never-pushed island is left to MuJoCo and
   // restarts from the world (reset) each period. The local contacts are hard and MuJoCo's are
@@ -86,16 +89,15 @@ void LocalContactPhysics::Overwrite(const ir::HapticReport& report) {
     owned_.push_back(state.body);
     if (world_->SetBodyState(state.body, state.X_WB, state.V_WCm)) {
       ++counters_.overwrites;
+      written_.push_back(state);
     } else {
       ++counters_.overwrite_failures;
       failed_.push_back(state.body);
     }
   }
-  // The period's reaction as a force J/Δt^G during the global step, for every touched body:
-  // an island body's state is overwritten again at the next synchronization, but its end state
-  // here is where its contacts for the next period are found, so it should have been pushed as
-  // the local simulation pushes it (without, a decelerating box pitches in the global step and
-  // exports tilted contacts).
+  // The period's reaction as a force J/Δt^G during the global step, for every touched body, so
+  // that what the owned bodies touch in the world during the step feels them pushed. An owned
+  // body itself ends the step at its written local state (HoldOwnedBodies).
   ApplyReportImpulses(*world_, report, physics_dt_);
 }
 
@@ -118,6 +120,20 @@ void LocalContactPhysics::Export(ir::PhysicsSnapshot* out) {
   }
   counters_.last_island_bodies = static_cast<int>(out->local_model.bodies.size());
   counters_.last_island_contacts = static_cast<int>(out->local_model.contacts.size());
+}
+
+// An owned body leaves the global step where the local simulation had it at the step's start
+// (the state written in Overwrite); the local simulation is the authority for it (eq. 4.16–4.17
+// overwrite it at the next synchronization anyway). The global step's own end state of an owned
+// body was not usable: MuJoCo's soft contacts at a 20 ms step, started from the local hard-contact
+// state, sink a resting box by up to 4 mm and pitch it by up to 0.08 rad (3–5 rad/s of spin
+// for one step). Exported from there, the rows of a level local box's raised edge fell outside the
+// 5 mm margin (the local box lost support for a period: the row's force swung 2–10 N); and (in
+// a variant that only exported at the local states, the wall case's transient threw the world's
+// box out of the pointer's reach, so it was never owned again). The cost: the world shows an
+// owned body one physics period (20 ms, 2 mm at 0.1 m/s) late.
+void LocalContactPhysics::HoldOwnedBodies() {
+  for (const ir::LocalBodyState& s : written_) world_->SetBodyState(s.body, s.X_WB, s.V_WCm);
 }
 
 // The contact model simulates free-jointed bodies only: a scene with any other moving body

@@ -28,7 +28,8 @@ struct LocalContactCounters {
 /// synchronization); (1) the global step without the user's force (SPEC I10); (2) neighbor
 /// search and plane IR; (3) export of the island — the dynamic neighbors plus every free body
 /// they touch, transitively — with every contact of an island body, found at the step's end
-/// state with a 5 mm margin (world/contact_export.h). Its haptic half,
+/// state with a 5 mm margin (world/contact_export.h). A body the local simulation owns ends the
+/// global step at the local state written in (0) (HoldOwnedBodies). Its haptic half,
 /// haptic::internal::LocalContactHaptic, simulates the island at 1 kHz. No perturbation runs.
 class LocalContactPhysics final : public MethodPhysics {
  public:
@@ -45,6 +46,7 @@ class LocalContactPhysics final : public MethodPhysics {
  private:
   void Overwrite(const ir::HapticReport& report);
   void Export(ir::PhysicsSnapshot* out);
+  void HoldOwnedBodies();
 
   world::World* world_;
   int pointer_body_;
@@ -55,6 +57,7 @@ class LocalContactPhysics final : public MethodPhysics {
   std::vector<int> sent_last_, sent_before_;  // island bodies of the latest two snapshots
   std::vector<int> failed_;                   // bodies the world did not take in this step
   std::vector<int> owned_, owned_before_;     // bodies owned by the local simulation (Overwrite)
+  std::vector<ir::LocalBodyState> written_;   // local states written in this step's Overwrite
   LocalContactCounters counters_;
   PhaseTimes phases_;
 };

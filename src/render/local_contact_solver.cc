@@ -128,7 +128,8 @@ void LocalContactSolver::HoldRestingPenetration() noexcept {
       shallowest = std::max(shallowest, rows_[end].c.dist0);
       ++end;
     }
-    for (std::size_t k = first; k < end; ++k) rows_[k].hold = std::max(0.0, -shallowest);
+    const double hold = settings_.soft_contacts ? 0.0 : std::max(0.0, -shallowest);
+    for (std::size_t k = first; k < end; ++k) rows_[k].hold = hold;
     first = end;
   }
 }
@@ -159,6 +160,8 @@ void LocalContactSolver::Integrate(double dt) noexcept {
     const Mat3 R = b.q.toRotationMatrix();
     b.I_W_inv = R * b.I_B_inv * R.transpose();
     const Vec3 Iw = R * (b.I_B * (R.transpose() * b.w));
+    b.v0 = b.v;
+    b.w0 = b.w;
     b.v += dt * (gravity_ + b.inv_mass * b.f);
     b.w += dt * (b.I_W_inv * (b.tau - b.w.cross(Iw)));
   }
@@ -189,14 +192,73 @@ void LocalContactSolver::PrepareRows(double dt) noexcept {
         const Vec3 cb = r.rB.cross(r.d[j]);
         w += B.inv_mass + cb.dot(B.I_W_inv * cb);
       }
-      r.inv_w[j] = w > 0.0 ? 1.0 / w : 0.0;
+      r.inv_w[j] = w;  // A_jj for now; SetTargets makes it 1 / (A_jj + R)
     }
-    const double gap = n.dot(pA - pB) + r.hold;
-    r.target = gap >= 0.0 ? -gap / dt : -settings_.baumgarte * gap / dt;
+    SetTargets(r, n.dot(pA - pB) + r.hold, dt);
     if (r.lambda[0] > 0.0) {
       ApplyImpulse(r, r.lambda[0] * r.d[0] + r.lambda[1] * r.d[1] + r.lambda[2] * r.d[2]);
     }
   }
+}
+
+namespace {
+
+// MuJoCo 2.2.2's impedance d(|r|) of solimp (dmin, dmax, width, midpoint, power).
+double Impedance(const double* solimp, double depth) {
+  const double dmin = solimp[0], dmax = solimp[1], width = solimp[2];
+  const double mid = solimp[3], power = solimp[4];
+  if (!(width > 0.0) || depth >= width) return std::clamp(dmax, 1e-4, 0.9999);
+  const double x = std::max(0.0, depth / width);
+  double y = x;
+  if (power > 1.0) {
+    y = x <= mid ? std::pow(x, power) / std::pow(mid, power - 1.0)
+                 : 1.0 - std::pow(1.0 - x, power) / std::pow(1.0 - mid, power - 1.0);
+  }
+  return std::clamp(dmin + y * (dmax - dmin), 1e-4, 0.9999);
+}
+
+}  // namespace
+
+// Targets and effective masses of a row (r.inv_w holds A_jj on entry). An open contact (gap >=
+// 0) is hard and speculative: it may close to zero within the tick. A penetrating one is
+// MuJoCo's soft constraint (soft_contacts) with the time constant clamped to 2 ticks (MuJoCo's
+// refsafe), or hard with a Baumgarte push-out.
+void LocalContactSolver::SetTargets(Row& r, double gap, double dt) const noexcept {
+  r.R = 0.0;
+  r.target = {gap >= 0.0 ? -gap / dt : -settings_.baumgarte * gap / dt, 0.0, 0.0};
+  if (settings_.soft_contacts && gap < 0.0) {
+    const double dmax = std::clamp(r.c.solimp[1], 1e-4, 0.9999);
+    double k = 0.0, b = 0.0;
+    if (r.c.solref[0] > 0.0) {
+      const double tc = std::max(r.c.solref[0], 2.0 * dt);
+      b = 2.0 / (dmax * tc);
+      k = 1.0 / (dmax * dmax * tc * tc * r.c.solref[1] * r.c.solref[1]);
+    } else {
+      k = -r.c.solref[0] / (dmax * dmax);
+      b = -r.c.solref[1] / dmax;
+    }
+    const double imp = Impedance(r.c.solimp, -gap);
+    const Body& A = bodies_[static_cast<std::size_t>(r.c.a)];
+    const double diag =
+        A.inv_mass + (r.c.b >= 0 ? bodies_[static_cast<std::size_t>(r.c.b)].inv_mass : 0.0);
+    r.R = std::max(1e-15, (1.0 - imp) / imp * diag);
+    for (int j = 0; j < 3; ++j) {
+      const double v0 = RelativeStartVelocity(r, r.d[static_cast<std::size_t>(j)]);
+      const double aref = -b * v0 - (j == 0 ? k * imp * gap : 0.0);
+      r.target[static_cast<std::size_t>(j)] = v0 + dt * aref;
+    }
+  }
+  for (double& w : r.inv_w) w = w + r.R > 0.0 ? 1.0 / (w + r.R) : 0.0;
+}
+
+double LocalContactSolver::RelativeStartVelocity(const Row& r, const Vec3& dir) const noexcept {
+  const Body& A = bodies_[static_cast<std::size_t>(r.c.a)];
+  Vec3 v = A.v0 + A.w0.cross(r.rA);
+  if (r.c.b >= 0) {
+    const Body& B = bodies_[static_cast<std::size_t>(r.c.b)];
+    v -= B.v0 + B.w0.cross(r.rB);
+  }
+  return dir.dot(v);
 }
 
 double LocalContactSolver::RelativeVelocity(const Row& r, const Vec3& dir) const noexcept {
@@ -224,12 +286,15 @@ void LocalContactSolver::ApplyImpulse(Row& r, const Vec3& P) noexcept {
 // friction disc. Returns the largest change of a relative velocity (m/s).
 double LocalContactSolver::SolveRow(Row& r) noexcept {
   const double vn = RelativeVelocity(r, r.d[0]);
-  const double ln = std::max(0.0, r.lambda[0] + (r.target - vn) * r.inv_w[0]);
+  const double ln =
+      std::max(0.0, r.lambda[0] + (r.target[0] - vn - r.R * r.lambda[0]) * r.inv_w[0]);
   double change = VelocityChange(ln - r.lambda[0], r.inv_w[0]);
   ApplyImpulse(r, (ln - r.lambda[0]) * r.d[0]);
   r.lambda[0] = ln;
-  double l1 = r.lambda[1] - RelativeVelocity(r, r.d[1]) * r.inv_w[1];
-  double l2 = r.lambda[2] - RelativeVelocity(r, r.d[2]) * r.inv_w[2];
+  double l1 = r.lambda[1] +
+              (r.target[1] - RelativeVelocity(r, r.d[1]) - r.R * r.lambda[1]) * r.inv_w[1];
+  double l2 = r.lambda[2] +
+              (r.target[2] - RelativeVelocity(r, r.d[2]) - r.R * r.lambda[2]) * r.inv_w[2];
   const double limit = r.c.mu * ln;
   const double mag = std::hypot(l1, l2);
   if (mag > limit) {

@@ -41,11 +41,15 @@ struct LocalContactRow {
   Vec3 p_B = Vec3::Zero();     ///< contact point on B's surface, B's body frame or world (m)
   Vec3 n_B = Vec3::UnitZ();    ///< unit normal from B toward A, B's body frame or world
   /// Signed distance when exported (m, < 0: penetration). The local solve uses the gap at the
-  /// local poses, less the shallowest exported penetration of the body pair's rows (MuJoCo's
-  /// soft resting depth, held rather than pushed out; holding each row's own depth would hold
-  /// a tilt, and the loop through the synchronization then rocks).
+  /// local poses; only its hard model (LocalContactSolverSettings::soft_contacts = false) uses
+  /// this, holding the shallowest exported penetration of the body pair's rows (MuJoCo's soft
+  /// resting depth) rather than pushing it out.
   double dist0 = 0.0;
   double mu = 0.0;             ///< Coulomb friction coefficient (0: frictionless, condim 1)
+  /// MuJoCo's soft-constraint parameters of the contact (mjContact solref, solimp; MuJoCo's
+  /// defaults here): the local solve reproduces the reference's soft contacts with them.
+  double solref[2] = {0.02, 1.0};
+  double solimp[5] = {0.9, 0.95, 0.001, 0.5, 2.0};
 };
 
 /// Everything the contact local model needs for one period (physics → haptic, in the snapshot).

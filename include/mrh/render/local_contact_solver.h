@@ -20,6 +20,11 @@ struct LocalContactSolverSettings {
   /// Share of a penetration deeper than the exported one removed per tick (velocity-level
   /// Baumgarte term, dimensionless, 0..1).
   double baumgarte = 0.1;
+  /// true: penetrating contacts are MuJoCo's soft constraints (the rows' solref/solimp:
+  /// impedance, regularisation R = (1 − d)/d · (1/m_A + 1/m_B), reference acceleration
+  /// −b v − k d r), as in the single-rate reference; open contacts stay hard and speculative.
+  /// false: hard contacts holding the exported resting depth, Baumgarte above it.
+  bool soft_contacts = true;
 };
 
 /// The island of ir::LocalContactModel as a small rigid-body simulation: per tick, semi-implicit
@@ -84,6 +89,8 @@ class LocalContactSolver {
     Vec3 p_BCm = Vec3::Zero();
     Vec3 v = Vec3::Zero();
     Vec3 w = Vec3::Zero();
+    Vec3 v0 = Vec3::Zero();  // this tick's start (before Integrate)
+    Vec3 w0 = Vec3::Zero();
     double inv_mass = 0.0;
     Mat3 I_B = Mat3::Zero();
     Mat3 I_B_inv = Mat3::Zero();
@@ -98,8 +105,9 @@ class LocalContactSolver {
     std::array<Vec3, 3> d{};
     Vec3 rA = Vec3::Zero();
     Vec3 rB = Vec3::Zero();
-    std::array<double, 3> inv_w{};
-    double target = 0.0;
+    std::array<double, 3> inv_w{};   // 1 / (A_jj + R): A_jj the row's inverse effective mass
+    std::array<double, 3> target{};  // velocity (m/s) the row drives to (less R λ when soft)
+    double R = 0.0;                  // soft regularisation (1/kg; 0: hard)
     double hold = 0.0;  // penetration kept, not pushed out (m, >= 0; HoldRestingPenetration)
     std::array<double, 3> lambda{};  // impulses (N·s): normal, t1, t2
   };
@@ -118,6 +126,8 @@ class LocalContactSolver {
   void HoldRestingPenetration() noexcept;
   void Integrate(double dt) noexcept;
   void PrepareRows(double dt) noexcept;
+  void SetTargets(Row& r, double gap, double dt) const noexcept;
+  double RelativeStartVelocity(const Row& r, const Vec3& dir) const noexcept;
   void ApplyImpulse(Row& r, const Vec3& P) noexcept;
   double RelativeVelocity(const Row& r, const Vec3& dir) const noexcept;
   double SolveRow(Row& r) noexcept;

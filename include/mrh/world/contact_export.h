@@ -19,6 +19,8 @@ class ContactExporter {
   /// @param world must outlive the exporter.
   /// @param margin extra collision margin (m, >= 0) for the export: contacts whose gap is below
   ///   it are exported, so contacts that close during the next haptic period are in the model.
+  ///   A free body's geoms get more when they move fast: the distance their points may travel
+  ///   in two physics steps (the rows' horizon).
   explicit ContactExporter(World* world, double margin = 0.005);
 
   /// The island of `seeds` (world body ids of the pointer's dynamic neighbors; `motions` their
@@ -35,6 +37,7 @@ class ContactExporter {
   bool IsFreeBody(int body) const;
 
  private:
+  double GeomMargin(int g) const;
   void Collide();
   std::uint32_t GrowIsland(ir::LocalContactModel* out);
   std::uint32_t AddRows(ir::LocalContactModel* out);
@@ -43,6 +46,7 @@ class ContactExporter {
   World* world_;
   double margin_;
   std::vector<double> saved_margin_;  // per geom
+  std::vector<double> margins_;       // per geom, this export (GeomMargin)
   std::vector<int> local_index_;      // per world body: index into out->bodies, or -1
 };
 
