@@ -47,6 +47,7 @@ class LocalDynamics6dofPhysics final : public MethodPhysics {
   void Overwrite(const ir::HapticReport& report);
   void Build(const Pose& X_WP, ir::PhysicsSnapshot* out);
   void Export(ir::PhysicsSnapshot* out);
+  void CoastOwned();
 
   world::World* world_;
   int pointer_body_;
@@ -57,6 +58,7 @@ class LocalDynamics6dofPhysics final : public MethodPhysics {
   std::vector<int> sent_last_, sent_before_;  // island bodies of the latest two snapshots
   std::vector<int> failed_;                   // bodies the world did not take in this step
   std::vector<int> owned_, owned_before_;     // bodies owned by the local simulation
+  std::vector<ir::LocalBodyState> owned_states_;  // their local states taken in this step
   LocalDynamics6dofCounters counters_;
   PhaseTimes phases_;
 };
