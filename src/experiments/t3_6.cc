@@ -152,7 +152,7 @@ std::string PlotScript() {
   const auto panel = [&](const Case& c, const char* what, const char* file, int column) {
     gp += fmt::format("set title '{}: {}'\nset xlabel 't (s)'\nplot ", c.name, what);
     for (std::size_t i = 0; i < std::size(kVariants); ++i) {
-      gp += fmt::format("{}'runs/{}_{}.csv' using 1:{} with lines title '{}'", i ? ", " : "",
+      gp += fmt::format("{}'runs/{}_{}.csv' using 1:{} with lines title '{}' noenhanced", i ? ", " : "",
                         RunSlug(c, kVariants[i]), file, column, kVariants[i].label);
     }
     gp += "\n";
