@@ -19,11 +19,11 @@
 namespace mrh::experiments::internal {
 namespace {
 
-constexpr double kSpeed = 0.08;   // m/s along +x (scenes/t3_6_push.json)
-constexpr double kX0 = -0.16;     // m, pointer at t = 0; it touches the box at 1.25 s
+constexpr double kSpeed = 0.08;    // m/s along +x (scenes/t3_6_push.json)
+constexpr double kX0 = -0.16;      // m, pointer at t = 0; it touches the box at 1.25 s
 constexpr double kDuration = 5.0;  // s
-constexpr double kFrom = 2.0;     // s, statistics window 2–5 s
-constexpr double kPoseAt = 4.0;   // s, the "box positions within 2 cm after 4 s"
+constexpr double kFrom = 2.0;      // s, statistics window 2–5 s
+constexpr double kPoseAt = 4.0;    // s, the "box positions within 2 cm after 4 s"
 
 struct Case {
   const char* name;
@@ -57,11 +57,15 @@ session::Session MakeSession(const Case& c, const Variant& v) {
   j["physics_dt"] = v.physics_dt;
   j["haptic_dt"] = 0.001;
   j["duration"] = kDuration;
-  j["rendering"] = {{"stiffness", 2000.0}, {"damping", 5.0},  {"rot_stiffness", 20.0},
-                    {"rot_damping", 0.1},  {"friction", 0.3}};
+  j["rendering"] = {{"stiffness", 2000.0},
+                    {"damping", 5.0},
+                    {"rot_stiffness", 20.0},
+                    {"rot_damping", 0.1},
+                    {"friction", 0.3}};
   j["safety"] = {{"ramp", false}};
   const double x_end = kX0 + kSpeed * c.push_until;
-  nlohmann::json frames = {{0.0, kX0, c.y, c.z, 1, 0, 0, 0}, {c.push_until, x_end, c.y, c.z, 1, 0, 0, 0}};
+  nlohmann::json frames = {{0.0, kX0, c.y, c.z, 1, 0, 0, 0},
+                           {c.push_until, x_end, c.y, c.z, 1, 0, 0, 0}};
   if (c.push_until < kDuration) frames.push_back({kDuration, x_end, c.y, c.z, 1, 0, 0, 0});
   j["device"] = {{"type", "scripted"}, {"keyframes", frames}};
   return session::ParseSession(j.dump(), ScenesDir(), {},
@@ -75,6 +79,7 @@ struct Tap final : engine::Recorder {
     f.push_back(tick.rendered_W.f.norm());
     tau.push_back(tick.rendered_W.tau.norm());
   }
+
   void OnStep(const engine::StepRecord& step, const world::World& world) override {
     if (boxes.empty()) {
       for (const char* name : {"box", "box2"}) {
@@ -92,11 +97,13 @@ struct Tap final : engine::Recorder {
     s.angle = 2.0 * std::acos(std::min(1.0, std::abs(q.w())));
     steps.push_back(std::move(s));
   }
+
   struct Step {
     double t;
     std::vector<Vec3> p;
     double spin, angle;
   };
+
   std::vector<int> boxes;
   std::vector<double> t, f, tau;
   std::vector<Step> steps;
@@ -152,8 +159,8 @@ std::string PlotScript() {
   const auto panel = [&](const Case& c, const char* what, const char* file, int column) {
     gp += fmt::format("set title '{}: {}'\nset xlabel 't (s)'\nplot ", c.name, what);
     for (std::size_t i = 0; i < std::size(kVariants); ++i) {
-      gp += fmt::format("{}'runs/{}_{}.csv' using 1:{} with lines title '{}' noenhanced", i ? ", " : "",
-                        RunSlug(c, kVariants[i]), file, column, kVariants[i].label);
+      gp += fmt::format("{}'runs/{}_{}.csv' using 1:{} with lines title '{}' noenhanced",
+                        i ? ", " : "", RunSlug(c, kVariants[i]), file, column, kVariants[i].label);
     }
     gp += "\n";
   };
@@ -191,14 +198,19 @@ nlohmann::json Compare(const Case& c, const Variant& v, const T36Result& r, cons
   tables->csv.AddFormatted("{},{},{:.4f},{:.4f},{:.4f},{:.3f},{:.4f},{:.4f},{:.4f},{:.3f}", c.name,
                            v.label, r.mean_f, df, r.sd_f, sd_ratio, r.mean_tau, dtau, err,
                            r.peak_spin);
-  tables->md.Add({c.name, v.label, fmt::format("{:.3f}", r.mean_f), fmt::format("{:+.1f} %", 100 * df),
-                  fmt::format("{:.3f}", r.sd_f), fmt::format("{:.2f}", sd_ratio),
-                  fmt::format("{:.3f}", r.mean_tau), fmt::format("{:+.1f} %", 100 * dtau),
-                  fmt::format("{:.4f}", err), fmt::format("{:.2f}", r.peak_spin)});
-  return {{"mean_force_N", r.mean_f},   {"force_vs_ref", df},
-          {"sd_force_N", r.sd_f},       {"sd_ratio", sd_ratio},
-          {"mean_torque_Nm", r.mean_tau}, {"torque_vs_ref", dtau},
-          {"position_error_m", err},    {"peak_spin_radps", r.peak_spin},
+  tables->md.Add({c.name, v.label, fmt::format("{:.3f}", r.mean_f),
+                  fmt::format("{:+.1f} %", 100 * df), fmt::format("{:.3f}", r.sd_f),
+                  fmt::format("{:.2f}", sd_ratio), fmt::format("{:.3f}", r.mean_tau),
+                  fmt::format("{:+.1f} %", 100 * dtau), fmt::format("{:.4f}", err),
+                  fmt::format("{:.2f}", r.peak_spin)});
+  return {{"mean_force_N", r.mean_f},
+          {"force_vs_ref", df},
+          {"sd_force_N", r.sd_f},
+          {"sd_ratio", sd_ratio},
+          {"mean_torque_Nm", r.mean_tau},
+          {"torque_vs_ref", dtau},
+          {"position_error_m", err},
+          {"peak_spin_radps", r.peak_spin},
           {"bars",
            {{"force", std::abs(df) <= 0.05},
             {"torque", std::abs(dtau) <= 0.10},

@@ -7,9 +7,8 @@
 
 namespace mrh::haptic::internal {
 
-LocalDynamics6dofHaptic::LocalDynamics6dofHaptic(
-    const render::ProxyRendererSettings& settings,
-    const render::LocalContactSolverSettings& solver)
+LocalDynamics6dofHaptic::LocalDynamics6dofHaptic(const render::ProxyRendererSettings& settings,
+                                                 const render::LocalContactSolverSettings& solver)
     : renderer_(settings), solver_(solver) {
   local_of_motion_.fill(-1);
 }

@@ -48,6 +48,7 @@ class LocalDynamics6dofHaptic final : public MethodHaptic {
   /// The last tick's renderer output and the (re-posed) IR it rendered; valid until the next
   /// HapticTick. Haptic thread, or between lockstep ticks.
   const render::ProxyOutput& last_output() const noexcept { return output_; }
+
   const render::TickIr& last_tick_ir() const noexcept { return tick_ir_; }
 
   /// The haptic side's island (haptic thread; tests read it between ticks).

@@ -17,9 +17,9 @@ bool Contains(const std::vector<int>& list, int body) {
 
 // The pointer `t` seconds after the report: its pose moved on with its velocity.
 Pose PointerAhead(const ir::HapticReport& report, double t) {
-  return Pose{report.X_WP.p + t * report.V_WP.v,
-              (QuatFromRotationVector(t * report.V_WP.w) * report.X_WP.q.normalized())
-                  .normalized()};
+  return Pose{
+      report.X_WP.p + t * report.V_WP.v,
+      (QuatFromRotationVector(t * report.V_WP.w) * report.X_WP.q.normalized()).normalized()};
 }
 
 }  // namespace
@@ -31,8 +31,8 @@ LocalDynamics6dofPhysics::LocalDynamics6dofPhysics(const MethodContext& context)
       exporter_(context.world) {
   builder_.emplace(*world_, pointer_body_, context.settings->rendering);
   const auto capacity = static_cast<std::size_t>(world_->num_bodies());
-  for (std::vector<int>* v : {&seeds_, &motions_, &sent_last_, &sent_before_, &failed_, &owned_,
-                              &owned_before_}) {
+  for (std::vector<int>* v :
+       {&seeds_, &motions_, &sent_last_, &sent_before_, &failed_, &owned_, &owned_before_}) {
     v->reserve(capacity);
   }
   owned_states_.reserve(capacity);

@@ -14,11 +14,11 @@ namespace mrh::physics::internal {
 
 /// Counters of local-dynamics-6dof's physics half (physics thread; read them after the run).
 struct LocalDynamics6dofCounters {
-  std::int64_t steps = 0;            ///< physics steps
-  std::int64_t overwrites = 0;       ///< local states written into the world (eq. 4.16–4.17)
+  std::int64_t steps = 0;       ///< physics steps
+  std::int64_t overwrites = 0;  ///< local states written into the world (eq. 4.16–4.17)
   std::int64_t overwrite_failures = 0;
-  int last_island_bodies = 0;        ///< bodies in the latest exported model
-  int last_island_contacts = 0;      ///< contact rows in the latest exported model
+  int last_island_bodies = 0;    ///< bodies in the latest exported model
+  int last_island_contacts = 0;  ///< contact rows in the latest exported model
 };
 
 /// Method `local-dynamics-6dof`, physics half. PhysicsStep: (0) every island body of the period
@@ -38,6 +38,7 @@ class LocalDynamics6dofPhysics final : public MethodPhysics {
 
   void PhysicsStart(const ir::HapticReport& initial, ir::PhysicsSnapshot* out) override;
   void PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot* out) override;
+
   /// sync_ms: (0); world_step_ms: (1); ir_ms: (2); model_ms: (3).
   PhaseTimes last_phases() const noexcept override { return phases_; }
 
@@ -55,9 +56,9 @@ class LocalDynamics6dofPhysics final : public MethodPhysics {
   std::optional<GeometricIrBuilder> builder_;
   world::ContactExporter exporter_;
   std::vector<int> seeds_, motions_;
-  std::vector<int> sent_last_, sent_before_;  // island bodies of the latest two snapshots
-  std::vector<int> failed_;                   // bodies the world did not take in this step
-  std::vector<int> owned_, owned_before_;     // bodies owned by the local simulation
+  std::vector<int> sent_last_, sent_before_;      // island bodies of the latest two snapshots
+  std::vector<int> failed_;                       // bodies the world did not take in this step
+  std::vector<int> owned_, owned_before_;         // bodies owned by the local simulation
   std::vector<ir::LocalBodyState> owned_states_;  // their local states taken in this step
   LocalDynamics6dofCounters counters_;
   PhaseTimes phases_;

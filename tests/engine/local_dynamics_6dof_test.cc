@@ -59,6 +59,7 @@ struct Stats {
 class StatsTap final : public Recorder {
  public:
   explicit StatsTap(int box) : box_(box) {}
+
   void OnTick(const haptic::TickRecord& t) override {
     if (t.t < kFrom) return;
     const double f = t.rendered_W.f.norm();
@@ -67,17 +68,20 @@ class StatsTap final : public Recorder {
     sff_ += f * f;
     st_ += t.rendered_W.tau.norm();
   }
+
   void OnStep(const StepRecord&, const world::World& world) override {
     const world::BodyState s = world.body_state(box_);
     stats.peak_w = std::max(stats.peak_w, s.V_WCm.w.norm());
     if (std::abs(world.time() - kPoseAt) < 1e-6) stats.box_at = s.X_WB.p;
   }
+
   Stats Finish() {
     stats.mean_f = sf_ / n_;
     stats.sd_f = std::sqrt(std::max(0.0, sff_ / n_ - stats.mean_f * stats.mean_f));
     stats.mean_tau = st_ / n_;
     return stats;
   }
+
   Stats stats;
 
  private:
@@ -209,9 +213,8 @@ TEST(LocalDynamics6dofTest, ProxyActionEqualsReactionAndThePhysicsReceivesIt) {
     worst_f = std::max(worst_f, (out.w_W.f + r.f).norm());
     worst_tau = std::max(worst_tau, (out.w_W.tau + r.tau_P).norm());
   };
-  const std::vector<BodyImpulseTotal> received =
-      RunTicks(PushWorld(), 0.03, 0.05, 2.5, [](const haptic::MethodHaptic&, std::int64_t) {},
-               after);
+  const std::vector<BodyImpulseTotal> received = RunTicks(
+      PushWorld(), 0.03, 0.05, 2.5, [](const haptic::MethodHaptic&, std::int64_t) {}, after);
   ASSERT_GT(peak, 1.0) << "the pointer never pushed";
   EXPECT_LT(worst_f, 1e-9);
   EXPECT_LT(worst_tau, 1e-9);
