@@ -99,6 +99,17 @@ Method LocalDynamics(const MethodContext& c) {
                 {"local_dynamics.local_body_fault"}};  // haptic::LocalDynamicsStatusBits
 }
 
+// Issue 14: the 6-DOF proxy against the neighbors' contact island simulated at the haptic rate.
+Method LocalDynamics6dof(const MethodContext& c) {
+  const render::ProxyRendererSettings settings =
+      physics::ProxySettingsFor(*c.world, c.pointer_body, c.settings->rendering);
+  return Method{"local-dynamics-6dof", false, physics::MakeLocalDynamics6dofPhysics(c),
+                haptic::MakeLocalDynamics6dofHaptic(settings),
+                // render::ProxyStatusBits, then the local island's fault bit
+                {"proxy.rows_full", "proxy.not_converged", "proxy.bad_input",
+                 "local_dynamics.local_body_fault"}};
+}
+
 // Built-in methods register on first use: self-registering statics would be dropped by the
 // linker from a static library.
 void RegisterBuiltins() {
@@ -130,6 +141,11 @@ void RegisterBuiltins() {
                    "\"contact\" (their contact island with friction, default) or "
                    "\"perturbation\" (thesis: accelerance + bias)",
                    LocalDynamics);
+    RegisterMethod("local-dynamics-6dof",
+                   "Issue 14: proxy-6dof's geometric IR and 6-DOF proxy against the neighbors' "
+                   "contact island simulated at the haptic rate (the push moves them in the same "
+                   "tick, with rotation)",
+                   LocalDynamics6dof);
   });
 }
 

@@ -46,6 +46,10 @@ constexpr Entry kExperiments[] = {
      internal::RunT44},
     {"t4.5", "haptic tick cost and physics occupancy vs 1-128 neighbors simulated locally",
      internal::RunT45},
+    {"t3.6",
+     "a box pointer pushes, turns, tips and presses boxes on a floor: proxy-6dof at 1 and 20 ms, "
+     "local-dynamics-6dof at 20 ms",
+     internal::RunT36},
     {"t4.push",
      "pushing resting boxes across a floor with friction: force and trajectory vs single-rate",
      internal::RunT4Push},

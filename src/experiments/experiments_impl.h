@@ -211,6 +211,25 @@ int RunT4Push(const std::filesystem::path& out, bool quiet, const PushOptions& o
 
 // Chapter 3 (method proxy-6dof).
 
+/// One case × method of t3.6 (issue 14): rendered |f| and |τ| statistics over 2–5 s, peak |ω|
+/// of any box after a global step, every box's COM at 4 s.
+struct T36Result {
+  std::string case_name;
+  std::string method;         ///< e.g. "local-dynamics-6dof@20ms"
+  double mean_f = 0.0, sd_f = 0.0;      ///< N
+  double mean_tau = 0.0, sd_tau = 0.0;  ///< N·m
+  double peak_spin = 0.0;               ///< rad/s
+  std::vector<Vec3> pose_at;            ///< m, world
+};
+
+/// Runs t3.6's five cases (face, offcentre, tip, wall, row) × three methods (proxy-6dof at 1 ms,
+/// the reference, first; proxy-6dof at 20 ms; local-dynamics-6dof at 20 ms); runs/ CSVs under
+/// `out`; results[case][method].
+std::vector<std::vector<T36Result>> RunT36Cases(const std::filesystem::path& out, bool quiet);
+
+/// t3.6: returns 0 if local-dynamics-6dof meets the face push's force, sd, position and spin bars.
+int RunT36(const std::filesystem::path& out, bool quiet);
+
 /// One haptic tick of a proxy-6dof run as the chapter-3 drivers see it (world frame).
 struct ProxyTick {
   double t = 0.0;                         ///< s

@@ -4,6 +4,7 @@
 
 #include "contact_volume_haptic.h"
 #include "local_contact_haptic.h"
+#include "local_dynamics_6dof_haptic.h"
 #include "local_dynamics_haptic.h"
 #include "penalty_sum_haptic.h"
 #include "point_penalty_haptic.h"
@@ -41,6 +42,26 @@ std::unique_ptr<MethodHaptic> MakeLocalDynamicsHaptic(double radius, double stif
 std::unique_ptr<MethodHaptic> MakeLocalContactHaptic(double radius, double stiffness,
                                                      double damping) {
   return std::make_unique<internal::LocalContactHaptic>(radius, stiffness, damping);
+}
+
+std::unique_ptr<MethodHaptic> MakeLocalDynamics6dofHaptic(
+    const render::ProxyRendererSettings& settings) {
+  return std::make_unique<internal::LocalDynamics6dofHaptic>(settings);
+}
+
+const render::ProxyOutput* LocalDynamics6dofLastOutput(const MethodHaptic& method) noexcept {
+  const auto* m = dynamic_cast<const internal::LocalDynamics6dofHaptic*>(&method);
+  return m == nullptr ? nullptr : &m->last_output();
+}
+
+const render::TickIr* LocalDynamics6dofLastTickIr(const MethodHaptic& method) noexcept {
+  const auto* m = dynamic_cast<const internal::LocalDynamics6dofHaptic*>(&method);
+  return m == nullptr ? nullptr : &m->last_tick_ir();
+}
+
+const render::LocalContactSolver* LocalDynamics6dofSolver(const MethodHaptic& method) noexcept {
+  const auto* m = dynamic_cast<const internal::LocalDynamics6dofHaptic*>(&method);
+  return m == nullptr ? nullptr : &m->solver();
 }
 
 const render::ProxyOutput* ProxyLastOutput(const MethodHaptic& method) noexcept {

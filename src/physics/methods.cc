@@ -6,6 +6,7 @@
 
 #include "contact_volume_physics.h"
 #include "local_contact_physics.h"
+#include "local_dynamics_6dof_physics.h"
 #include "local_dynamics_physics.h"
 #include "mrh/core/error.h"
 #include "mrh/physics/local_dynamics.h"
@@ -68,6 +69,10 @@ render::CouplingGains ResolveCouplingGains(const MethodContext& context) {
 
 std::unique_ptr<MethodPhysics> MakeLocalContactPhysics(const MethodContext& context) {
   return std::make_unique<internal::LocalContactPhysics>(context);
+}
+
+std::unique_ptr<MethodPhysics> MakeLocalDynamics6dofPhysics(const MethodContext& context) {
+  return std::make_unique<internal::LocalDynamics6dofPhysics>(context);
 }
 
 }  // namespace mrh::physics

@@ -70,8 +70,7 @@ std::vector<TickRecord> RunPressedIntoFloor(const std::string& method) {
   return recorder.ticks;
 }
 
-TEST(HapticSideTest, ProxyPoseOfProxy6dofLiesOnTheSurfaceWhenPressedIntoTheFloor) {
-  const std::vector<TickRecord> ticks = RunPressedIntoFloor("proxy-6dof");
+void CheckProxyOnTheFloor(const std::vector<TickRecord>& ticks) {
   ASSERT_FALSE(ticks.empty());
   // The PGS error bound of proxy_method_test.cc (FacePressedIntoFloor...): the solver stops
   // within ~m·κ·tol of the exact Δr, κ = 4 / (4h²/R_w), m = 4 points.
@@ -86,10 +85,22 @@ TEST(HapticSideTest, ProxyPoseOfProxy6dofLiesOnTheSurfaceWhenPressedIntoTheFloor
   }
 }
 
+// local-dynamics-6dof treats the static floor as proxy-6dof does.
+TEST(HapticSideTest, ProxyPoseOfProxy6dofLiesOnTheSurfaceWhenPressedIntoTheFloor) {
+  for (const char* method : {"proxy-6dof", "local-dynamics-6dof"}) {
+    SCOPED_TRACE(method);
+    CheckProxyOnTheFloor(RunPressedIntoFloor(method));
+  }
+}
+
 TEST(HapticSideTest, ProxyPoseIsThePointerPoseForMethodsWithoutAProxy) {
   for (const auto& [method, summary] : ListMethods()) {
-    // proxy-6dof has a proxy; virtual-coupling reports its tool pose (and needs a free tool).
-    if (method == "proxy-6dof" || method == "virtual-coupling") continue;
+    // proxy-6dof and local-dynamics-6dof have a proxy; virtual-coupling reports its tool pose
+    // (and needs a free tool).
+    if (method == "proxy-6dof" || method == "local-dynamics-6dof" ||
+        method == "virtual-coupling") {
+      continue;
+    }
     SCOPED_TRACE(method);
     const std::vector<TickRecord> ticks = RunPressedIntoFloor(method);
     ASSERT_FALSE(ticks.empty());

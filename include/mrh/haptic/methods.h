@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "mrh/haptic/method_haptic.h"
+#include "mrh/render/local_contact_solver.h"
 #include "mrh/render/penalty_sum.h"
 #include "mrh/render/proxy_renderer.h"
 #include "mrh/render/virtual_coupling.h"
@@ -55,10 +56,25 @@ std::unique_ptr<MethodHaptic> MakeLocalDynamicsHaptic(double radius, double stif
 std::unique_ptr<MethodHaptic> MakeLocalContactHaptic(double radius, double stiffness,
                                                      double damping);
 
+/// Haptic half of "local-dynamics-6dof" (issue 14): the 6-DOF proxy with `settings`
+/// (physics::ProxySettingsFor) against planes riding on the snapshot's contact island, simulated
+/// at the haptic rate; the proxy's reaction pushes the island in the same tick. TickOutput::status
+/// carries render::ProxyStatusBits plus bit 3 (a local body became non-finite). RT-safe after
+/// construction. @throws mrh::InvalidArgument from settings.Validate().
+std::unique_ptr<MethodHaptic> MakeLocalDynamics6dofHaptic(
+    const render::ProxyRendererSettings& settings);
+
 /// proxy-6dof's haptic half: the renderer's output of its latest tick, and the tick IR it
 /// rendered against; null when `method` is not proxy-6dof's. Haptic thread (or between
 /// lockstep ticks). RT-safe.
 const render::ProxyOutput* ProxyLastOutput(const MethodHaptic& method) noexcept;
 const render::TickIr* ProxyLastTickIr(const MethodHaptic& method) noexcept;
+
+/// local-dynamics-6dof's haptic half: the renderer's output of its latest tick, the re-posed
+/// tick IR and the local island; null when `method` is not local-dynamics-6dof's. Haptic thread
+/// (or between lockstep ticks). RT-safe.
+const render::ProxyOutput* LocalDynamics6dofLastOutput(const MethodHaptic& method) noexcept;
+const render::TickIr* LocalDynamics6dofLastTickIr(const MethodHaptic& method) noexcept;
+const render::LocalContactSolver* LocalDynamics6dofSolver(const MethodHaptic& method) noexcept;
 
 }  // namespace mrh::haptic

@@ -44,6 +44,11 @@ std::unique_ptr<MethodPhysics> MakeLocalDynamicsPhysics(const MethodContext& con
 /// "contact"): the contact island export (world/contact_export.h).
 std::unique_ptr<MethodPhysics> MakeLocalContactPhysics(const MethodContext& context);
 
+/// The physics half of `local-dynamics-6dof` (issue 14): proxy-6dof's geometric IR plus the
+/// contact island of every dynamic body with a geometric pair, synchronized as the contact local
+/// model. @throws mrh::SceneError from the geometric IR builder. Not RT-safe.
+std::unique_ptr<MethodPhysics> MakeLocalDynamics6dofPhysics(const MethodContext& context);
+
 /// True when `local-dynamics` runs the contact model: rendering.local_model is "contact" and
 /// every moving body is free-jointed (a scene with a slide- or hinge-jointed body, e.g. T4.1's
 /// cube, keeps the thesis' perturbation model).

@@ -1,0 +1,271 @@
+// SPDX-License-Identifier: Apache-2.0
+// Experiment t3.6 (issue 14): a box pointer pushes, turns, tips and presses boxes on a floor;
+// proxy-6dof at 1 ms (the 6-DOF reference), proxy-6dof at 20 ms, local-dynamics-6dof at 20 ms.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "experiment_table.h"
+#include "experiment_util.h"
+#include "experiments_impl.h"
+#include "mrh/engine/engine.h"
+#include "mrh/session/session.h"
+#include "mrh/world/world.h"
+
+namespace mrh::experiments::internal {
+namespace {
+
+constexpr double kSpeed = 0.08;    // m/s along +x (scenes/t3_6_push.json)
+constexpr double kX0 = -0.16;      // m, pointer at t = 0; it touches the box at 1.25 s
+constexpr double kDuration = 5.0;  // s
+constexpr double kFrom = 2.0;      // s, statistics window 2–5 s
+constexpr double kPoseAt = 4.0;    // s, the issue's "box positions within 2 cm after 4 s"
+
+struct Case {
+  const char* name;
+  const char* scene;
+  double y, z;        // pointer offset (m)
+  double push_until;  // s; the pointer holds still afterwards
+};
+
+// The box reaches the wall at 2.5 s; the pointer stops 8 mm further (about 16 N of press).
+
+constexpr Case kCases[] = {{"face", "t3_6_push.xml", 0.0, 0.05, kDuration},
+                           {"offcentre", "t3_6_push.xml", 0.03, 0.05, kDuration},
+                           {"tip", "t3_6_tip.xml", 0.0, 0.085, kDuration},
+                           {"wall", "t3_6_wall.xml", 0.0, 0.05, 2.6},
+                           {"row", "t3_6_row.xml", 0.0, 0.05, kDuration}};
+
+struct Variant {
+  const char* label;
+  const char* method;
+  double physics_dt;
+};
+
+constexpr Variant kVariants[] = {{"proxy-6dof@1ms", "proxy-6dof", 0.001},
+                                 {"proxy-6dof@20ms", "proxy-6dof", 0.02},
+                                 {"local-dynamics-6dof@20ms", "local-dynamics-6dof", 0.02}};
+
+session::Session MakeSession(const Case& c, const Variant& v) {
+  nlohmann::json j;
+  j["scene"] = c.scene;
+  j["method"] = v.method;
+  j["physics_dt"] = v.physics_dt;
+  j["haptic_dt"] = 0.001;
+  j["duration"] = kDuration;
+  j["rendering"] = {{"stiffness", 2000.0},
+                    {"damping", 5.0},
+                    {"rot_stiffness", 20.0},
+                    {"rot_damping", 0.1},
+                    {"friction", 0.3}};
+  j["safety"] = {{"ramp", false}};
+  const double x_end = kX0 + kSpeed * c.push_until;
+  nlohmann::json frames = {{0.0, kX0, c.y, c.z, 1, 0, 0, 0},
+                           {c.push_until, x_end, c.y, c.z, 1, 0, 0, 0}};
+  if (c.push_until < kDuration) frames.push_back({kDuration, x_end, c.y, c.z, 1, 0, 0, 0});
+  j["device"] = {{"type", "scripted"}, {"keyframes", frames}};
+  return session::ParseSession(j.dump(), ScenesDir(), {},
+                               fmt::format("t3.6 {} ({})", c.name, v.label));
+}
+
+// Rendered |f|, |τ| per tick; the first box's x and tilt angle and every box's COM per step.
+struct Tap final : engine::Recorder {
+  void OnTick(const engine::TickRecord& tick) override {
+    t.push_back(tick.t);
+    f.push_back(tick.rendered_W.f.norm());
+    tau.push_back(tick.rendered_W.tau.norm());
+  }
+
+  void OnStep(const engine::StepRecord& step, const world::World& world) override {
+    if (boxes.empty()) {
+      for (const char* name : {"box", "box2"}) {
+        const int b = world.FindBody(name);
+        if (b >= 0) boxes.push_back(b);
+      }
+    }
+    Step s{step.t, {}, 0.0, 0.0};
+    for (const int b : boxes) {
+      const world::BodyState st = world.body_state(b);
+      s.p.push_back(st.p_WCm);
+      s.spin = std::max(s.spin, st.V_WCm.w.norm());
+    }
+    const Quat q = world.body_state(boxes[0]).X_WB.q;
+    s.angle = 2.0 * std::acos(std::min(1.0, std::abs(q.w())));
+    steps.push_back(std::move(s));
+  }
+
+  struct Step {
+    double t;
+    std::vector<Vec3> p;
+    double spin, angle;
+  };
+
+  std::vector<int> boxes;
+  std::vector<double> t, f, tau;
+  std::vector<Step> steps;
+};
+
+void MeanSd(const std::vector<double>& t, const std::vector<double>& x, double* mean, double* sd) {
+  double s = 0.0, s2 = 0.0, n = 0.0;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    if (t[i] < kFrom) continue;
+    s += x[i];
+    s2 += x[i] * x[i];
+    n += 1.0;
+  }
+  *mean = n > 0 ? s / n : 0.0;
+  *sd = n > 0 ? std::sqrt(std::max(0.0, s2 / n - *mean * *mean)) : 0.0;
+}
+
+T36Result Analyze(const Tap& tap) {
+  T36Result r;
+  MeanSd(tap.t, tap.f, &r.mean_f, &r.sd_f);
+  MeanSd(tap.t, tap.tau, &r.mean_tau, &r.sd_tau);
+  for (const Tap::Step& s : tap.steps) {
+    r.peak_spin = std::max(r.peak_spin, s.spin);
+    if (s.t <= kPoseAt + 1e-9) r.pose_at = s.p;
+  }
+  return r;
+}
+
+void WriteRun(const std::filesystem::path& dir, const std::string& slug, const Tap& tap) {
+  Table f({"t", "force_N", "torque_Nm"});
+  for (std::size_t i = 0; i < tap.t.size(); ++i) {
+    f.AddFormatted("{:.3f},{:.5f},{:.5f}", tap.t[i], tap.f[i], tap.tau[i]);
+  }
+  WriteText(dir / (slug + "_wrench.csv"), f.Csv());
+  Table b({"t", "x", "y", "z", "tilt_rad", "spin_radps"});
+  for (const Tap::Step& s : tap.steps) {
+    b.AddFormatted("{:.3f},{:.6f},{:.6f},{:.6f},{:.6f},{:.5f}", s.t, s.p[0].x(), s.p[0].y(),
+                   s.p[0].z(), s.angle, s.spin);
+  }
+  WriteText(dir / (slug + "_box.csv"), b.Csv());
+}
+
+std::string RunSlug(const Case& c, const Variant& v) {
+  return std::string(c.name) + "_" + Slug(v.label, '_');
+}
+
+std::string PlotScript() {
+  std::string gp = fmt::format(
+      "# t3.6: |f|, |tau|, box x and tilt per case and method. gnuplot t3_6.gp\n"
+      "set terminal pngcairo size 1800,{} enhanced font ',9'\nset output 't3_6.png'\n"
+      "set datafile separator ','\nset grid\nset key top left\nset multiplot layout {},4\n",
+      300 * std::size(kCases), std::size(kCases));
+  const auto panel = [&](const Case& c, const char* what, const char* file, int column) {
+    gp += fmt::format("set title '{}: {}'\nset xlabel 't (s)'\nplot ", c.name, what);
+    for (std::size_t i = 0; i < std::size(kVariants); ++i) {
+      gp += fmt::format("{}'runs/{}_{}.csv' using 1:{} with lines title '{}' noenhanced",
+                        i ? ", " : "", RunSlug(c, kVariants[i]), file, column, kVariants[i].label);
+    }
+    gp += "\n";
+  };
+  for (const Case& c : kCases) {
+    panel(c, "|f| (N)", "wrench", 2);
+    panel(c, "|tau| (N m)", "wrench", 3);
+    panel(c, "box x (m)", "box", 2);
+    panel(c, "box tilt (rad)", "box", 5);
+  }
+  return gp + "unset multiplot\n";
+}
+
+double PoseError(const T36Result& r, const T36Result& ref) {
+  double e = 0.0;
+  for (std::size_t i = 0; i < r.pose_at.size() && i < ref.pose_at.size(); ++i) {
+    e = std::max(e, (r.pose_at[i] - ref.pose_at[i]).norm());
+  }
+  return e;
+}
+
+struct Tables {
+  Table csv{{"case", "method", "mean_force_N", "force_vs_ref", "sd_force_N", "sd_ratio",
+             "mean_torque_Nm", "torque_vs_ref", "position_error_m", "peak_spin_radps"}};
+  Table md{{"case", "method", "mean |f| (N)", "vs ref", "sd f (N)", "sd ratio", "mean |τ| (N·m)",
+            "vs ref", "pos. error at 4 s (m)", "peak spin (rad/s)"}};
+};
+
+// One row; returns the issue's bars for local-dynamics-6dof as a JSON object.
+nlohmann::json Compare(const Case& c, const Variant& v, const T36Result& r, const T36Result& ref,
+                       Tables* tables) {
+  const double df = r.mean_f / ref.mean_f - 1.0;
+  const double dtau = ref.mean_tau > 0.0 ? r.mean_tau / ref.mean_tau - 1.0 : 0.0;
+  const double sd_ratio = ref.sd_f > 0.0 ? r.sd_f / ref.sd_f : 0.0;
+  const double err = PoseError(r, ref);
+  tables->csv.AddFormatted("{},{},{:.4f},{:.4f},{:.4f},{:.3f},{:.4f},{:.4f},{:.4f},{:.3f}", c.name,
+                           v.label, r.mean_f, df, r.sd_f, sd_ratio, r.mean_tau, dtau, err,
+                           r.peak_spin);
+  tables->md.Add({c.name, v.label, fmt::format("{:.3f}", r.mean_f),
+                  fmt::format("{:+.1f} %", 100 * df), fmt::format("{:.3f}", r.sd_f),
+                  fmt::format("{:.2f}", sd_ratio), fmt::format("{:.3f}", r.mean_tau),
+                  fmt::format("{:+.1f} %", 100 * dtau), fmt::format("{:.4f}", err),
+                  fmt::format("{:.2f}", r.peak_spin)});
+  return {{"mean_force_N", r.mean_f},
+          {"force_vs_ref", df},
+          {"sd_force_N", r.sd_f},
+          {"sd_ratio", sd_ratio},
+          {"mean_torque_Nm", r.mean_tau},
+          {"torque_vs_ref", dtau},
+          {"position_error_m", err},
+          {"peak_spin_radps", r.peak_spin},
+          {"bars",
+           {{"force", std::abs(df) <= 0.05},
+            {"torque", std::abs(dtau) <= 0.10},
+            {"sd", r.sd_f <= 2.0 * ref.sd_f},
+            {"position", err <= 0.02},
+            {"spin", r.peak_spin <= ref.peak_spin + 1.0}}}};
+}
+
+}  // namespace
+
+std::vector<std::vector<T36Result>> RunT36Cases(const std::filesystem::path& out, bool quiet) {
+  std::filesystem::create_directories(out / "runs");
+  std::vector<std::vector<T36Result>> results;
+  for (const Case& c : kCases) {
+    results.emplace_back();
+    for (const Variant& v : kVariants) {
+      if (!quiet) std::cout << "t3.6: " << c.name << " / " << v.label << "...\n";
+      auto engine = session::MakeEngine(MakeSession(c, v));
+      Tap tap;
+      engine->Run(&tap);
+      WriteRun(out / "runs", RunSlug(c, v), tap);
+      T36Result r = Analyze(tap);
+      r.case_name = c.name;
+      r.method = v.label;
+      results.back().push_back(std::move(r));
+    }
+  }
+  return results;
+}
+
+int RunT36(const std::filesystem::path& out, bool quiet) {
+  const auto results = RunT36Cases(out, quiet);
+  nlohmann::json summary;
+  Tables tables;
+  Checks checks;
+  for (std::size_t ci = 0; ci < std::size(kCases); ++ci) {
+    for (std::size_t vi = 0; vi < std::size(kVariants); ++vi) {
+      summary["cases"][kCases[ci].name][kVariants[vi].label] =
+          Compare(kCases[ci], kVariants[vi], results[ci][vi], results[ci][0], &tables);
+    }
+  }
+  // The essential result: on the face push, local-dynamics-6dof at 20 ms meets the force, spread,
+  // position and spin bars against the 1 ms reference (the torque bar is reported, not checked).
+  const nlohmann::json& face = summary["cases"]["face"]["local-dynamics-6dof@20ms"]["bars"];
+  for (const char* bar : {"force", "sd", "position", "spin"}) {
+    checks.Add(fmt::format("face_local_dynamics_6dof_{}", bar), face[bar].get<bool>());
+  }
+  WriteText(out / "t3_6.csv", tables.csv.Csv());
+  WriteText(out / "t3_6.md", tables.md.Markdown());
+  Plot(out, "t3_6", PlotScript(), quiet);
+  summary["experiment"] = "t3.6";
+  summary["machine"] = MachineTag();
+  summary["window_s"] = {kFrom, kDuration};
+  if (!quiet) std::cout << tables.md.Markdown();
+  return FinishExperiment(out, std::move(summary), checks, quiet);
+}
+
+}  // namespace mrh::experiments::internal

@@ -1,0 +1,129 @@
+// SPDX-License-Identifier: Apache-2.0
+// local-dynamics-6dof, haptic half: the 6-DOF proxy against planes that ride on the locally
+// simulated neighbors, its reaction pushing them in the same tick.
+#include "local_dynamics_6dof_haptic.h"
+
+#include <cmath>
+
+namespace mrh::haptic::internal {
+
+LocalDynamics6dofHaptic::LocalDynamics6dofHaptic(const render::ProxyRendererSettings& settings,
+                                                 const render::LocalContactSolverSettings& solver)
+    : renderer_(settings), solver_(solver) {
+  local_of_motion_.fill(-1);
+}
+
+// The interpolator emits one tick pair per snapshot pair with a valid motion, in order; n_B_
+// follows that order.
+void LocalDynamics6dofHaptic::Adopt(const ir::PhysicsSnapshot& snapshot) noexcept {
+  interpolator_.Adopt(snapshot);
+  solver_.Adopt(snapshot.local_model);
+  local_of_motion_.fill(-1);
+  for (std::size_t m = 0; m < snapshot.bodies.size(); ++m) {
+    local_of_motion_[m] = solver_.FindMotion(static_cast<int>(m));
+  }
+  std::size_t j = 0;
+  for (const ir::GeometricPair& pair : snapshot.pairs) {
+    if (pair.motion < 0 || static_cast<std::size_t>(pair.motion) >= snapshot.bodies.size()) {
+      continue;
+    }
+    const ir::BodyMotion& body = snapshot.bodies[static_cast<std::size_t>(pair.motion)];
+    n_B_[j++] = body.X_WB.q.conjugate() * pair.n_W;
+  }
+}
+
+// Step 2 of the class comment: planes of island pairs on the local poses.
+void LocalDynamics6dofHaptic::RePoseOnLocalBodies() noexcept {
+  for (std::size_t i = 0; i < tick_ir_.pairs.size(); ++i) {
+    render::TickPair& pair = tick_ir_.pairs[i];
+    if (pair.is_static || pair.motion < 0) continue;
+    const int local = local_of_motion_[static_cast<std::size_t>(pair.motion)];
+    if (local < 0) continue;
+    const auto l = static_cast<std::size_t>(local);
+    pair.X_WB = solver_.X_WB(l);
+    pair.p_WCm = solver_.p_WCm(l);
+    pair.n_W = (pair.X_WB.q * n_B_[i]).normalized();
+    pair.c_W = pair.X_WB * pair.p_BC;
+    const double n_dot_c = pair.n_W.dot(pair.c_W);
+    for (int k = pair.first; k < pair.first + pair.count; ++k) {
+      render::TickPoint& point = tick_ir_.points[static_cast<std::size_t>(k)];
+      point.depth = n_dot_c - pair.n_W.dot(point.v_W);
+    }
+  }
+}
+
+// Step 4: each island pair's force goes to its local body at the pair's centre of pressure (its
+// normal rows' contact points weighted by their multipliers f_k), where the contact pushes. The
+// renderer's own reaction carries the pair's share of the proxy's torque about the pointer
+// origin, moved to the COM: at a pointer origin far from the contact it acts on the light body as
+// if through a lever fixed to it, and the explicit loop through the body's pose flutters
+// (bench/local_dynamics_6dof_bench.cc diverged). A pair without a loaded normal row keeps the
+// renderer's wrench as a couple. The period's impulses record what was applied.
+void LocalDynamics6dofHaptic::PushLocalBodies(const Vec3& p_WP) noexcept {
+  reactions_ = output_.reactions;
+  for (std::size_t i = 0; i < reactions_.size() && i < tick_ir_.pairs.size(); ++i) {
+    render::ProxyPairReaction& r = reactions_[i];
+    const render::TickPair& pair = tick_ir_.pairs[i];
+    if (r.is_static || pair.motion < 0) continue;
+    const int local = local_of_motion_[static_cast<std::size_t>(pair.motion)];
+    if (local < 0) continue;
+    const auto l = static_cast<std::size_t>(local);
+    const Vec3 c = solver_.p_WCm(l);
+    Vec3 cop = Vec3::Zero();
+    double weight = 0.0;
+    for (std::size_t k = 0; k < output_.rows.size(); ++k) {
+      const render::ProxyRowInfo& info = output_.row_info[k];
+      if (info.pair != static_cast<int>(i) || info.kind != render::ProxyRowKind::kNormal) continue;
+      cop += output_.f[k] * (p_WP + output_.rows[k].r);
+      weight += output_.f[k];
+    }
+    if (weight > 0.0) {
+      cop /= weight;
+      r.w_W.tau = (cop - c).cross(r.w_W.f);
+      solver_.AddForce(l, r.w_W.f, cop);
+      continue;
+    }
+    AddWrench(l, r.w_W, c);
+  }
+  render::AddReactionImpulses(reactions_, tick_dt_, &period_);
+}
+
+// The wrench (force; moment about the COM c) as the force at c plus the couple ±g at c ± a,
+// 2 a × g = τ.
+void LocalDynamics6dofHaptic::AddWrench(std::size_t l, const Wrench& w, const Vec3& c) noexcept {
+  solver_.AddForce(l, w.f, c);
+  if (!(w.tau.squaredNorm() > 0.0)) return;
+  const Vec3 a = w.tau.unitOrthogonal();
+  const Vec3 g = 0.5 * w.tau.cross(a);
+  solver_.AddForce(l, g, c + a);
+  solver_.AddForce(l, -g, c - a);
+}
+
+void LocalDynamics6dofHaptic::HapticTick(const TickInput& in, TickOutput* out) noexcept {
+  interpolator_.Evaluate(in.alpha(), in.X_WP, &tick_ir_);
+  RePoseOnLocalBodies();
+  renderer_.Tick(tick_ir_, in.X_WP, in.dt, &output_);
+  out->w_W = output_.w_W;
+  out->X_WQ = output_.X_WQ;
+  out->contacts = output_.diagnostics.contacts;
+  out->status = output_.diagnostics.status;
+  tick_dt_ = in.dt;
+  PushLocalBodies(in.X_WP.p);
+  if (!solver_.Step(in.dt)) out->status |= kLocal6dofBodyFault;
+}
+
+void LocalDynamics6dofHaptic::EndPeriod(ir::HapticReport* report) noexcept {
+  report->impulses = period_.impulses;
+  report->local_states.Clear();
+  for (std::size_t i = 0; i < solver_.size(); ++i) {
+    if (!report->local_states.PushBack(
+            ir::LocalBodyState{solver_.world_body(i), solver_.X_WB(i), solver_.V_WCm(i)})) {
+      period_.status |= ir::kStatusBodiesFull;
+    }
+  }
+  report->status |= period_.status;
+  period_.impulses.Clear();
+  period_.status = ir::kStatusOk;
+}
+
+}  // namespace mrh::haptic::internal

@@ -1,0 +1,79 @@
+// SPDX-License-Identifier: Apache-2.0
+// Method `local-dynamics-6dof` (issue 14 item 2): the haptic half — the 6-DOF proxy rendered
+// against planes fixed on the neighbors while the neighbors' contact island is simulated at 1 kHz.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "mrh/haptic/method_haptic.h"
+#include "mrh/render/ir_interpolator.h"
+#include "mrh/render/local_contact_solver.h"
+#include "mrh/render/proxy_renderer.h"
+#include "mrh/render/tick_ir.h"
+
+namespace mrh::haptic::internal {
+
+/// TickOutput::status bit of local-dynamics-6dof beyond render::ProxyStatusBits (bits 0–2): an
+/// island body's local state became non-finite and was stopped.
+inline constexpr std::uint32_t kLocal6dofBodyFault = 1u << 3;
+
+/// The haptic half of `local-dynamics-6dof`. Per tick (RT-safe: fixed capacity, no allocation,
+/// lock, throw or I/O):
+///  1. the geometric IR is evaluated as in proxy-6dof (IrInterpolator, α = min(1, (j+1)/n));
+///  2. every pair whose object is a body of the snapshot's ir::LocalContactModel island is
+///     re-posed on that body's CURRENT local pose: its plane (point p_BC and normal, both fixed in
+///     the body frame of the snapshot's end pose) follows the locally simulated body, and the
+///     points' depths are recomputed; static pairs and non-island bodies keep the interpolated IR;
+///  3. render::ProxyRenderer solves the proxy (eq. 3.4–3.10) and renders eq. 3.7–3.8;
+///  4. each island pair's force (N, world) is applied to the local body in the same tick at the
+///     pair's centre of pressure (LocalContactSolver::AddForce), and the island is stepped
+///     (gravity, its own contacts with friction). Every non-static pair's reaction as applied
+///     (island pairs: that force and its moment about the COM; other bodies: the renderer's
+///     wrench) is summed into the period's impulses for the global step. So action = reaction
+///     holds in force; in moment, the objects receive the contact force's moment, not the
+///     proxy's rotational-spring torque the user feels (that torque is virtual, eq. 3.8).
+/// EndPeriod reports the impulses and every island body's local end state (eq. 4.16–4.17), which
+/// the physics half (physics::internal::LocalDynamics6dofPhysics) writes into the world.
+/// One instance per pointer; haptic thread only.
+class LocalDynamics6dofHaptic final : public MethodHaptic {
+ public:
+  /// All buffers are sized here. @throws mrh::InvalidArgument from settings.Validate(). Not
+  /// RT-safe.
+  explicit LocalDynamics6dofHaptic(const render::ProxyRendererSettings& settings,
+                                   const render::LocalContactSolverSettings& solver = {});
+
+  void Adopt(const ir::PhysicsSnapshot& snapshot) noexcept override;
+  void HapticTick(const TickInput& in, TickOutput* out) noexcept override;
+  void EndPeriod(ir::HapticReport* report) noexcept override;
+
+  /// The last tick's renderer output and the (re-posed) IR it rendered; valid until the next
+  /// HapticTick. Haptic thread, or between lockstep ticks.
+  const render::ProxyOutput& last_output() const noexcept { return output_; }
+
+  const render::TickIr& last_tick_ir() const noexcept { return tick_ir_; }
+
+  /// The haptic side's island (haptic thread; tests read it between ticks).
+  const render::LocalContactSolver& solver() const noexcept { return solver_; }
+
+ private:
+  void RePoseOnLocalBodies() noexcept;
+  void PushLocalBodies(const Vec3& p_WP) noexcept;
+  void AddWrench(std::size_t l, const Wrench& w, const Vec3& c) noexcept;
+
+  render::IrInterpolator interpolator_;
+  render::ProxyRenderer renderer_;
+  render::LocalContactSolver solver_;
+  render::TickIr tick_ir_;
+  render::ProxyOutput output_;
+  // This tick's reactions as applied (island pairs: the force at the centre of pressure).
+  FixedVector<render::ProxyPairReaction, ir::kMaxGeometricPairs> reactions_;
+  double tick_dt_ = 0.0;
+  // Per snapshot motion: the island body index, or -1.
+  std::array<int, ir::kMaxNeighborBodies> local_of_motion_{};
+  // Per tick pair (the interpolator's output order): the plane normal in the body frame.
+  std::array<Vec3, ir::kMaxGeometricPairs> n_B_{};
+  ir::HapticReport period_;
+};
+
+}  // namespace mrh::haptic::internal
