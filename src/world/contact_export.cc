@@ -53,24 +53,48 @@ void ContactExporter::Collide(bool refresh_kinematics) {
   for (int g = 0; g < m->ngeom; ++g) m->geom_margin[g] = saved_margin_[static_cast<std::size_t>(g)];
 }
 
-// True if geom g may touch a geom of a near_ body: the bounding-sphere test of MuJoCo's
-// mj_collideGeoms (centre distance <= both rbounds + the larger margin), with the margins as
-// raised for this export, plus a slack; unbounded geoms (planes, rbound 0) always may.
-bool ContactExporter::NearIsland(int g) const {
+// True if geoms g and h may touch: the bounding-sphere test of MuJoCo's mj_collideGeoms (centre
+// distance <= both rbounds + the larger margin) with the margins as raised for this export,
+// plus a slack; unbounded geoms (planes, rbound 0) always may.
+bool ContactExporter::Reaches(int g, int h) const {
   const mjModel& m = *world_->impl_->model;
   const mjData& d = *world_->impl_->data;
-  if (m.geom_rbound[g] <= 0.0 || near_[static_cast<std::size_t>(m.geom_bodyid[g])]) return true;
-  const Vec3 p = ToVec3(d.geom_xpos + 3 * g);
+  if (m.geom_rbound[g] <= 0.0 || m.geom_rbound[h] <= 0.0) return true;
+  const double reach = m.geom_rbound[g] + m.geom_rbound[h] +
+                       std::max(m.geom_margin[g], m.geom_margin[h]) + kNearSlack;
+  return (ToVec3(d.geom_xpos + 3 * g) - ToVec3(d.geom_xpos + 3 * h)).norm() <= reach;
+}
+
+// True if geom g may touch a geom of a near_ body (or belongs to one).
+bool ContactExporter::NearIsland(int g) const {
+  const mjModel& m = *world_->impl_->model;
+  if (near_[static_cast<std::size_t>(m.geom_bodyid[g])]) return true;
   for (const int body : near_bodies_) {
     for (int h = m.body_geomadr[body]; h < m.body_geomadr[body] + m.body_geomnum[body]; ++h) {
-      const double reach = m.geom_rbound[g] + m.geom_rbound[h] +
-                           std::max(m.geom_margin[g], m.geom_margin[h]) + kNearSlack;
-      if (m.geom_rbound[h] <= 0.0 || (ToVec3(d.geom_xpos + 3 * h) - p).norm() <= reach) {
-        return true;
-      }
+      if (Reaches(g, h)) return true;
     }
   }
   return false;
+}
+
+// Adds to near_ every free body that may touch a near_ body, transitively: the island cannot
+// reach beyond them, so one collision pass finds all its contacts.
+void ContactExporter::CloseNear() {
+  const mjModel& m = *world_->impl_->model;
+  for (std::size_t i = 0; i < near_bodies_.size(); ++i) {
+    const int body = near_bodies_[i];
+    for (int other = 1; other < m.nbody; ++other) {
+      if (near_[static_cast<std::size_t>(other)] || !IsFreeBody(other)) continue;
+      bool reaches = false;
+      for (int g = m.body_geomadr[body]; g < m.body_geomadr[body] + m.body_geomnum[body]; ++g) {
+        for (int h = m.body_geomadr[other]; h < m.body_geomadr[other] + m.body_geomnum[other];
+             ++h) {
+          reaches = reaches || Reaches(g, h);
+        }
+      }
+      if (reaches) AddNear(other);
+    }
+  }
 }
 
 // Every geom that cannot touch a near_ body leaves the collision pass (contype and conaffinity
@@ -78,6 +102,7 @@ bool ContactExporter::NearIsland(int g) const {
 // contact of the island anyway, so the island's contacts are those of a whole-world pass.
 void ContactExporter::DisableFarGeoms() {
   mjModel* m = world_->impl_->model.get();
+  CloseNear();
   for (int g = 0; g < m->ngeom; ++g) {
     saved_filter_[2 * static_cast<std::size_t>(g)] = m->geom_contype[g];
     saved_filter_[2 * static_cast<std::size_t>(g) + 1] = m->geom_conaffinity[g];
@@ -182,8 +207,8 @@ std::uint32_t ContactExporter::Export(std::span<const int> seeds, std::span<cons
   out->gravity = world_->gravity();
   SetNear(seeds);
   std::uint32_t status = ir::kStatusOk;
-  // Collide around the island found so far until the island has no body whose neighbourhood
-  // was left out (one pass with whole_world_).
+  // Collide around the bodies the seeds may reach (CloseNear); repeated, as a safeguard, until
+  // the island has no body whose neighbourhood was left out (one pass with whole_world_).
   for (bool first = true;; first = false) {
     Collide(first);
     ClearIsland(out);

@@ -41,7 +41,9 @@ class ContactExporter {
 
  private:
   void Collide(bool refresh_kinematics);
+  bool Reaches(int geom, int other_geom) const;
   bool NearIsland(int geom) const;
+  void CloseNear();
   void DisableFarGeoms();
   void RestoreFilters();
   void SetNear(std::span<const int> seeds);
