@@ -71,8 +71,7 @@ std::string SceneXml(int cubes, int condim) {
       "    </body>\n"
       "  </worldbody>\n"
       "</mujoco>\n",
-      cubes, condim, cubes, condim > 1 ? "Newton" : "CG", condim, bodies, StartX(), kHalf,
-      kRadius);
+      cubes, condim, cubes, condim > 1 ? "Newton" : "CG", condim, bodies, StartX(), kHalf, kRadius);
 }
 
 namespace {
