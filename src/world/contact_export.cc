@@ -17,13 +17,20 @@ namespace {
 
 using internal::ToVec3;
 
+// Added to the bounding-sphere reach of the island-restricted pass (m): roundoff only.
+constexpr double kNearSlack = 1e-6;
+
 }  // namespace
 
-ContactExporter::ContactExporter(World* world, double margin) : world_(world), margin_(margin) {
+ContactExporter::ContactExporter(World* world, double margin, bool whole_world)
+    : world_(world), margin_(margin), whole_world_(whole_world) {
   if (!(margin >= 0.0)) throw InvalidArgument("contact export margin must be >= 0");
   saved_margin_.resize(static_cast<std::size_t>(world->num_geoms()));
   margins_.resize(static_cast<std::size_t>(world->num_geoms()));
+  saved_filter_.resize(2 * static_cast<std::size_t>(world->num_geoms()));
   local_index_.assign(static_cast<std::size_t>(world->num_bodies()), -1);
+  near_.assign(static_cast<std::size_t>(world->num_bodies()), 0);
+  near_bodies_.reserve(static_cast<std::size_t>(world->num_bodies()));
 }
 
 bool ContactExporter::IsFreeBody(int body) const {
@@ -57,18 +64,85 @@ double ContactExporter::GeomMargin(int g) const {
 }
 
 // Collision detection at the current positions with every geom's margin raised (GeomMargin).
-void ContactExporter::Collide() {
+void ContactExporter::Collide(bool refresh_kinematics) {
   World::Impl& w = *world_->impl_;
   mjModel* m = w.model.get();
-  w.kinematics_stale = true;
+  w.kinematics_stale = w.kinematics_stale || refresh_kinematics;
   w.EnsureKinematics();
   for (int g = 0; g < m->ngeom; ++g) {
     saved_margin_[static_cast<std::size_t>(g)] = m->geom_margin[g];
     margins_[static_cast<std::size_t>(g)] = GeomMargin(g);
   }
   for (int g = 0; g < m->ngeom; ++g) m->geom_margin[g] = margins_[static_cast<std::size_t>(g)];
+  if (!whole_world_) DisableFarGeoms();
   mj_collision(m, w.data.get());
+  if (!whole_world_) RestoreFilters();
   for (int g = 0; g < m->ngeom; ++g) m->geom_margin[g] = saved_margin_[static_cast<std::size_t>(g)];
+}
+
+// True if geoms g and h may touch: the bounding-sphere test of MuJoCo's mj_collideGeoms (centre
+// distance <= both rbounds + the larger margin) with the margins as raised for this export,
+// plus a slack; unbounded geoms (planes, rbound 0) always may.
+bool ContactExporter::Reaches(int g, int h) const {
+  const mjModel& m = *world_->impl_->model;
+  const mjData& d = *world_->impl_->data;
+  if (m.geom_rbound[g] <= 0.0 || m.geom_rbound[h] <= 0.0) return true;
+  const double reach = m.geom_rbound[g] + m.geom_rbound[h] +
+                       std::max(m.geom_margin[g], m.geom_margin[h]) + kNearSlack;
+  return (ToVec3(d.geom_xpos + 3 * g) - ToVec3(d.geom_xpos + 3 * h)).norm() <= reach;
+}
+
+// True if geom g may touch a geom of a near_ body (or belongs to one).
+bool ContactExporter::NearIsland(int g) const {
+  const mjModel& m = *world_->impl_->model;
+  if (near_[static_cast<std::size_t>(m.geom_bodyid[g])]) return true;
+  for (const int body : near_bodies_) {
+    for (int h = m.body_geomadr[body]; h < m.body_geomadr[body] + m.body_geomnum[body]; ++h) {
+      if (Reaches(g, h)) return true;
+    }
+  }
+  return false;
+}
+
+// Adds to near_ every free body that may touch a near_ body, transitively: the island cannot
+// reach beyond them, so one collision pass finds all its contacts.
+void ContactExporter::CloseNear() {
+  const mjModel& m = *world_->impl_->model;
+  for (std::size_t i = 0; i < near_bodies_.size(); ++i) {
+    const int body = near_bodies_[i];
+    for (int other = 1; other < m.nbody; ++other) {
+      if (near_[static_cast<std::size_t>(other)] || !IsFreeBody(other)) continue;
+      bool reaches = false;
+      for (int g = m.body_geomadr[body]; g < m.body_geomadr[body] + m.body_geomnum[body]; ++g) {
+        for (int h = m.body_geomadr[other]; h < m.body_geomadr[other] + m.body_geomnum[other];
+             ++h) {
+          reaches = reaches || Reaches(g, h);
+        }
+      }
+      if (reaches) AddNear(other);
+    }
+  }
+}
+
+// Every geom that cannot touch a near_ body leaves the collision pass (contype and conaffinity
+// 0 for the call): MuJoCo's broadphase skips it, and the pairs it would have made give no
+// contact of the island anyway, so the island's contacts are those of a whole-world pass.
+void ContactExporter::DisableFarGeoms() {
+  mjModel* m = world_->impl_->model.get();
+  CloseNear();
+  for (int g = 0; g < m->ngeom; ++g) {
+    saved_filter_[2 * static_cast<std::size_t>(g)] = m->geom_contype[g];
+    saved_filter_[2 * static_cast<std::size_t>(g) + 1] = m->geom_conaffinity[g];
+    if (!NearIsland(g)) m->geom_contype[g] = m->geom_conaffinity[g] = 0;
+  }
+}
+
+void ContactExporter::RestoreFilters() {
+  mjModel* m = world_->impl_->model.get();
+  for (int g = 0; g < m->ngeom; ++g) {
+    m->geom_contype[g] = saved_filter_[2 * static_cast<std::size_t>(g)];
+    m->geom_conaffinity[g] = saved_filter_[2 * static_cast<std::size_t>(g) + 1];
+  }
 }
 
 bool ContactExporter::AddBody(int body, int motion, ir::LocalContactModel* out) {
@@ -160,18 +234,54 @@ std::uint32_t ContactExporter::Export(std::span<const int> seeds, std::span<cons
   out->bodies.Clear();
   out->contacts.Clear();
   out->gravity = world_->gravity();
-  Collide();
+  SetNear(seeds);
   std::uint32_t status = ir::kStatusOk;
-  for (std::size_t i = 0; i < seeds.size(); ++i) {
-    if (!IsFreeBody(seeds[i])) continue;
-    if (!AddBody(seeds[i], motions[i], out)) status |= ir::kStatusBodiesFull;
+  // Collide around the bodies the seeds may reach (CloseNear); repeated, as a safeguard, until
+  // the island has no body whose neighbourhood was left out (one pass with whole_world_).
+  for (bool first = true;; first = false) {
+    Collide(first);
+    ClearIsland(out);
+    status = ir::kStatusOk;
+    for (std::size_t i = 0; i < seeds.size(); ++i) {
+      if (!IsFreeBody(seeds[i])) continue;
+      if (!AddBody(seeds[i], motions[i], out)) status |= ir::kStatusBodiesFull;
+    }
+    status |= GrowIsland(out);
+    bool covered = true;
+    for (const ir::LocalIslandBody& b : out->bodies) {
+      covered = covered && near_[static_cast<std::size_t>(b.body)] != 0;
+    }
+    if (whole_world_ || covered) break;
+    for (const ir::LocalIslandBody& b : out->bodies) AddNear(b.body);
   }
-  status |= GrowIsland(out);
   status |= AddRows(out);
   for (const ir::LocalIslandBody& b : out->bodies) {
     local_index_[static_cast<std::size_t>(b.body)] = -1;
   }
+  for (const int body : near_bodies_) near_[static_cast<std::size_t>(body)] = 0;
+  near_bodies_.clear();
   return status;
+}
+
+void ContactExporter::SetNear(std::span<const int> seeds) {
+  for (const int body : seeds) {
+    if (IsFreeBody(body)) AddNear(body);
+  }
+}
+
+void ContactExporter::AddNear(int body) {
+  if (near_[static_cast<std::size_t>(body)]) return;
+  near_[static_cast<std::size_t>(body)] = 1;
+  near_bodies_.push_back(body);
+}
+
+// Forgets the island's bodies (local_index_) and empties the model.
+void ContactExporter::ClearIsland(ir::LocalContactModel* out) {
+  for (const ir::LocalIslandBody& b : out->bodies) {
+    local_index_[static_cast<std::size_t>(b.body)] = -1;
+  }
+  out->bodies.Clear();
+  out->contacts.Clear();
 }
 
 }  // namespace mrh::world

@@ -136,7 +136,13 @@ void World::SetMocapPose(int body, const Pose& X_WB) {
 
 bool World::SetBodyState(int body, const Pose& X_WB, const Twist& V_WCm) {
   CheckBody(*impl_->model, body);
-  impl_->EnsureKinematics();
+  // A free joint's coordinates follow from the model alone; slide and hinge joints need their
+  // parent's pose. Skipping the refresh for free bodies saves a whole-world kinematics pass per
+  // body written (the contact local model writes every owned island body each step).
+  const mjModel& m = *impl_->model;
+  if (m.body_jntnum[body] != 1 || m.jnt_type[m.body_jntadr[body]] != mjJNT_FREE) {
+    impl_->EnsureKinematics();
+  }
   if (!internal::SetJointsFromBodyState(*impl_->model, impl_->data.get(), body, X_WB, V_WCm)) {
     return false;
   }

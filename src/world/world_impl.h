@@ -40,7 +40,8 @@ void DescribeModel(const mjModel& m, const std::string& origin, std::vector<Body
 std::size_t SnapshotSize(const mjModel& m);
 
 /// Sets the joint coordinates of `body` to reproduce pose X_WB and COM twist V_WCm, if its
-/// joints can (see World::SetBodyState). Kinematics in `d` must be current. Leaves `d`
+/// joints can (see World::SetBodyState). Kinematics in `d` must be current (a free joint's
+/// coordinates do not read them). Leaves `d`
 /// untouched and returns false otherwise.
 bool SetJointsFromBodyState(const mjModel& m, mjData* d, int body, const Pose& X_WB,
                             const Twist& V_WCm);

@@ -21,15 +21,20 @@ class ContactExporter {
   ///   it are exported, so contacts that close during the next haptic period are in the model.
   ///   A free body's geoms get more when they move fast: the distance their points may travel
   ///   in two physics steps (the rows' horizon).
-  explicit ContactExporter(World* world, double margin = 0.005);
+  /// @param whole_world collide the whole world (the reference for tests); by default only the
+  ///   geoms that may touch the island take part (the same contacts of island bodies, a
+  ///   fraction of the cost in a large world).
+  explicit ContactExporter(World* world, double margin = 0.005, bool whole_world = false);
 
   /// The island of `seeds` (world body ids of the pointer's dynamic neighbors; `motions` their
   /// indices into the snapshot's bodies, same length) at the world's current state: every
   /// free-jointed body reachable through contacts, up to ir::kMaxLocalBodies, and every contact
   /// of an island body. Bodies beyond the capacity, static, mocap and non-free-jointed bodies
   /// are the static environment of the model. Recomputes collisions at the current state (the
-  /// contacts MuJoCo holds after mj_step are those of the step's start); the next World::Step
-  /// recomputes them anyway, so stepping is unaffected. Returns ir::StatusBits for overflow.
+  /// contacts MuJoCo holds after mj_step are those of the step's start) around the island, so
+  /// the world holds only those contacts afterwards (World::num_contacts); the next
+  /// World::Step recomputes them anyway, so stepping is unaffected. Returns ir::StatusBits for
+  /// overflow.
   std::uint32_t Export(std::span<const int> seeds, std::span<const int> motions,
                        ir::LocalContactModel* out);
 
@@ -38,15 +43,27 @@ class ContactExporter {
 
  private:
   double GeomMargin(int g) const;
-  void Collide();
+  void Collide(bool refresh_kinematics);
+  bool Reaches(int geom, int other_geom) const;
+  bool NearIsland(int geom) const;
+  void CloseNear();
+  void DisableFarGeoms();
+  void RestoreFilters();
+  void SetNear(std::span<const int> seeds);
+  void AddNear(int body);
+  void ClearIsland(ir::LocalContactModel* out);
   std::uint32_t GrowIsland(ir::LocalContactModel* out);
   std::uint32_t AddRows(ir::LocalContactModel* out);
   bool AddBody(int body, int motion, ir::LocalContactModel* out);
 
   World* world_;
   double margin_;
+  bool whole_world_;
   std::vector<double> saved_margin_;  // per geom
   std::vector<double> margins_;       // per geom, this export (GeomMargin)
+  std::vector<int> saved_filter_;     // per geom: contype, conaffinity
+  std::vector<char> near_;            // per world body: its neighbourhood takes part in Collide
+  std::vector<int> near_bodies_;      // the bodies with near_ set
   std::vector<int> local_index_;      // per world body: index into out->bodies, or -1
 };
 
