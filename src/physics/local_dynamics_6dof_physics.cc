@@ -6,14 +6,9 @@
 #include <chrono>
 
 #include "mrh/world/world.h"
-#include "report_impulses.h"
 
 namespace mrh::physics::internal {
 namespace {
-
-bool Contains(const std::vector<int>& list, int body) {
-  return std::find(list.begin(), list.end(), body) != list.end();
-}
 
 // The pointer `t` seconds after the report: its pose moved on with its velocity.
 Pose PointerAhead(const ir::HapticReport& report, double t) {
@@ -28,14 +23,12 @@ LocalDynamics6dofPhysics::LocalDynamics6dofPhysics(const MethodContext& context)
     : world_(context.world),
       pointer_body_(context.pointer_body),
       physics_dt_(context.settings->physics_dt),
-      exporter_(context.world) {
+      exporter_(context.world),
+      sync_(context.world, context.settings->physics_dt) {
   builder_.emplace(*world_, pointer_body_, context.settings->rendering);
   const auto capacity = static_cast<std::size_t>(world_->num_bodies());
-  for (std::vector<int>* v :
-       {&seeds_, &motions_, &sent_last_, &sent_before_, &failed_, &owned_, &owned_before_}) {
-    v->reserve(capacity);
-  }
-  owned_states_.reserve(capacity);
+  seeds_.reserve(capacity);
+  motions_.reserve(capacity);
 }
 
 void LocalDynamics6dofPhysics::Build(const Pose& X_WP, ir::PhysicsSnapshot* out) {
@@ -54,37 +47,22 @@ void LocalDynamics6dofPhysics::PhysicsStart(const ir::HapticReport& initial,
   out->step = -1;
 }
 
-// A rigid body's pose `t` seconds on with constant COM twist V (no forces).
-Pose Coast(const Pose& X_WB, const Vec3& p_BCm, const Twist& V, double t) {
-  const Quat q = (QuatFromRotationVector(t * V.w) * X_WB.q).normalized();
-  const Vec3 p_WCm = X_WB * p_BCm + t * V.v;
-  return Pose{p_WCm - q * p_BCm, q};
-}
-
-// After the global step, every body the local simulation owns is set to its local end state
-// coasted over the step: the local simulation, not MuJoCo, moves it (the next synchronization
-// overwrites it anyway). MuJoCo's step from the overwritten state is a transient: a box the
-// local solver rests exactly on the floor is above MuJoCo's soft resting depth, finds no
-// contact at the step's start and drops or rolls (1.6 mm, ±2.9 rad/s per 20 ms step on
-// t3_6_push), and the IR, the exported contacts and the recorded state would all come from it.
-void LocalDynamics6dofPhysics::CoastOwned() {
-  for (const ir::LocalBodyState& state : owned_states_) {
-    const Pose X_WB = Coast(state.X_WB, world_->body(state.body).p_BCm, state.V_WCm, physics_dt_);
-    (void)world_->SetBodyState(state.body, X_WB, state.V_WCm);
-  }
-}
-
 // (0) overwrite + reaction, (1) global step without the user's force, (2) IR, (3) export.
 void LocalDynamics6dofPhysics::PhysicsStep(const ir::HapticReport& report,
                                            ir::PhysicsSnapshot* out) {
   auto t0 = std::chrono::steady_clock::now();
-  Overwrite(report);
+  sync_.Overwrite(report);
   phases_.sync_ms = MsSince(t0);
   t0 = std::chrono::steady_clock::now();
   world_->SetMocapPose(pointer_body_, report.X_WP);
   builder_->CapturePreviousPoses(*world_);
   world_->Step();
-  CoastOwned();
+  // Every owned body ends the step at its local end state coasted over the step: the local
+  // simulation, not MuJoCo, moves it (IslandSync::HoldOwned). From MuJoCo's own end state a box
+  // the local solver rests exactly on the floor, above MuJoCo's soft resting depth, dropped or
+  // rolled (1.6 mm, ±2.9 rad/s per 20 ms step on t3_6_push), and the IR, the exported contacts
+  // and the recorded state would all come from that transient.
+  sync_.HoldOwned(physics_dt_);
   phases_.world_step_ms = MsSince(t0);
   t0 = std::chrono::steady_clock::now();
   // This snapshot is rendered in the period after the next one (SPEC §4.9: step k reads period
@@ -97,34 +75,7 @@ void LocalDynamics6dofPhysics::PhysicsStep(const ir::HapticReport& report,
   t0 = std::chrono::steady_clock::now();
   Export(out);
   phases_.model_ms = MsSince(t0);
-  ++counters_.steps;
-}
-
-// eq. 4.16–4.17 for the island bodies of the snapshot the report's period rendered, owned by
-// the local simulation from the first pushed period on (LocalContactPhysics::Overwrite explains
-// why an untouched island is left to MuJoCo); then the period's reaction as J/Δt^G.
-void LocalDynamics6dofPhysics::Overwrite(const ir::HapticReport& report) {
-  failed_.clear();
-  const bool touched = !report.impulses.empty();
-  owned_before_.swap(owned_);
-  owned_.clear();
-  owned_states_.clear();
-  for (const ir::LocalBodyState& state : report.local_states) {
-    if (!Contains(sent_before_, state.body)) continue;
-    if (!touched && !Contains(owned_before_, state.body)) {
-      failed_.push_back(state.body);
-      continue;
-    }
-    owned_.push_back(state.body);
-    if (world_->SetBodyState(state.body, state.X_WB, state.V_WCm)) {
-      ++counters_.overwrites;
-      owned_states_.push_back(state);
-    } else {
-      ++counters_.overwrite_failures;
-      failed_.push_back(state.body);
-    }
-  }
-  ApplyReportImpulses(*world_, report, physics_dt_);
+  sync_.CountStep();
 }
 
 // Seeds: every dynamic body with a geometric pair (the pointer may touch it this period).
@@ -134,19 +85,11 @@ void LocalDynamics6dofPhysics::Export(ir::PhysicsSnapshot* out) {
   for (const ir::GeometricPair& pair : out->pairs) {
     if (pair.motion < 0 || static_cast<std::size_t>(pair.motion) >= out->bodies.size()) continue;
     const ir::BodyMotion& m = out->bodies[static_cast<std::size_t>(pair.motion)];
-    if (m.is_static || Contains(seeds_, m.body) || !exporter_.IsFreeBody(m.body)) continue;
+    if (m.is_static || std::find(seeds_.begin(), seeds_.end(), m.body) != seeds_.end() || !exporter_.IsFreeBody(m.body)) continue;
     seeds_.push_back(m.body);
     motions_.push_back(pair.motion);
   }
-  out->status |= exporter_.Export(seeds_, motions_, &out->local_model);
-  sent_before_.swap(sent_last_);
-  sent_last_.clear();
-  for (ir::LocalIslandBody& b : out->local_model.bodies) {
-    b.reset = Contains(failed_, b.body);
-    sent_last_.push_back(b.body);
-  }
-  counters_.last_island_bodies = static_cast<int>(out->local_model.bodies.size());
-  counters_.last_island_contacts = static_cast<int>(out->local_model.contacts.size());
+  out->status |= sync_.Export(exporter_, seeds_, motions_, out);
 }
 
 }  // namespace mrh::physics::internal

@@ -8,18 +8,12 @@
 
 #include "geometric_ir_builder.h"
 #include "mrh/physics/method_physics.h"
+#include "island_sync.h"
 #include "mrh/world/contact_export.h"
 
 namespace mrh::physics::internal {
 
-/// Counters of local-dynamics-6dof's physics half (physics thread; read them after the run).
-struct LocalDynamics6dofCounters {
-  std::int64_t steps = 0;       ///< physics steps
-  std::int64_t overwrites = 0;  ///< local states written into the world (eq. 4.16–4.17)
-  std::int64_t overwrite_failures = 0;
-  int last_island_bodies = 0;    ///< bodies in the latest exported model
-  int last_island_contacts = 0;  ///< contact rows in the latest exported model
-};
+using LocalDynamics6dofCounters = IslandCounters;
 
 /// Method `local-dynamics-6dof`, physics half. PhysicsStep: (0) every island body of the period
 /// just rendered is overwritten with its local end state (eq. 4.16–4.17; a never-pushed island
@@ -42,25 +36,19 @@ class LocalDynamics6dofPhysics final : public MethodPhysics {
   /// sync_ms: (0); world_step_ms: (1); ir_ms: (2); model_ms: (3).
   PhaseTimes last_phases() const noexcept override { return phases_; }
 
-  const LocalDynamics6dofCounters& counters() const { return counters_; }
+  const LocalDynamics6dofCounters& counters() const { return sync_.counters(); }
 
  private:
-  void Overwrite(const ir::HapticReport& report);
   void Build(const Pose& X_WP, ir::PhysicsSnapshot* out);
   void Export(ir::PhysicsSnapshot* out);
-  void CoastOwned();
 
   world::World* world_;
   int pointer_body_;
   double physics_dt_;
   std::optional<GeometricIrBuilder> builder_;
   world::ContactExporter exporter_;
+  IslandSync sync_;
   std::vector<int> seeds_, motions_;
-  std::vector<int> sent_last_, sent_before_;      // island bodies of the latest two snapshots
-  std::vector<int> failed_;                       // bodies the world did not take in this step
-  std::vector<int> owned_, owned_before_;         // bodies owned by the local simulation
-  std::vector<ir::LocalBodyState> owned_states_;  // their local states taken in this step
-  LocalDynamics6dofCounters counters_;
   PhaseTimes phases_;
 };
 
