@@ -317,8 +317,8 @@ void LocalContactSolver::ApplyImpulse(Row& r, const Vec3& P) noexcept {
   }
 }
 
-// One Gauss–Seidel update of a contact: normal (λ_n >= 0), then both tangents projected on the
-// friction set of the scene's cone (pyramid or disc). Returns the largest change of a relative velocity (m/s).
+// One Gauss–Seidel update of a contact: normal (λ_n >= 0), then the friction of the scene's
+// cone (pyramid or disc). Returns the largest change of a relative velocity (m/s).
 double LocalContactSolver::SolveRow(Row& r, bool reverse) noexcept {
   const double vn = RelativeVelocity(r, r.d[0]);
   const double ln =

@@ -286,7 +286,7 @@ int LocalIndexOf(const render::LocalContactSolver& solver, int body) {
 TEST(LocalDynamicsTest, ContactModelWorldHoldsTheOwnedBodyAtTheLocalEndStateOfTheLastPeriod) {
   // The contact model, zero gravity, nothing else to touch: step k overwrites the owned box with
   // period k−1's local end state (eq. 4.16–4.17) and the box ends the global step there
-  // (LocalContactPhysics::HoldOwnedBodies): MuJoCo's own end state of it is not used.
+  // (IslandSync::HoldOwned): MuJoCo's own end state of it is not used.
   constexpr double kTol = 1e-12;
   const double duration = 1.0;
   EngineSettings settings = LocalSettings(duration, "contact");
@@ -318,7 +318,7 @@ TEST(LocalDynamicsTest, ContactModelWorldHoldsTheOwnedBodyAtTheLocalEndStateOfTh
 // Was disabled (issue 13): at physics_dt 0.05 the pushed cube was launched over the pointer and
 // left the island. Cause: the rows were exported at MuJoCo's end state of the global step, whose
 // soft contacts (time constant 0.1 s at this step) sank and pitched the overwritten cube; the
-// owned cube now ends the step at its local state (LocalContactPhysics::HoldOwnedBodies).
+// owned cube now ends the step at its local state (IslandSync::HoldOwned).
 TEST(LocalDynamicsTest, ContactModelSynchronizationMovesNothingOnTheHapticSide) {
   // The contact model on a floor with friction: the local simulation owns the pushed cube, so
   // at every tick, synchronizations included, the pose advances by exactly one tick of the new
