@@ -145,13 +145,12 @@ TEST(LocalDynamics6dofTest, CentredFacePushSpinsNothingAgainstAnOffCentrePush) {
 }
 
 // Per tick: the renderer's pair reactions on the objects (sum over non-static pairs; moments
-// about the pointer origin), and what local-dynamics-6dof applies to the objects: each pair's
-// force at its centre of pressure (its normal rows' points v = x_p + r weighted by f_k), i.e.
-// the moment (cop − p_Cm) × f about each COM, summed.
+// about the pointer origin), and the same reactions' moments about each object's COM, summed,
+// which is what local-dynamics-6dof applies to the objects.
 struct TickReaction {
   Vec3 f = Vec3::Zero();       // on the objects (N)
   Vec3 tau_P = Vec3::Zero();   // renderer's, about the pointer origin (N·m)
-  Vec3 tau_Cm = Vec3::Zero();  // applied: the forces' moments about each one's COM (N·m)
+  Vec3 tau_Cm = Vec3::Zero();  // applied: the moments about each one's COM (N·m)
 };
 
 TickReaction ReactionOf(const render::ProxyOutput& out, const render::TickIr& ir) {
@@ -162,18 +161,7 @@ TickReaction ReactionOf(const render::ProxyOutput& out, const render::TickIr& ir
     if (pair.is_static) continue;
     r.f += pair.w_W.f;
     r.tau_P += pair.w_W.tau + (ir.pairs[i].p_WCm - p_WP).cross(pair.w_W.f);
-    Vec3 cop = Vec3::Zero();
-    double weight = 0.0;
-    for (std::size_t k = 0; k < out.rows.size(); ++k) {
-      if (out.row_info[k].pair != static_cast<int>(i) ||
-          out.row_info[k].kind != render::ProxyRowKind::kNormal) {
-        continue;
-      }
-      cop += out.f[k] * (p_WP + out.rows[k].r);
-      weight += out.f[k];
-    }
-    r.tau_Cm +=
-        weight > 0.0 ? (cop / weight - ir.pairs[i].p_WCm).cross(pair.w_W.f) : Vec3(pair.w_W.tau);
+    r.tau_Cm += pair.w_W.tau;
   }
   return r;
 }
@@ -207,9 +195,8 @@ std::vector<BodyImpulseTotal> RunTicks(world::World world, double y, double z, d
 
 // Action = reaction, with gravity and friction, off-centre so the wrenches have moments: every
 // tick, the wrench on the pointer plus the renderer's reactions on the objects is zero in force
-// and in moment about the pointer origin (1e-9); the objects receive that force at each pair's
-// centre of pressure, and what the physics steps received over the run (the reports' impulses)
-// is that, integrated (1e-9).
+// and in moment about the pointer origin (1e-9); the objects receive those reactions, and what
+// the physics steps received over the run (the reports' impulses) is that, integrated (1e-9).
 TEST(LocalDynamics6dofTest, ProxyActionEqualsReactionAndThePhysicsReceivesIt) {
   Vec3 linear = Vec3::Zero(), angular = Vec3::Zero();
   double worst_f = 0.0, worst_tau = 0.0, peak = 0.0;
