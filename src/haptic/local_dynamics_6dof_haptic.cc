@@ -52,40 +52,25 @@ void LocalDynamics6dofHaptic::RePoseOnLocalBodies() noexcept {
   }
 }
 
-// Step 4: each island pair's force goes to its local body at the pair's centre of pressure (its
-// normal rows' contact points weighted by their multipliers f_k), where the contact pushes. The
-// renderer's own reaction carries the pair's share of the proxy's torque about the pointer
-// origin, moved to the COM: at a pointer origin far from the contact it acts on the light body as
-// if through a lever fixed to it, and the explicit loop through the body's pose flutters
-// (bench/local_dynamics_6dof_bench.cc diverged). A pair without a loaded normal row keeps the
-// renderer's wrench as a couple. The period's impulses record what was applied.
-void LocalDynamics6dofHaptic::PushLocalBodies(const Vec3& p_WP) noexcept {
-  reactions_ = output_.reactions;
-  for (std::size_t i = 0; i < reactions_.size() && i < tick_ir_.pairs.size(); ++i) {
-    render::ProxyPairReaction& r = reactions_[i];
+// Step 4: each island pair's reaction, the renderer's wrench (the pair's force and its share of
+// the proxy's torque, eq. 3.7–3.8, moved to the COM), goes to its local body in the same tick, so
+// action = reaction holds in force and in moment with what the user feels, as in proxy-6dof.
+// The force alone at the pair's centre of pressure (f_k-weighted points) is not the contact's
+// moment: the f_k are offsets in the R_w metric, so its moment about the pointer origin is
+// k_t R_w Δθ where the proxy's is k_r Δθ (30× less for t3.6's box pointer); the box then lost
+// the face's straightening couple and yawed away from an off-centre push (issue 14, h14r).
+// The period's impulses record what was applied.
+void LocalDynamics6dofHaptic::PushLocalBodies() noexcept {
+  for (std::size_t i = 0; i < output_.reactions.size() && i < tick_ir_.pairs.size(); ++i) {
+    const render::ProxyPairReaction& r = output_.reactions[i];
     const render::TickPair& pair = tick_ir_.pairs[i];
     if (r.is_static || pair.motion < 0) continue;
     const int local = local_of_motion_[static_cast<std::size_t>(pair.motion)];
     if (local < 0) continue;
     const auto l = static_cast<std::size_t>(local);
-    const Vec3 c = solver_.p_WCm(l);
-    Vec3 cop = Vec3::Zero();
-    double weight = 0.0;
-    for (std::size_t k = 0; k < output_.rows.size(); ++k) {
-      const render::ProxyRowInfo& info = output_.row_info[k];
-      if (info.pair != static_cast<int>(i) || info.kind != render::ProxyRowKind::kNormal) continue;
-      cop += output_.f[k] * (p_WP + output_.rows[k].r);
-      weight += output_.f[k];
-    }
-    if (weight > 0.0) {
-      cop /= weight;
-      r.w_W.tau = (cop - c).cross(r.w_W.f);
-      solver_.AddForce(l, r.w_W.f, cop);
-      continue;
-    }
-    AddWrench(l, r.w_W, c);
+    AddWrench(l, r.w_W, solver_.p_WCm(l));
   }
-  render::AddReactionImpulses(reactions_, tick_dt_, &period_);
+  render::AddReactionImpulses(output_.reactions, tick_dt_, &period_);
 }
 
 // The wrench (force; moment about the COM c) as the force at c plus the couple ±g at c ± a,
@@ -108,7 +93,7 @@ void LocalDynamics6dofHaptic::HapticTick(const TickInput& in, TickOutput* out) n
   out->contacts = output_.diagnostics.contacts;
   out->status = output_.diagnostics.status;
   tick_dt_ = in.dt;
-  PushLocalBodies(in.X_WP.p);
+  PushLocalBodies();
   if (!solver_.Step(in.dt)) out->status |= kLocal6dofBodyFault;
 }
 

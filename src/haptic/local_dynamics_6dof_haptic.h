@@ -26,13 +26,12 @@ inline constexpr std::uint32_t kLocal6dofBodyFault = 1u << 3;
 ///     the body frame of the snapshot's end pose) follows the locally simulated body, and the
 ///     points' depths are recomputed; static pairs and non-island bodies keep the interpolated IR;
 ///  3. render::ProxyRenderer solves the proxy (eq. 3.4–3.10) and renders eq. 3.7–3.8;
-///  4. each island pair's force (N, world) is applied to the local body in the same tick at the
-///     pair's centre of pressure (LocalContactSolver::AddForce), and the island is stepped
-///     (gravity, its own contacts with friction). Every non-static pair's reaction as applied
-///     (island pairs: that force and its moment about the COM; other bodies: the renderer's
-///     wrench) is summed into the period's impulses for the global step. So action = reaction
-///     holds in force; in moment, the objects receive the contact force's moment, not the
-///     proxy's rotational-spring torque the user feels (that torque is virtual, eq. 3.8).
+///  4. each island pair's reaction, the renderer's wrench (render::ProxyPairReaction: force in N
+///     and moment about the COM in N·m, world), is applied to the local body in the same tick
+///     (LocalContactSolver::AddForce: the force at the COM plus a couple), and the island is
+///     stepped (gravity, its own contacts with friction). Every non-static pair's reaction is
+///     summed into the period's impulses for the global step. So action = reaction holds in force
+///     and in moment with the wrench the user feels, as in proxy-6dof.
 /// EndPeriod reports the impulses and every island body's local end state (eq. 4.16–4.17), which
 /// the physics half (physics::internal::LocalDynamics6dofPhysics) writes into the world.
 /// One instance per pointer; haptic thread only.
@@ -58,7 +57,7 @@ class LocalDynamics6dofHaptic final : public MethodHaptic {
 
  private:
   void RePoseOnLocalBodies() noexcept;
-  void PushLocalBodies(const Vec3& p_WP) noexcept;
+  void PushLocalBodies() noexcept;
   void AddWrench(std::size_t l, const Wrench& w, const Vec3& c) noexcept;
 
   render::IrInterpolator interpolator_;
@@ -66,8 +65,6 @@ class LocalDynamics6dofHaptic final : public MethodHaptic {
   render::LocalContactSolver solver_;
   render::TickIr tick_ir_;
   render::ProxyOutput output_;
-  // This tick's reactions as applied (island pairs: the force at the centre of pressure).
-  FixedVector<render::ProxyPairReaction, ir::kMaxGeometricPairs> reactions_;
   double tick_dt_ = 0.0;
   // Per snapshot motion: the island body index, or -1.
   std::array<int, ir::kMaxNeighborBodies> local_of_motion_{};
