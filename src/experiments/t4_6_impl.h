@@ -17,8 +17,13 @@ namespace mrh::experiments::internal::t4_6 {
 /// The estimates compared, in table order. "thesis-3dof" is the thesis' chapter-4 estimate (zero
 /// run + 3 test forces, perturbation.h), which gives the 3×3 point accelerance only.
 enum Estimate { kFull18, kTwoRun, kAnalytic, kThesis3dof, kNumEstimates };
+
 inline constexpr std::array<const char*, kNumEstimates> kEstimateNames = {
     "full-1+18", "two-run", "analytic", "thesis-3dof-1+3"};
+
+/// The analytic estimate whose forward pass is the next global step's own (mj_step = mj_forward
+/// + integration): its cost without the forward pass.
+inline constexpr const char* kSharedForward = "analytic-shared-forward";
 
 /// The user's push on the body at the operating point: force f (N, world) at point p (m, world).
 struct Push {
@@ -51,7 +56,7 @@ Result RunReference(world::World* world, int body, const Push& push);
 /// Cost of one estimate per physics step with `cubes` cubes (medians over the repetitions).
 struct CostRow {
   int cubes = 0;
-  std::string estimate;  ///< kEstimateNames or "global-only"
+  std::string estimate;         ///< kEstimateNames, kSharedForward or "global-only"
   int steps = 0, forwards = 0;  ///< MuJoCo calls per physics step besides the global step
   double estimate_ms = 0.0;     ///< median wall time of the estimate
   double global_ms = 0.0;       ///< median wall time of the global step

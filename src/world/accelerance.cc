@@ -15,6 +15,7 @@
 #include "mrh/core/assert.h"
 #include "mrh/world/perturbation.h"
 #include "world/island_solve_impl.h"
+#include "world/perturbation_kinematics.h"
 #include "world/world_impl.h"
 
 namespace mrh::world {
@@ -54,7 +55,9 @@ Mat3 Skew(const Vec3& r) {
 class StepRuns {
  public:
   StepRuns(World* world, int body) : world_(world), body_(body), snapshot_(world->MakeSnapshot()) {}
+
   ~StepRuns() { world_->Restore(snapshot_); }
+
   StepRuns(const StepRuns&) = delete;
   StepRuns& operator=(const StepRuns&) = delete;
 
@@ -62,7 +65,13 @@ class StepRuns {
     if (wrench.squaredNorm() > 0.0) world_->AddWrenchAtCom(body_, ToWrench(wrench));
     world_->Step();
     ++steps_;
-    const Vec6 u = ToVec6(world_->body_state(body_).V_WCm);
+    // A free or slide body's COM twist straight from qpos and qvel: no whole-world kinematics.
+    const auto& w = AcceleranceAccess::Of(world_);
+    const bool direct =
+        internal::IsFreeBody(*w.model, body_) || internal::IsSlideBody(*w.model, body_);
+    const Vec6 u =
+        ToVec6(direct ? internal::TwistAfterEuler(*w.model, *w.data, body_, 0.0, w.data->qacc)
+                      : world_->body_state(body_).V_WCm);
     world_->Restore(snapshot_);
     return u;
   }
@@ -88,11 +97,13 @@ class ConvergedSolver {
     m_->opt.tolerance = settings.tolerance;
     m_->opt.iterations = settings.iterations;
   }
+
   ~ConvergedSolver() {
     m_->opt.solver = solver_;
     m_->opt.tolerance = tolerance_;
     m_->opt.iterations = iterations_;
   }
+
   ConvergedSolver(const ConvergedSolver&) = delete;
   ConvergedSolver& operator=(const ConvergedSolver&) = delete;
 
@@ -218,11 +229,13 @@ AcceleranceEstimate EstimateAnalytic(World* world, int body, const Wrench& appli
   mjData* d = w.data.get();
   const Snapshot saved = world->MakeSnapshot();
   world->AddWrenchAtCom(body, applied);
+  AcceleranceEstimate out;
   {
+    const std::int64_t f0 = NowNs();
     const internal::MujocoScope scope(w.origin);
     mj_forward(&m, d);
+    out.cost.forward_ns = NowNs() - f0;
   }
-  AcceleranceEstimate out;
   out.cost.forwards = 1;
   internal::IslandSolve island;
   if (island.Prepare(m, d, body, max_island_dofs, d->qacc_smooth, d->qacc)) {

@@ -20,9 +20,12 @@ using Mat66 = Eigen::Matrix<double, 6, 6>;
 
 /// What one estimate cost on the physics thread.
 struct EstimateCost {
-  int steps = 0;              ///< whole MuJoCo steps (mj_step), each followed by a restore
-  int forwards = 0;           ///< forward passes without integration (mj_forward)
-  std::int64_t wall_ns = 0;   ///< wall time of the whole estimate (ns)
+  int steps = 0;             ///< whole MuJoCo steps (mj_step), each followed by a restore
+  int forwards = 0;          ///< forward passes without integration (mj_forward)
+  std::int64_t wall_ns = 0;  ///< wall time of the whole estimate (ns)
+  /// Of wall_ns, the forward passes' (ns): EstimateAnalytic's forward pass is the one the next
+  /// global step does anyway, so a pipeline that shares it pays wall_ns − forward_ns.
+  std::int64_t forward_ns = 0;
 };
 
 /// An estimate of a body's 6×6 accelerance at the world's current state.
