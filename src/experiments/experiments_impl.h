@@ -183,7 +183,7 @@ int RunLatency(const std::filesystem::path& out, bool quiet, const LatencyOption
 /// A t4.push case (issue 13): scene scenes/t4_push_<scene or name>.xml, pointer height z (m),
 /// the time the pointer stops pushing (s), the run length (s), the pointer's lateral offset y
 /// (m) and whether local-dynamics is held to the issue's bars on it (`checked`; false for the
-/// free row, whose single-rate reference is chaotic, and its probes).
+/// pyramidal-cone box, on which single-rate's straight push is unstable).
 struct PushCase {
   std::string name;
   double z = 0.05;

@@ -11,6 +11,11 @@ void VirtualCouplingHaptic::Adopt(const ir::PhysicsSnapshot& snapshot) noexcept 
 }
 
 void VirtualCouplingHaptic::HapticTick(const TickInput& in, TickOutput* out) noexcept {
+  if (tool_state_.body < 0) {  // no snapshot adopted yet: no tool to couple to
+    out->w_W = Wrench{};
+    out->contacts = 0;
+    return;
+  }
   const Pose& X_Wt = tool_state_.X_WB;
   // Velocity of the tool's origin from its COM twist.
   const Vec3 r_CmO = X_Wt.p - X_Wt * tool_state_.p_BCm;

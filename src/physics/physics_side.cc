@@ -29,6 +29,8 @@ void PhysicsSide::Start(const ir::HapticReport& initial) {
 
 void PhysicsSide::AddToTotals(const ir::HapticReport& report) {
   for (const ir::BodyImpulse& impulse : report.impulses) {
+    // A haptic half reports world body ids; one out of range is its bug, not a body to name.
+    if (impulse.body < 0 || impulse.body >= world_->num_bodies()) continue;
     BodyImpulseTotal& total = impulses_[impulse.body];
     total.body = impulse.body;
     total.linear += impulse.linear;

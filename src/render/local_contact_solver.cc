@@ -22,6 +22,39 @@ void Tangents(const Vec3& n, Vec3* t1, Vec3* t2) {
   *t2 = n.cross(*t1);
 }
 
+// The friction directions of a row with normal n. Disc: any two tangents. Pyramid: MuJoCo's
+// set |f_t1| + |f_t2| <= mu f_n about its contact frame (t1 = the exported tangent t rotated
+// like n and made orthogonal to n) is the square |f_e1|, |f_e2| <= mu f_n / sqrt 2 about the
+// diagonals e1,2 = (t1 ± t2) / sqrt 2: two independently clamped rows, which Gauss–Seidel solves
+// exactly (a Euclidean projection on the pyramid's edges, coupling both, lost a quarter of a
+// pushed box's friction and let it turn away).
+void FrictionDirections(const Vec3& n, const Vec3& t, bool pyramidal, Vec3* d1, Vec3* d2) {
+  const Vec3 u = t - t.dot(n) * n;
+  Vec3 t1, t2;
+  if (u.squaredNorm() > 1e-12) {
+    t1 = u.normalized();
+    t2 = n.cross(t1);
+  } else {
+    Tangents(n, &t1, &t2);
+  }
+  if (!pyramidal) {
+    *d1 = t1;
+    *d2 = t2;
+    return;
+  }
+  *d1 = std::sqrt(0.5) * (t1 + t2);
+  *d2 = std::sqrt(0.5) * (t1 - t2);
+}
+
+// (l1, l2) scaled onto the disc |(l1, l2)| <= limit: the elliptic cone.
+void ProjectOnDisc(double limit, double* l1, double* l2) {
+  const double mag = std::hypot(*l1, *l2);
+  if (mag <= limit) return;
+  const double s = mag > 0.0 ? limit / mag : 0.0;
+  *l1 *= s;
+  *l2 *= s;
+}
+
 // The relative velocity change (m/s) an impulse change dl (N·s) makes on a row of inverse
 // effective mass 1 / inv_w.
 double VelocityChange(double dl, double inv_w) {
@@ -175,15 +208,17 @@ void LocalContactSolver::PrepareRows(double dt) noexcept {
     const Vec3 pA = A.p + A.q * (r.c.p_A - A.p_BCm);
     Vec3 pB = r.c.p_B;
     Vec3 n = r.c.n_B;
+    Vec3 t = r.c.t_B;
     if (r.c.b >= 0) {
       const Body& B = bodies_[static_cast<std::size_t>(r.c.b)];
       pB = B.p + B.q * (r.c.p_B - B.p_BCm);
       n = B.q * r.c.n_B;
+      t = B.q * r.c.t_B;
       r.rB = pB - B.p;
     }
     r.rA = pA - A.p;
     r.d[0] = n;
-    Tangents(n, &r.d[1], &r.d[2]);
+    FrictionDirections(n, t, r.c.pyramidal, &r.d[1], &r.d[2]);
     for (int j = 0; j < 3; ++j) {
       const Vec3 ca = r.rA.cross(r.d[j]);
       double w = A.inv_mass + ca.dot(A.I_W_inv * ca);
@@ -283,30 +318,43 @@ void LocalContactSolver::ApplyImpulse(Row& r, const Vec3& P) noexcept {
 }
 
 // One Gauss–Seidel update of a contact: normal (λ_n >= 0), then both tangents projected on the
-// friction disc. Returns the largest change of a relative velocity (m/s).
-double LocalContactSolver::SolveRow(Row& r) noexcept {
+// friction set of the scene's cone (pyramid or disc). Returns the largest change of a relative velocity (m/s).
+double LocalContactSolver::SolveRow(Row& r, bool reverse) noexcept {
   const double vn = RelativeVelocity(r, r.d[0]);
   const double ln =
       std::max(0.0, r.lambda[0] + (r.target[0] - vn - r.R * r.lambda[0]) * r.inv_w[0]);
   double change = VelocityChange(ln - r.lambda[0], r.inv_w[0]);
   ApplyImpulse(r, (ln - r.lambda[0]) * r.d[0]);
   r.lambda[0] = ln;
+  if (r.c.pyramidal) {
+    return std::max(change, SolveFrictionBox(r, r.c.mu * ln * std::sqrt(0.5), reverse));
+  }
   double l1 = r.lambda[1] +
               (r.target[1] - RelativeVelocity(r, r.d[1]) - r.R * r.lambda[1]) * r.inv_w[1];
   double l2 = r.lambda[2] +
               (r.target[2] - RelativeVelocity(r, r.d[2]) - r.R * r.lambda[2]) * r.inv_w[2];
-  const double limit = r.c.mu * ln;
-  const double mag = std::hypot(l1, l2);
-  if (mag > limit) {
-    const double s = mag > 0.0 ? limit / mag : 0.0;
-    l1 *= s;
-    l2 *= s;
-  }
+  ProjectOnDisc(r.c.mu * ln, &l1, &l2);
   change = std::max({change, VelocityChange(l1 - r.lambda[1], r.inv_w[1]),
                      VelocityChange(l2 - r.lambda[2], r.inv_w[2])});
   ApplyImpulse(r, (l1 - r.lambda[1]) * r.d[1] + (l2 - r.lambda[2]) * r.d[2]);
   r.lambda[1] = l1;
   r.lambda[2] = l2;
+  return change;
+}
+
+// The pyramid's two friction rows one after the other, each clamped to [-limit, limit], in the
+// order of the sweep (a fixed order biased a box pushed straight to one side).
+double LocalContactSolver::SolveFrictionBox(Row& r, double limit, bool reverse) noexcept {
+  double change = 0.0;
+  for (int i = 1; i <= 2; ++i) {
+    const int j = reverse ? 3 - i : i;
+    const double l = std::clamp(
+        r.lambda[j] + (r.target[j] - RelativeVelocity(r, r.d[j]) - r.R * r.lambda[j]) * r.inv_w[j],
+        -limit, limit);
+    change = std::max(change, VelocityChange(l - r.lambda[j], r.inv_w[j]));
+    ApplyImpulse(r, (l - r.lambda[j]) * r.d[j]);
+    r.lambda[j] = l;
+  }
   return change;
 }
 
@@ -344,7 +392,7 @@ bool LocalContactSolver::Step(double dt) noexcept {
     double change = 0.0;
     for (std::size_t i = 0; i < rows_count_; ++i) {
       const std::size_t k = (it % 2 == 0) ? i : rows_count_ - 1 - i;
-      change = std::max(change, SolveRow(rows_[k]));
+      change = std::max(change, SolveRow(rows_[k], it % 2 != 0));
     }
     if (change <= settings_.tolerance) break;
   }

@@ -209,18 +209,22 @@ std::uint32_t ContactExporter::AddRows(ir::LocalContactModel* out) {
     const Vec3 pA = a_is_2 ? p2 : p1;
     const Vec3 pB = a_is_2 ? p1 : p2;
     const Vec3 n = a_is_2 ? n12 : Vec3(-n12);
+    const Vec3 t = ToVec3(con.frame + 3);  // the sign of a tangent does not change the set
     const Pose& X_WA = out->bodies[static_cast<std::size_t>(row.a)].X_WB;
     row.p_A = X_WA.Inverse() * pA;
     if (row.b >= 0) {
       const Pose& X_WB = out->bodies[static_cast<std::size_t>(row.b)].X_WB;
       row.p_B = X_WB.Inverse() * pB;
       row.n_B = X_WB.q.conjugate() * n;
+      row.t_B = X_WB.q.conjugate() * t;
     } else {
       row.p_B = pB;
       row.n_B = n;
+      row.t_B = t;
     }
     row.dist0 = con.dist;
     row.mu = con.dim >= 3 ? con.friction[0] : 0.0;
+    row.pyramidal = m.opt.cone == mjCONE_PYRAMIDAL;
     for (int i = 0; i < 2; ++i) row.solref[i] = con.solref[i];
     for (int i = 0; i < 5; ++i) row.solimp[i] = con.solimp[i];
     if (!out->contacts.PushBack(row)) return ir::kStatusContactsFull;

@@ -46,6 +46,13 @@ struct LocalContactRow {
   /// resting depth) rather than pushing it out.
   double dist0 = 0.0;
   double mu = 0.0;             ///< Coulomb friction coefficient (0: frictionless, condim 1)
+  /// The first tangent of MuJoCo's contact frame, in the frame of n_B (zero: none given, any
+  /// tangent frame will do). The friction set depends on it when `pyramidal`.
+  Vec3 t_B = Vec3::Zero();
+  /// The friction set of the scene's cone (mjModel opt.cone): true, MuJoCo's pyramidal cone
+  /// |f_t1| + |f_t2| <= mu f_n in the contact frame (n_B, t_B, n_B × t_B), MuJoCo's default;
+  /// false, the elliptic cone, a disc |f_t| <= mu f_n.
+  bool pyramidal = false;
   /// MuJoCo's soft-constraint parameters of the contact (mjContact solref, solimp; MuJoCo's
   /// defaults here): the local solve reproduces the reference's soft contacts with them.
   double solref[2] = {0.02, 1.0};

@@ -31,7 +31,9 @@ struct LocalContactSolverSettings {
 /// Euler with gravity, the forces added by AddForce() (the pointer's reaction, eq. 4.12) and the
 /// contact impulses of a projected Gauss–Seidel solve of the island's contact rows (velocity
 /// level: non-penetration with a speculative term for open contacts, λ_n >= 0, friction in the
-/// disc |λ_t| <= μ λ_n, warm-started from the previous tick). Contacts open and close with the
+/// scene's cone — MuJoCo's pyramid |λ_t1| + |λ_t2| <= μ λ_n about the contact frame, or the
+/// elliptic disc |λ_t| <= μ λ_n (ir::LocalContactRow::pyramidal) — warm-started from the
+/// previous tick). Contacts open and close with the
 /// gap of body-fixed points; stick and slip follow from the cone. State: COM position, unit
 /// quaternion (body → world), COM twist, world frame. Fixed capacity, no allocation; every
 /// member is RT-safe (haptic thread only).
@@ -130,7 +132,8 @@ class LocalContactSolver {
   double RelativeStartVelocity(const Row& r, const Vec3& dir) const noexcept;
   void ApplyImpulse(Row& r, const Vec3& P) noexcept;
   double RelativeVelocity(const Row& r, const Vec3& dir) const noexcept;
-  double SolveRow(Row& r) noexcept;
+  double SolveRow(Row& r, bool reverse) noexcept;
+  double SolveFrictionBox(Row& r, double limit, bool reverse) noexcept;
   bool Finish(double dt) noexcept;
 
   LocalContactSolverSettings settings_;
