@@ -23,9 +23,9 @@ using t4_6::kEstimateNames;
 using t4_6::kNumEstimates;
 
 // The accuracy cases: scenes/t4_push_box.xml and t4_push_row.xml (0.5 kg 10 cm boxes, μ 0.5,
-// gravity, 20 ms), settled for 1 s, and the box pushed with |f| along unit(1, 0.3, −0.4) at a
-// point 1 cm off its −x face centre in y and z. The free case lifts the box into zero gravity,
-// reshapes it (half sizes kFreeHalf) and turns it (kFreeQuat) so that M⁻¹ is not diagonal.
+// gravity, 20 ms; pyramidal cone), settled for 1 s, and the box pushed with |f| along unit(1, 0.3,
+// −0.4) at a point 1 cm off its −x face centre in y and z. The free case lifts the box into zero
+// gravity, reshapes it (half sizes kFreeHalf) and turns it (kFreeQuat) so that M⁻¹ is not diagonal.
 struct Case {
   const char* name;
   const char* scene;
@@ -56,6 +56,11 @@ constexpr double kReferenceTolerance = 1e-6;
 std::string CaseScene(const std::filesystem::path& out, const Case& c) {
   const std::filesystem::path source = ScenesDir() / c.scene;
   std::string xml = ReadText(source);
+  // The t4.push scenes use the elliptic cone; T4.6 runs MuJoCo's default pyramidal cone (as
+  // T4.3 does), whose rows the analytic island estimate linearizes exactly (an elliptic cone's
+  // rows are not piecewise quadratic: EstimateAnalytic reports ok = false there).
+  xml = ReplaceOnce(xml, "cone=\"elliptic\"", "cone=\"pyramidal\"", source,
+                    "t4.6 compares the estimates on the pyramidal friction cone");
   if (c.free) {
     const char* why = "t4.6 lifts the box into zero gravity, reshapes and turns it";
     xml = ReplaceOnce(xml, "gravity=\"0 0 -9.81\"", "gravity=\"0 0 0\"", source, why);
