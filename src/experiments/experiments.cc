@@ -46,6 +46,10 @@ constexpr Entry kExperiments[] = {
      internal::RunT44},
     {"t4.5", "haptic tick cost and physics occupancy vs 1-128 neighbors simulated locally",
      internal::RunT45},
+    {"t4.6",
+     "6x6 accelerance estimates (thesis 1+18 runs, 2-run, analytic island) vs converged MuJoCo: "
+     "accuracy, cost per physics step, occupancy with 10 cubes; --full: 10 and 100 cubes",
+     internal::RunT46, internal::RunT46Full},
     {"t3.6",
      "a box pointer pushes, turns, tips and presses boxes on a floor: proxy-6dof at 1 and 20 ms, "
      "local-dynamics-6dof at 20 ms",

@@ -153,6 +153,21 @@ struct T45Options {
 };
 int RunT45(const std::filesystem::path& out, bool quiet, const T45Options& options);
 
+/// T4.6 (issue 14 item 3): a body's 6×6 accelerance (and the 3×3 point accelerance) estimated
+/// by the thesis' 1 + 18 perturbation runs, its 2-run estimate, the analytic island estimate
+/// and the thesis' 3-DOF 1 + 3 runs, against converged MuJoCo on a free box (zero gravity), a
+/// box resting on a floor (pushed, sticking; pushed harder, sliding) and a box pushed into a
+/// row; cost per physics step and occupancy with `cubes` cubes (t4.3's scene with friction).
+/// Returns 0 if the checks pass.
+struct T46Options {
+  std::vector<int> cubes = {10};
+  int repetitions = 10;  ///< timed physics steps per cube count (medians)
+};
+int RunT46(const std::filesystem::path& out, bool quiet);
+int RunT46(const std::filesystem::path& out, bool quiet, const T46Options& options);
+/// `mrh experiment t4.6 --full`: 10 and 100 cubes, 30 repetitions.
+int RunT46Full(const std::filesystem::path& out, bool quiet);
+
 /// Latency from the user's force onset to the touched object's response, in haptic ticks, per
 /// method and onset phase within the physics period. Returns 0 if the checks pass.
 int RunLatency(const std::filesystem::path& out, bool quiet);

@@ -177,7 +177,10 @@ bool IslandSolve::SolveActiveSet(const Eigen::VectorXd& qfrc, Eigen::VectorXd* q
     for (Eigen::Index k = 0; k < rows; ++k) {
       weight[k] = !one_sided_[static_cast<std::size_t>(k)] || x[k] < 0.0 ? D_[k] : 0.0;
     }
-    if (iterations_ > 0 && weight == previous) return true;
+    if (iterations_ > 0 && weight == previous) {
+      active_rows_ = static_cast<int>((weight.array() != 0.0).count());
+      return true;
+    }
     previous = weight;
     H_ = M_;
     H_.noalias() += J_.transpose() * weight.asDiagonal() * J_;

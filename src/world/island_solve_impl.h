@@ -42,6 +42,15 @@ class IslandSolve {
 
   int iterations() const { return iterations_; }
 
+  /// H⁻¹ Q with H = M + J_Aᵀ D_A J_A of the active set the last Prepare() settled on (valid
+  /// until the next Solve()): the island's acceleration change per generalized force, one
+  /// column of `qfrc` (island dofs, in dofs() order) each, while that active set holds.
+  Eigen::MatrixXd SolveSettled(const Eigen::MatrixXd& qfrc) const { return llt_.solve(qfrc); }
+
+  /// Island dofs (global indices, ascending) and the active rows of the last settled solve.
+  const std::vector<int>& dofs() const { return dofs_; }
+  int active_rows() const { return active_rows_; }
+
  private:
   bool CollectIsland(const mjModel& m, const mjData& d, int body, int max_dofs);
   void UniteLinkedBodies(const mjModel& m, const mjData& d);
@@ -65,6 +74,7 @@ class IslandSolve {
   std::vector<double> qfrc_;  // nv scratch for mj_applyFT
   int body_ = -1;
   int iterations_ = 0;
+  int active_rows_ = 0;
 };
 
 }  // namespace mrh::world::internal
