@@ -101,5 +101,21 @@ TEST(PlotReportTest, MissingTicksCsvFailsWithGnuplotMessage) {
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "report.png"));
 }
 
+// A 3-DOF method's torque panel says so (its torque column is zero or rounding noise), and a
+// run without body rows gets no objects panel (gnuplot refuses an empty data file).
+TEST(PlotReportTest, ThreeDofTorquePanelIsLabelledAndNoObjectsPanelWithoutBodies) {
+  if (!HaveGnuplot()) GTEST_SKIP() << "gnuplot not installed";
+  const TempDir dir;
+  WriteTicks(dir.path());
+  std::string why;
+  ASSERT_TRUE(PlotReport(dir.path(), "impulse", &why, /*renders_torque=*/false)) << why;
+  const std::string script = ReadText(dir.path() / "report.gp");
+  EXPECT_THAT(script, HasSubstr("3-DOF method: no torque rendered"));
+  EXPECT_THAT(script, ::testing::Not(HasSubstr("bodies.csv")));
+  ASSERT_TRUE(PlotReport(dir.path(), "proxy-6dof", &why, /*renders_torque=*/true)) << why;
+  EXPECT_THAT(ReadText(dir.path() / "report.gp"), ::testing::Not(HasSubstr("3-DOF")));
+}
+
+
 }  // namespace
 }  // namespace mrh::report

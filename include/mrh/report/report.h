@@ -33,8 +33,11 @@ void WriteSummary(const std::filesystem::path& dir, const engine::RunStats& stat
                   const std::string& session_file, const std::string& scene_file);
 
 /// Plots force/torque and pointer traces from dir/ticks.csv into dir/report.png with gnuplot.
+/// A fourth panel plots the objects' x and z from dir/bodies.csv. `renders_torque` false (a
+/// 3-DOF method) labels the torque panel "(3-DOF method: no torque rendered)".
 /// Returns false (and a reason in *why) if gnuplot is missing or fails; the run still counts.
-bool PlotReport(const std::filesystem::path& dir, const std::string& title, std::string* why);
+bool PlotReport(const std::filesystem::path& dir, const std::string& title, std::string* why,
+                bool renders_torque = true);
 
 /// Runs gnuplot on dir/script (working directory `dir`) and checks that it wrote dir/png.
 /// Returns false with a one-line reason in *why if gnuplot is missing or fails.
