@@ -82,6 +82,10 @@ Session ParseDocument(const nlohmann::json& document, const Context& context) {
   root.ExpectObject(TopLevelKeys(), "a JSON object");
   Session session;
   session.file = context.origin();
+  // A session that names no method gets the thesis' proposed method (chapter 4's local
+  // dynamics, with the contact local model), not a baseline. Programs that build
+  // engine::EngineSettings themselves keep its own default.
+  session.engine.method = kDefaultSessionMethod;
   session.scene =
       root.Require("scene", "the MJCF scene's path (string)").ExistingFile("the MJCF scene file");
   internal::ReadFields(root, internal::kEngineFields, &session.engine);

@@ -46,10 +46,15 @@ TEST(SessionTest, LoadsThePointerRenderingAndSafetyBlocks) {
   EXPECT_DOUBLE_EQ(s.engine.safety.watchdog_fade, 0.05);
 }
 
+// Issue 14 item 4: the proposed method, not the impulse baseline.
+TEST(SessionTest, ASessionThatNamesNoMethodGetsTheProposedMethod) {
+  EXPECT_EQ(Parse(Minimal()).engine.method, "local-dynamics");
+  EXPECT_EQ(Parse(Minimal(R"("method": "impulse")")).engine.method, "impulse");
+}
+
 TEST(SessionTest, OmittedKeysKeepTheSettingsDefaults) {
   const Session s = Parse(Minimal());
   const engine::EngineSettings defaults;
-  EXPECT_EQ(s.engine.method, defaults.method);
   EXPECT_EQ(s.engine.mode, defaults.mode);
   EXPECT_EQ(s.engine.physics_dt, defaults.physics_dt);
   EXPECT_EQ(s.engine.haptic_dt, defaults.haptic_dt);

@@ -45,6 +45,10 @@ struct DeviceConfig {
 };
 
 /// A parsed and validated session.
+/// The method of a session that names none: the thesis' proposed 3-DOF method (local-dynamics,
+/// contact local model), which needs only a sphere pointer, as every 3-DOF method.
+inline constexpr const char* kDefaultSessionMethod = "local-dynamics";
+
 struct Session {
   std::filesystem::path file;               ///< the session file ("<string>" if parsed from text)
   std::filesystem::path scene;              ///< MJCF path, resolved against the session's folder
