@@ -25,9 +25,11 @@ demo: deps build
 test: deps build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
-# The sanitizer run skips the `slow` label (preset) and four whole-experiment tests that take
-# 30–55 s each at -O0 under ASan; the release suite runs them all (CI's 45-minute budget).
-ASAN_SKIP = ^(T34ExperimentTest.PrismBase|T41SweepTest|T35ExperimentTest.RotationWeight|T43ThousandCubesTest)
+# The sanitizer run skips the `slow` label (preset), four whole-experiment tests that take
+# 30–55 s each at -O0 under ASan, and T3.3, whose result is a wall-clock computation ratio
+# (meaningless under ASan: on a loaded machine it found no cube count in real time); the release
+# suite runs them all (CI's 45-minute budget).
+ASAN_SKIP = ^(T34ExperimentTest.PrismBase|T41SweepTest|T35ExperimentTest.RotationWeight|T43ThousandCubesTest|T33ExperimentTest)
 test-asan: deps
 	cmake --preset asan >/dev/null
 	cmake --build --preset asan

@@ -11,9 +11,7 @@
 namespace mrh::render {
 namespace {
 
-bool Finite(const Vec3& v) {
-  return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z());
-}
+bool Finite(const Vec3& v) { return v.allFinite(); }
 
 // Two unit tangents completing the unit normal n to a right-handed frame.
 void Tangents(const Vec3& n, Vec3* t1, Vec3* t2) {
@@ -46,7 +44,7 @@ void FrictionDirections(const Vec3& n, const Vec3& t, bool pyramidal, Vec3* d1, 
   *d2 = std::sqrt(0.5) * (t1 - t2);
 }
 
-// (l1, l2) scaled onto the disc |(l1, l2)| <= limit: the elliptic cone.
+// (l1, l2) scaled onto the disc |(l1, l2)| <= limit (the elliptic cone).
 void ProjectOnDisc(double limit, double* l1, double* l2) {
   const double mag = std::hypot(*l1, *l2);
   if (mag <= limit) return;

@@ -185,6 +185,20 @@ std::uint32_t ContactExporter::GrowIsland(ir::LocalContactModel* out) {
   return ir::kStatusOk;
 }
 
+namespace {
+
+// The contact's distance, friction (coefficient and the scene's cone) and soft-constraint
+// parameters into its row.
+void SetContactParameters(const mjModel& m, const mjContact& con, ir::LocalContactRow* row) {
+  row->dist0 = con.dist;
+  row->mu = con.dim >= 3 ? con.friction[0] : 0.0;
+  row->pyramidal = m.opt.cone == mjCONE_PYRAMIDAL;
+  for (int i = 0; i < 2; ++i) row->solref[i] = con.solref[i];
+  for (int i = 0; i < 5; ++i) row->solimp[i] = con.solimp[i];
+}
+
+}  // namespace
+
 // One row per contact with an island body: A is the island body (geom2's if both are), the
 // normal points from B to A, points on each surface in its own body frame (world for static B).
 std::uint32_t ContactExporter::AddRows(ir::LocalContactModel* out) {
@@ -222,11 +236,7 @@ std::uint32_t ContactExporter::AddRows(ir::LocalContactModel* out) {
       row.n_B = n;
       row.t_B = t;
     }
-    row.dist0 = con.dist;
-    row.mu = con.dim >= 3 ? con.friction[0] : 0.0;
-    row.pyramidal = m.opt.cone == mjCONE_PYRAMIDAL;
-    for (int i = 0; i < 2; ++i) row.solref[i] = con.solref[i];
-    for (int i = 0; i < 5; ++i) row.solimp[i] = con.solimp[i];
+    SetContactParameters(m, con, &row);
     if (!out->contacts.PushBack(row)) return ir::kStatusContactsFull;
   }
   return ir::kStatusOk;
