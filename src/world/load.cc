@@ -365,7 +365,10 @@ void InitializeState(ModelPtr model, const std::string& origin, const LoadOption
   impl->model = std::move(model);
   impl->snapshot_size = SnapshotSize(*impl->model);
   // Everything derived from qpos (poses, contacts) is valid right after loading.
+  // The stack the solver is expected to use is mapped now, not during the first steps.
+  impl->TouchStack(PlanBuffers(*impl->model).stack_use);
   mj_forward(impl->model.get(), impl->data.get());
+  impl->TouchStackAfterStep();
 }
 
 }  // namespace internal

@@ -146,6 +146,7 @@ BufferPlan PlanBuffers(const mjModel& m) {
   if (m.opt.solver == mjSOL_NEWTON) stack += 6.0 * nv * nv;
   if (m.opt.solver == mjSOL_PGS) stack += 3.0 * nj * nj;
   plan.nstack = static_cast<std::int64_t>(std::min(stack, static_cast<double>(INT_MAX)));
+  plan.stack_use = plan.nstack / 2;
   return plan;
 }
 

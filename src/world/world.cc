@@ -97,6 +97,7 @@ void World::Step() {
   const internal::MujocoScope scope(impl_->origin);
   mjData* d = impl_->data.get();
   mj_step(impl_->model.get(), d);
+  impl_->TouchStackAfterStep();
   // The wrenches were for this step only.
   mju_zero(d->xfrc_applied, 6 * impl_->model->nbody);
   impl_->kinematics_stale = true;
