@@ -144,7 +144,7 @@ void ProxyRenderer::CarryPreviousProxy(const TickIr& ir, const Pose& X_WP) noexc
 // Δr_i = Σ f_k a_k and Δθ_i = Σ f_k R_w⁻¹(r_k × a_k) to the proxy offset (Σ_i Δr_i = Δr,
 // Σ_i Δθ_i = Δθ), so it pushes the pointer with the spring–damper share
 // F_i = k_t Δr_i + d_t (Δr_i − Δr_i,prev)/dt and τ_i = k_r Δθ_i + d_r (Δθ_i − Δθ_i,prev)/dt
-// about the pointer origin. The object receives −(F_i, τ_i), moved to its COM. Summed over
+// about the pointer origin; DistributeReactions hands −(F_i, τ_i) to the objects. Summed over
 // the pairs this is exactly minus the rendered wrench (action = reaction). SPEC's per-row
 // moment Σ (p_k − c) × k_t f_k a_k would instead give the objects k_t R_w Δθ, which for the
 // thesis weights (R_w = 3.33–8420 m², k_t ≈ k_r) is 3–8000× the torque the user feels.
@@ -153,11 +153,15 @@ void ProxyRenderer::ComputeReactions(const TickIr& ir, const Pose& X_WP, double 
   for (std::size_t i = 0; i < ir.pairs.size(); ++i) {
     dr_pair_[i].setZero();
     dtheta_pair_[i].setZero();
+    lever_pair_[i].setZero();
+    weight_pair_[i] = 0.0;
   }
   const auto add = [&](std::size_t k) noexcept {
     const auto i = static_cast<std::size_t>(info_[k].pair);
     dr_pair_[i] += f_[k] * rows_[k].a;
     dtheta_pair_[i] += f_[k] * (rotation_weight_inverse_ * rows_[k].r.cross(rows_[k].a));
+    lever_pair_[i] += std::abs(f_[k]) * rows_[k].r;
+    weight_pair_[i] += std::abs(f_[k]);
   };
   if (settings_.solver == ProxySolverKind::kActiveSet) {
     // Only the <= 6 active rows can have f != 0.
@@ -169,16 +173,46 @@ void ProxyRenderer::ComputeReactions(const TickIr& ir, const Pose& X_WP, double 
       if (f_[k] != 0.0) add(k);
     }
   }
+  DistributeReactions(ir, X_WP, dt, out);
+}
+
+// Pair i pushes the pointer with F_i and τ_i (about the pointer origin). With one moving pair
+// the object takes −(F_i, τ_i) moved to its COM. With several, each F_i acts where its pair is
+// touched, at its centre of pressure c_i (the |f_k|-weighted lever arms), and only the couple
+// the forces there do not explain, Σ (τ_i − c_i × F_i), is shared by load: placing every F_i
+// at the pointer origin instead would give each of two boxes 0.2 m apart a couple |r × F_i|
+// that only cancels in the sum (issue 14: the 1000-contact plate spun its boxes). The sum
+// over the pairs stays exactly −(F, τ) of the moving pairs.
+void ProxyRenderer::DistributeReactions(const TickIr& ir, const Pose& X_WP, double dt,
+                                        ProxyOutput* out) noexcept {
+  std::size_t moving = 0;
+  double load = 0.0;
+  Vec3 residual = Vec3::Zero();
+  for (std::size_t i = 0; i < ir.pairs.size(); ++i) {
+    force_pair_[i].setZero();
+    torque_pair_[i].setZero();
+    if (ir.pairs[i].is_static || pair_rows_[i] == 0) continue;
+    force_pair_[i] =
+        settings_.k_t * dr_pair_[i] + settings_.d_t * (dr_pair_[i] - previous_dr_pair_[i]) / dt;
+    torque_pair_[i] = settings_.k_r * dtheta_pair_[i] +
+                      settings_.d_r * (dtheta_pair_[i] - previous_dtheta_pair_[i]) / dt;
+    if (weight_pair_[i] > 0.0) lever_pair_[i] /= weight_pair_[i];
+    residual += torque_pair_[i] - lever_pair_[i].cross(force_pair_[i]);
+    load += force_pair_[i].norm();
+    ++moving;
+  }
   for (std::size_t i = 0; i < ir.pairs.size(); ++i) {
     const TickPair& pair = ir.pairs[i];
     Wrench w_W;  // on the object, torque about its COM
     if (!pair.is_static && pair_rows_[i] > 0) {
-      const Vec3 force =
-          settings_.k_t * dr_pair_[i] + settings_.d_t * (dr_pair_[i] - previous_dr_pair_[i]) / dt;
-      const Vec3 torque = settings_.k_r * dtheta_pair_[i] +
-                          settings_.d_r * (dtheta_pair_[i] - previous_dtheta_pair_[i]) / dt;
-      w_W.f = -force;
-      w_W.tau = -(torque + (X_WP.p - pair.p_WCm).cross(force));
+      w_W.f = -force_pair_[i];
+      if (moving == 1) {
+        w_W.tau = -(torque_pair_[i] + (X_WP.p - pair.p_WCm).cross(force_pair_[i]));
+      } else {
+        const double share = load > 0.0 ? force_pair_[i].norm() / load
+                                         : 1.0 / static_cast<double>(moving);
+        w_W.tau = -share * residual + (X_WP.p + lever_pair_[i] - pair.p_WCm).cross(w_W.f);
+      }
     }
     (void)out->reactions.PushBack(ProxyPairReaction{pair.key, pair.body, pair.is_static, w_W});
   }

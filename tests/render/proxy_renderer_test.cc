@@ -351,6 +351,35 @@ TEST(ProxyRendererTest, ReactionsOfSeveralObjectsAddUpToMinusTheRenderedWrench) 
   EXPECT_GT(out.w_W.tau.norm(), 1e-3);
 }
 
+TEST(ProxyRendererTest, EachObjectUnderAStraddlingPointerTakesItsForceWhereItIsTouched) {
+  // A flat pointer pressed kDepth into two boxes, one point on each, mirrored about the pointer
+  // origin: the proxy rises by kDepth without turning, each point carries k_t kDepth / 2, and
+  // the pointer feels no torque. Each box then takes −k_t kDepth / 2 along n at its own point:
+  // its moment about its COM is (p_k − c) × F. The renderer's own per-pair split τ_i = k_r Δθ_i
+  // is ± k_r f R_w⁻¹ (r_k × n), which only cancels in the sum; −F_i placed at the pointer origin
+  // would add a couple |r_k × F_i| to each box.
+  Rig rig(T31());
+  PairSpec left = Box(5, Pose{});
+  left.p_BCm = Vec3(-0.05, 0.03, -0.05);
+  left.points_P = {Vec3(-kHalf, 0, -kHalf)};
+  PairSpec right = Box(6, Pose{});
+  right.key = 10;
+  right.p_BCm = Vec3(0.12, -0.02, -0.05);
+  right.points_P = {Vec3(kHalf, 0, -kHalf)};
+  const Pose X_WP = Pressed();
+  const ProxyOutput& out = rig.Tick({left, right}, X_WP);
+  ASSERT_EQ(out.reactions.size(), 2u);
+  EXPECT_LT(out.w_W.tau.norm(), kForceTol);
+  const double each = kKt * kDepth / 2.0;
+  for (const PairSpec& box : {left, right}) {
+    const ProxyPairReaction& r = out.reactions[box.body == 5 ? 0 : 1];
+    const Vec3 force(0, 0, -each);
+    const Vec3 moment = (X_WP * box.points_P[0] - box.p_BCm).cross(force);
+    EXPECT_LT((r.w_W.f - force).norm(), kForceTol) << "box " << box.body;
+    EXPECT_LT((r.w_W.tau - moment).norm(), kForceTol) << "box " << box.body;
+  }
+}
+
 TEST(ProxyRendererTest, ImpulsesGoToMovingBodiesOnlySummedPerBody) {
   Rig rig(T31());
   // Three points not on a line, so each row's f is unique and every pair carries load.

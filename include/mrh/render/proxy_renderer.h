@@ -103,9 +103,11 @@ struct ProxyRowInfo {
 /// Reaction of one TickIr pair on its object this tick (SPEC §3.6, I5, made action = reaction):
 /// the pair's rows make up Δr_i = Σ_pair f_k a_k and Δθ_i = Σ_pair f_k R_w⁻¹(r_k × a_k) of the
 /// proxy offset, so the pair pushes the pointer with its share of eq. 3.7–3.8,
-/// F_i = k_t Δr_i + d_t ΔΔr_i/dt and τ_i = k_r Δθ_i + d_r ΔΔθ_i/dt about the pointer origin;
-/// the object receives −(F_i, τ_i), expressed about its COM. Summed over all pairs (static ones
-/// included) that is exactly minus the rendered wrench. A static pair's entry is zero (it takes
+/// F_i = k_t Δr_i + d_t ΔΔr_i/dt and τ_i = k_r Δθ_i + d_r ΔΔθ_i/dt about the pointer origin.
+/// One moving pair: the object receives −(F_i, τ_i), expressed about its COM. Several: −F_i acts
+/// at the pair's centre of pressure c_i (its rows' |f_k|-weighted points), and the couple those
+/// forces leave unexplained, Σ_i (τ_i − c_i × F_i), is shared in proportion to |F_i|. Either way
+/// the sum over all pairs (static ones included) is exactly minus the rendered wrench. A static pair's entry is zero (it takes
 /// no reaction). Where rows are redundant (more than the proxy's 6 degrees of freedom), f and
 /// hence the split between pairs is not unique: it is the one the solver reaches.
 struct ProxyPairReaction {
@@ -216,6 +218,8 @@ class ProxyRenderer {
   bool BuildRows(const TickIr& ir, const Pose& X_WP, ProxyDiagnostics* diag) noexcept;
   bool LoadPair(const TickIr& ir, int pair, PairFrame* frame) const noexcept;
   void ComputeReactions(const TickIr& ir, const Pose& X_WP, double dt, ProxyOutput* out) noexcept;
+  void DistributeReactions(const TickIr& ir, const Pose& X_WP, double dt,
+                           ProxyOutput* out) noexcept;
   void Remember(const TickIr& ir, const ProxyOutput& out) noexcept;
   void Fault(const Pose& X_WP, ProxyOutput* out) noexcept;
 
@@ -244,6 +248,10 @@ class ProxyRenderer {
   std::array<int, ir::kMaxGeometricPairs> pair_rows_{};     // normal rows this tick
   std::array<Vec3, ir::kMaxGeometricPairs> dr_pair_{};      // Σ_pair f_k a_k this tick
   std::array<Vec3, ir::kMaxGeometricPairs> dtheta_pair_{};  // Σ_pair f_k R_w⁻¹(r_k × a_k)
+  std::array<Vec3, ir::kMaxGeometricPairs> lever_pair_{};   // Σ |f_k| r_k, then / weight
+  std::array<double, ir::kMaxGeometricPairs> weight_pair_{};  // Σ_pair |f_k|
+  std::array<Vec3, ir::kMaxGeometricPairs> force_pair_{};     // F_i on the pointer
+  std::array<Vec3, ir::kMaxGeometricPairs> torque_pair_{};    // τ_i about the pointer origin
   std::array<PairMemory, ir::kMaxGeometricPairs> memory_{};
   std::size_t memory_count_ = 0;
 
