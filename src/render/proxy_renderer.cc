@@ -153,15 +153,11 @@ void ProxyRenderer::ComputeReactions(const TickIr& ir, const Pose& X_WP, double 
   for (std::size_t i = 0; i < ir.pairs.size(); ++i) {
     dr_pair_[i].setZero();
     dtheta_pair_[i].setZero();
-    lever_pair_[i].setZero();
-    weight_pair_[i] = 0.0;
   }
   const auto add = [&](std::size_t k) noexcept {
     const auto i = static_cast<std::size_t>(info_[k].pair);
     dr_pair_[i] += f_[k] * rows_[k].a;
     dtheta_pair_[i] += f_[k] * (rotation_weight_inverse_ * rows_[k].r.cross(rows_[k].a));
-    lever_pair_[i] += std::abs(f_[k]) * rows_[k].r;
-    weight_pair_[i] += std::abs(f_[k]);
   };
   if (settings_.solver == ProxySolverKind::kActiveSet) {
     // Only the <= 6 active rows can have f != 0.
@@ -176,43 +172,23 @@ void ProxyRenderer::ComputeReactions(const TickIr& ir, const Pose& X_WP, double 
   DistributeReactions(ir, X_WP, dt, out);
 }
 
-// Pair i pushes the pointer with F_i and τ_i (about the pointer origin). With one moving pair
-// the object takes −(F_i, τ_i) moved to its COM. With several, each F_i acts where its pair is
-// touched, at its centre of pressure c_i (the |f_k|-weighted lever arms), and only the couple
-// the forces there do not explain, Σ (τ_i − c_i × F_i), is shared by load: placing every F_i
-// at the pointer origin instead would give each of two boxes 0.2 m apart a couple |r × F_i|
-// that only cancels in the sum (issue 14: the 1000-contact plate spun its boxes). The sum
-// over the pairs stays exactly −(F, τ) of the moving pairs.
+// One touched pair takes the whole wrench: −(F_i, τ_i) moved to its COM, with its own damper
+// difference. Several: SplitAcrossPairs (proxy_reaction_split.cc).
 void ProxyRenderer::DistributeReactions(const TickIr& ir, const Pose& X_WP, double dt,
                                         ProxyOutput* out) noexcept {
-  std::size_t moving = 0;
-  double load = 0.0;
-  Vec3 residual = Vec3::Zero();
-  for (std::size_t i = 0; i < ir.pairs.size(); ++i) {
-    force_pair_[i].setZero();
-    torque_pair_[i].setZero();
-    if (ir.pairs[i].is_static || pair_rows_[i] == 0) continue;
-    force_pair_[i] =
-        settings_.k_t * dr_pair_[i] + settings_.d_t * (dr_pair_[i] - previous_dr_pair_[i]) / dt;
-    torque_pair_[i] = settings_.k_r * dtheta_pair_[i] +
-                      settings_.d_r * (dtheta_pair_[i] - previous_dtheta_pair_[i]) / dt;
-    if (weight_pair_[i] > 0.0) lever_pair_[i] /= weight_pair_[i];
-    residual += torque_pair_[i] - lever_pair_[i].cross(force_pair_[i]);
-    load += force_pair_[i].norm();
-    ++moving;
-  }
+  std::size_t touched = 0;
+  for (std::size_t i = 0; i < ir.pairs.size(); ++i) touched += pair_rows_[i] > 0 ? 1 : 0;
+  if (touched > 1) return SplitAcrossPairs(ir, X_WP, out);
   for (std::size_t i = 0; i < ir.pairs.size(); ++i) {
     const TickPair& pair = ir.pairs[i];
     Wrench w_W;  // on the object, torque about its COM
     if (!pair.is_static && pair_rows_[i] > 0) {
-      w_W.f = -force_pair_[i];
-      if (moving == 1) {
-        w_W.tau = -(torque_pair_[i] + (X_WP.p - pair.p_WCm).cross(force_pair_[i]));
-      } else {
-        const double share = load > 0.0 ? force_pair_[i].norm() / load
-                                         : 1.0 / static_cast<double>(moving);
-        w_W.tau = -share * residual + (X_WP.p + lever_pair_[i] - pair.p_WCm).cross(w_W.f);
-      }
+      const Vec3 force =
+          settings_.k_t * dr_pair_[i] + settings_.d_t * (dr_pair_[i] - previous_dr_pair_[i]) / dt;
+      const Vec3 torque = settings_.k_r * dtheta_pair_[i] +
+                          settings_.d_r * (dtheta_pair_[i] - previous_dtheta_pair_[i]) / dt;
+      w_W.f = -force;
+      w_W.tau = -(torque + (X_WP.p - pair.p_WCm).cross(force));
     }
     (void)out->reactions.PushBack(ProxyPairReaction{pair.key, pair.body, pair.is_static, w_W});
   }

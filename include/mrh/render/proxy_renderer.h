@@ -104,12 +104,14 @@ struct ProxyRowInfo {
 /// the pair's rows make up Δr_i = Σ_pair f_k a_k and Δθ_i = Σ_pair f_k R_w⁻¹(r_k × a_k) of the
 /// proxy offset, so the pair pushes the pointer with its share of eq. 3.7–3.8,
 /// F_i = k_t Δr_i + d_t ΔΔr_i/dt and τ_i = k_r Δθ_i + d_r ΔΔθ_i/dt about the pointer origin.
-/// One moving pair: the object receives −(F_i, τ_i), expressed about its COM. Several: −F_i acts
-/// at the pair's centre of pressure c_i (its rows' |f_k|-weighted points), and the couple those
-/// forces leave unexplained, Σ_i (τ_i − c_i × F_i), is shared in proportion to |F_i|. Either way
-/// the sum over all pairs (static ones included) is exactly minus the rendered wrench. A static pair's entry is zero (it takes
-/// no reaction). Where rows are redundant (more than the proxy's 6 degrees of freedom), f and
-/// hence the split between pairs is not unique: it is the one the solver reaches.
+/// One touched pair: the object receives −(F_i, τ_i), expressed about its COM. Several (static
+/// ones included): the rendered wrench is matched by non-negative forces along the rows at the
+/// penetrating points themselves, spread as a compliant contact would (min Σ λ_k²/δ_k), and each
+/// object takes minus its points' forces, where they act; what the points cannot carry is shared
+/// in proportion to force. Either way the sum over all pairs is exactly minus the rendered
+/// wrench. A static pair's entry is zero (it takes
+/// no reaction). (The solver's own split by f_k is not unique where rows are redundant, which is
+/// why several pairs are matched instead.)
 struct ProxyPairReaction {
   std::uint64_t key = 0;   ///< TickPair::key
   int body = -1;           ///< TickPair::body
@@ -220,6 +222,7 @@ class ProxyRenderer {
   void ComputeReactions(const TickIr& ir, const Pose& X_WP, double dt, ProxyOutput* out) noexcept;
   void DistributeReactions(const TickIr& ir, const Pose& X_WP, double dt,
                            ProxyOutput* out) noexcept;
+  void SplitAcrossPairs(const TickIr& ir, const Pose& X_WP, ProxyOutput* out) noexcept;
   void Remember(const TickIr& ir, const ProxyOutput& out) noexcept;
   void Fault(const Pose& X_WP, ProxyOutput* out) noexcept;
 
@@ -248,10 +251,8 @@ class ProxyRenderer {
   std::array<int, ir::kMaxGeometricPairs> pair_rows_{};     // normal rows this tick
   std::array<Vec3, ir::kMaxGeometricPairs> dr_pair_{};      // Σ_pair f_k a_k this tick
   std::array<Vec3, ir::kMaxGeometricPairs> dtheta_pair_{};  // Σ_pair f_k R_w⁻¹(r_k × a_k)
-  std::array<Vec3, ir::kMaxGeometricPairs> lever_pair_{};   // Σ |f_k| r_k, then / weight
-  std::array<double, ir::kMaxGeometricPairs> weight_pair_{};  // Σ_pair |f_k|
-  std::array<Vec3, ir::kMaxGeometricPairs> force_pair_{};     // F_i on the pointer
-  std::array<Vec3, ir::kMaxGeometricPairs> torque_pair_{};    // τ_i about the pointer origin
+  std::array<Vec3, ir::kMaxGeometricPairs> force_pair_{};   // SplitAcrossPairs: F_i on the pointer
+  std::array<Vec3, ir::kMaxGeometricPairs> torque_pair_{};  // and its moment about the origin
   std::array<PairMemory, ir::kMaxGeometricPairs> memory_{};
   std::size_t memory_count_ = 0;
 
