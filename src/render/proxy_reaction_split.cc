@@ -33,8 +33,8 @@ constexpr double kRidge = 1e-8;
 // Newton with backtracking. Whatever of (F, τ) the points cannot carry (a torque outside the
 // patches' reach) goes to the pairs in proportion to their force. Σ over the pairs is (F, τ)
 // exactly, so action = reaction holds in force and moment.
-void ProxyRenderer::SplitAcrossPairs(const TickIr& ir, const Pose& X_WP,
-                                     ProxyOutput* out) noexcept {
+void ProxyRenderer::SplitAcrossPairs(const TickIr& ir, std::size_t touched,
+                                     const ProxyOutput* out) noexcept {
   double length2 = 0.0;
   for (std::size_t k = 0; k < row_count_; ++k) length2 += rows_[k].r.squaredNorm();
   const double length = std::max(1e-3, std::sqrt(length2 / static_cast<double>(row_count_)));
@@ -104,27 +104,17 @@ void ProxyRenderer::SplitAcrossPairs(const TickIr& ir, const Pose& X_WP,
   }
   Vec3 left_f = out->w_W.f, left_tau = out->w_W.tau;
   double load = 0.0;
-  double touched = 0.0;
   for (std::size_t i = 0; i < ir.pairs.size(); ++i) {
-    touched += pair_rows_[i] > 0 ? 1.0 : 0.0;
     left_f -= force_pair_[i];
     left_tau -= torque_pair_[i];
     load += force_pair_[i].norm();
   }
   for (std::size_t i = 0; i < ir.pairs.size(); ++i) {
-    const double share = load > 0.0 ? force_pair_[i].norm() / load
-                                     : (pair_rows_[i] > 0 ? 1.0 / touched : 0.0);
+    const double share =
+        load > 0.0 ? force_pair_[i].norm() / load
+                   : (pair_rows_[i] > 0 ? 1.0 / static_cast<double>(touched) : 0.0);
     force_pair_[i] += share * left_f;
     torque_pair_[i] += share * left_tau;
-  }
-  for (std::size_t i = 0; i < ir.pairs.size(); ++i) {
-    const TickPair& pair = ir.pairs[i];
-    Wrench w_W;  // on the object, torque about its COM
-    if (!pair.is_static && pair_rows_[i] > 0) {
-      w_W.f = -force_pair_[i];
-      w_W.tau = -(torque_pair_[i] + (X_WP.p - pair.p_WCm).cross(force_pair_[i]));
-    }
-    (void)out->reactions.PushBack(ProxyPairReaction{pair.key, pair.body, pair.is_static, w_W});
   }
 }
 

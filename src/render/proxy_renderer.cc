@@ -173,22 +173,28 @@ void ProxyRenderer::ComputeReactions(const TickIr& ir, const Pose& X_WP, double 
 }
 
 // One touched pair takes the whole wrench: −(F_i, τ_i) moved to its COM, with its own damper
-// difference. Several: SplitAcrossPairs (proxy_reaction_split.cc).
+// difference. Several: SplitAcrossPairs (proxy_reaction_split.cc). Either way each non-static
+// touched pair's object receives −F_i and the moment −(M_i + (x_p − p_Cm) × F_i) about its COM.
 void ProxyRenderer::DistributeReactions(const TickIr& ir, const Pose& X_WP, double dt,
                                         ProxyOutput* out) noexcept {
   std::size_t touched = 0;
   for (std::size_t i = 0; i < ir.pairs.size(); ++i) touched += pair_rows_[i] > 0 ? 1 : 0;
-  if (touched > 1) return SplitAcrossPairs(ir, X_WP, out);
+  if (touched > 1) {
+    SplitAcrossPairs(ir, touched, out);
+  } else {
+    for (std::size_t i = 0; i < ir.pairs.size(); ++i) {
+      force_pair_[i] =
+          settings_.k_t * dr_pair_[i] + settings_.d_t * (dr_pair_[i] - previous_dr_pair_[i]) / dt;
+      torque_pair_[i] = settings_.k_r * dtheta_pair_[i] +
+                        settings_.d_r * (dtheta_pair_[i] - previous_dtheta_pair_[i]) / dt;
+    }
+  }
   for (std::size_t i = 0; i < ir.pairs.size(); ++i) {
     const TickPair& pair = ir.pairs[i];
     Wrench w_W;  // on the object, torque about its COM
     if (!pair.is_static && pair_rows_[i] > 0) {
-      const Vec3 force =
-          settings_.k_t * dr_pair_[i] + settings_.d_t * (dr_pair_[i] - previous_dr_pair_[i]) / dt;
-      const Vec3 torque = settings_.k_r * dtheta_pair_[i] +
-                          settings_.d_r * (dtheta_pair_[i] - previous_dtheta_pair_[i]) / dt;
-      w_W.f = -force;
-      w_W.tau = -(torque + (X_WP.p - pair.p_WCm).cross(force));
+      w_W.f = -force_pair_[i];
+      w_W.tau = -(torque_pair_[i] + (X_WP.p - pair.p_WCm).cross(force_pair_[i]));
     }
     (void)out->reactions.PushBack(ProxyPairReaction{pair.key, pair.body, pair.is_static, w_W});
   }

@@ -109,9 +109,8 @@ struct ProxyRowInfo {
 /// penetrating points themselves, spread as a compliant contact would (min Σ λ_k²/δ_k), and each
 /// object takes minus its points' forces, where they act; what the points cannot carry is shared
 /// in proportion to force. Either way the sum over all pairs is exactly minus the rendered
-/// wrench. A static pair's entry is zero (it takes
-/// no reaction). (The solver's own split by f_k is not unique where rows are redundant, which is
-/// why several pairs are matched instead.)
+/// wrench. A static pair's entry is zero (it takes no reaction). (The solver's own split by f_k
+/// is not unique where rows are redundant, which is why several pairs are matched instead.)
 struct ProxyPairReaction {
   std::uint64_t key = 0;   ///< TickPair::key
   int body = -1;           ///< TickPair::body
@@ -222,7 +221,7 @@ class ProxyRenderer {
   void ComputeReactions(const TickIr& ir, const Pose& X_WP, double dt, ProxyOutput* out) noexcept;
   void DistributeReactions(const TickIr& ir, const Pose& X_WP, double dt,
                            ProxyOutput* out) noexcept;
-  void SplitAcrossPairs(const TickIr& ir, const Pose& X_WP, ProxyOutput* out) noexcept;
+  void SplitAcrossPairs(const TickIr& ir, std::size_t touched, const ProxyOutput* out) noexcept;
   void Remember(const TickIr& ir, const ProxyOutput& out) noexcept;
   void Fault(const Pose& X_WP, ProxyOutput* out) noexcept;
 
@@ -251,8 +250,8 @@ class ProxyRenderer {
   std::array<int, ir::kMaxGeometricPairs> pair_rows_{};     // normal rows this tick
   std::array<Vec3, ir::kMaxGeometricPairs> dr_pair_{};      // Σ_pair f_k a_k this tick
   std::array<Vec3, ir::kMaxGeometricPairs> dtheta_pair_{};  // Σ_pair f_k R_w⁻¹(r_k × a_k)
-  std::array<Vec3, ir::kMaxGeometricPairs> force_pair_{};   // SplitAcrossPairs: F_i on the pointer
-  std::array<Vec3, ir::kMaxGeometricPairs> torque_pair_{};  // and its moment about the origin
+  std::array<Vec3, ir::kMaxGeometricPairs> force_pair_{};   // F_i on the pointer this tick
+  std::array<Vec3, ir::kMaxGeometricPairs> torque_pair_{};  // M_i about the pointer origin
   std::array<PairMemory, ir::kMaxGeometricPairs> memory_{};
   std::size_t memory_count_ = 0;
 
