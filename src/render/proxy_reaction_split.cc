@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // 6-DOF proxy: how the rendered wrench is split between several touched objects.
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "mrh/render/proxy_renderer.h"
@@ -8,12 +9,8 @@
 namespace mrh::render {
 namespace {
 
-using Vec6 = Eigen::Matrix<double, 6, 1>;
-using Mat6 = Eigen::Matrix<double, 6, 6>;
-
-constexpr int kMaxNewtonSteps = 12;
-// The penalty weight of the dual (relative to trace H): 1e-8 of the points' stiffness.
-constexpr double kRidge = 1e-8;
+// Newton steps of the split (PressureSplit); warm-started, a sustained contact takes 1–2.
+constexpr int kMaxNewtonSteps = 20;
 
 }  // namespace
 
@@ -28,76 +25,40 @@ constexpr double kRidge = 1e-8;
 // So the rendered wrench (F, τ about the pointer origin) is matched by forces λ_k a_k >= 0 at
 // the penetrating points themselves, spread as a compliant contact would spread them:
 // minimize Σ λ_k² / δ_k subject to Σ λ_k a_k = F, Σ λ_k r_k × a_k = τ, λ_k >= 0 (δ_k the
-// point's depth; a linear pressure on a flat patch). The dual is a 6-vector y with
-// λ_k = δ_k max(0, w_k·y), w_k = [a_k; r_k × a_k / L]: a convex piecewise quadratic, solved by
-// Newton with backtracking. Whatever of (F, τ) the points cannot carry (a torque outside the
+// point's depth; a linear pressure on a flat patch), solved by PressureSplit (a piecewise Newton
+// method on its 6-vector dual, warm-started from the last tick). Whatever of (F, τ) the points cannot carry (a torque outside the
 // patches' reach) goes to the pairs in proportion to their force. Σ over the pairs is (F, τ)
 // exactly, so action = reaction holds in force and moment.
 void ProxyRenderer::SplitAcrossPairs(const TickIr& ir, std::size_t touched,
                                      const ProxyOutput* out) noexcept {
-  double length2 = 0.0;
-  for (std::size_t k = 0; k < row_count_; ++k) length2 += rows_[k].r.squaredNorm();
-  const double length = std::max(1e-3, std::sqrt(length2 / static_cast<double>(row_count_)));
-  const auto w_of = [&](std::size_t k) noexcept {
-    Vec6 w;
-    w.head<3>() = rows_[k].a;
-    w.tail<3>() = rows_[k].r.cross(rows_[k].a) / length;
-    return w;
-  };
-  const auto depth_of = [&](std::size_t k) noexcept {
-    return std::max(ir.points[static_cast<std::size_t>(info_[k].point)].depth, 1e-9);
-  };
-  Vec6 target;
-  target.head<3>() = out->w_W.f;
-  target.tail<3>() = out->w_W.tau / length;
-  Mat6 h = Mat6::Zero();
+  // Normal rows push (λ >= 0). A point with a friction row may take a tangential force either
+  // way in its pair's plane (its cone is the solver's business, not the split's): a two-sided
+  // tangent plane per pair in place of a one-sided row along the slip, whose clipping otherwise
+  // flips with the rubbing direction and leaves the split many Newton steps.
+  std::array<int, ir::kMaxGeometricPairs> plane{};
+  plane.fill(-1);
+  split_.Begin();
   for (std::size_t k = 0; k < row_count_; ++k) {
-    h.selfadjointView<Eigen::Lower>().rankUpdate(w_of(k), depth_of(k));
-  }
-  // A small penalty |Σ λ_k w_k − W|² in place of the hard constraint keeps the dual strongly
-  // convex where W has parts no point can carry (a sideways force on a frictionless face): y
-  // then stays bounded along them and they go to the leftover.
-  const double ridge = kRidge * std::max(h.trace(), 1e-300);
-  // φ(y) = ½ Σ δ_k max(0, w_k·y)² + ½ ridge |y|² − W·y, its gradient and Hessian.
-  const auto evaluate = [&](const Vec6& y, Vec6* g, Mat6* hessian) noexcept {
-    double phi = 0.5 * ridge * y.squaredNorm() - target.dot(y);
-    if (g != nullptr) *g = ridge * y - target;
-    if (hessian != nullptr) *hessian = ridge * Mat6::Identity();
-    for (std::size_t k = 0; k < row_count_; ++k) {
-      const Vec6 w = w_of(k);
-      const double s = w.dot(y);
-      if (!(s > 0.0)) continue;
-      const double d = depth_of(k);
-      phi += 0.5 * d * s * s;
-      if (g != nullptr) *g += (d * s) * w;
-      if (hessian != nullptr) hessian->selfadjointView<Eigen::Lower>().rankUpdate(w, d);
+    const double depth = ir.points[static_cast<std::size_t>(info_[k].point)].depth;
+    const auto i = static_cast<std::size_t>(info_[k].pair);
+    if (info_[k].kind == ProxyRowKind::kNormal) {
+      split_row_[split_.size()] = static_cast<int>(k);
+      (void)split_.AddRow(rows_[k].a, rows_[k].r, depth);
+      continue;
     }
-    if (hessian != nullptr) *hessian = hessian->selfadjointView<Eigen::Lower>();
-    return phi;
-  };
-  Vec6 y = (h + ridge * Mat6::Identity()).ldlt().solve(target);
-  Vec6 g;
-  double phi = evaluate(y, &g, &h);
-  for (int step = 0; step < kMaxNewtonSteps && g.norm() > 1e-12 * target.norm(); ++step) {
-    const Vec6 dy = h.ldlt().solve(g);
-    double t = 1.0;
-    double next = evaluate(y - dy, nullptr, nullptr);
-    for (int halving = 0; halving < 30 && next > phi - 1e-4 * t * g.dot(dy); ++halving) {
-      t *= 0.5;
-      next = evaluate(y - t * dy, nullptr, nullptr);
-    }
-    y -= t * dy;
-    phi = evaluate(y, &g, &h);
+    if (plane[i] < 0) plane[i] = split_.AddPlane(ir.pairs[i].n_W);
+    split_.AddTangentPoint(plane[i], rows_[k].r, depth);
   }
+  (void)split_.Solve(out->w_W.f, out->w_W.tau, kMaxNewtonSteps);
   // Each pair's forces at its points: F_i and its moment M_i about the pointer origin.
   for (std::size_t i = 0; i < ir.pairs.size(); ++i) {
-    force_pair_[i].setZero();
-    torque_pair_[i].setZero();
+    split_.PlaneWrench(plane[i], &force_pair_[i], &torque_pair_[i]);
   }
-  for (std::size_t k = 0; k < row_count_; ++k) {
-    const double s = w_of(k).dot(y);
-    if (!(s > 0.0)) continue;
-    const Vec3 f = (depth_of(k) * s) * rows_[k].a;
+  for (std::size_t j = 0; j < split_.size(); ++j) {
+    const double lambda = split_.lambda(j);
+    if (lambda == 0.0) continue;
+    const auto k = static_cast<std::size_t>(split_row_[j]);
+    const Vec3 f = lambda * split_.direction(j);
     const auto i = static_cast<std::size_t>(info_[k].pair);
     force_pair_[i] += f;
     torque_pair_[i] += rows_[k].r.cross(f);

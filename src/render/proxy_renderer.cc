@@ -20,7 +20,8 @@ const ProxyRendererSettings& Validated(const ProxyRendererSettings& settings) {
 ProxyRenderer::ProxyRenderer(const ProxyRendererSettings& settings)
     : settings_(Validated(settings)),
       pgs_(settings.solver == ProxySolverKind::kPgs ? settings.max_rows : 1),
-      active_set_(settings.solver == ProxySolverKind::kActiveSet ? settings.max_rows : 1) {
+      active_set_(settings.solver == ProxySolverKind::kActiveSet ? settings.max_rows : 1),
+      split_(settings.max_rows, ir::kMaxGeometricPairs) {
   // Symmetrize both ways so the row weights g_k see an exactly symmetric R_w⁻¹.
   const Mat3 weight = 0.5 * (settings_.rotation_weight + settings_.rotation_weight.transpose());
   const Mat3 inverse = weight.inverse();
@@ -31,6 +32,7 @@ ProxyRenderer::ProxyRenderer(const ProxyRendererSettings& settings)
   previous_ids_.resize(settings_.max_rows);
   f_.resize(settings_.max_rows);
   previous_f_.resize(settings_.max_rows);
+  split_row_.resize(split_.capacity());
 }
 
 void ProxyRenderer::Reset() noexcept {
@@ -41,6 +43,7 @@ void ProxyRenderer::Reset() noexcept {
   previous_X_WQ_ = Pose{};
   previous_dr_.setZero();
   previous_dtheta_.setZero();
+  split_.Reset();
 }
 
 void ProxyRenderer::Tick(const TickIr& ir, const Pose& X_WP, double dt, ProxyOutput* out) noexcept {

@@ -11,6 +11,7 @@
 #include "mrh/core/fixed_vector.h"
 #include "mrh/core/spatial.h"
 #include "mrh/ir/snapshot.h"
+#include "mrh/render/pressure_split.h"
 #include "mrh/render/proxy_active_set.h"
 #include "mrh/render/proxy_solver.h"
 #include "mrh/render/tick_ir.h"
@@ -229,6 +230,8 @@ class ProxyRenderer {
   Mat3 rotation_weight_inverse_;
   ProxySolver pgs_;                  // sized for max_rows only when selected
   ProxyActiveSetSolver active_set_;  // likewise
+  PressureSplit split_;              // several touched pairs; warm-started tick to tick
+  std::vector<int> split_row_;       // the split's row j comes from rows_[split_row_[j]]
 
   // This tick's rows (and the previous tick's ids and f, swapped at each tick).
   std::size_t row_count_ = 0;

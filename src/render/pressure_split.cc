@@ -1,0 +1,279 @@
+// SPDX-License-Identifier: Apache-2.0
+// Piecewise-Newton solve of the pressure split's dual (see pressure_split.h).
+#include "mrh/render/pressure_split.h"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "mrh/core/error.h"
+
+namespace mrh::render {
+namespace {
+
+using Vec6 = std::array<double, 6>;
+using Mat6 = Eigen::Matrix<double, 6, 6>;
+
+// The ridge D, relative to the force and torque blocks' traces.
+constexpr double kRidge = 1e-8;
+// Where no lever carries torque (every point at the reference point), the torque block's
+// ridge is that of 1 mm levers, so y stays finite.
+constexpr double kMinLever2 = 1e-6;
+constexpr double kArmijo = 1e-4;
+constexpr int kMaxHalvings = 30;
+
+double Dot(const Vec6& a, const Vec6& b) noexcept {
+  return ((a[0] * b[0] + a[1] * b[1]) + (a[2] * b[2] + a[3] * b[3])) + (a[4] * b[4] + a[5] * b[5]);
+}
+
+Mat3 Skew(const Vec3& v) noexcept {
+  Mat3 m;
+  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
+  return m;
+}
+
+// (S + diag(d)) y with S the lower triangle stored row by row.
+template <typename Sym>
+Vec6 Times(const Sym& h, const Vec6& ridge, const Vec6& y) noexcept {
+  Vec6 out{};
+  std::size_t e = 0;
+  for (std::size_t i = 0; i < 6; ++i) {
+    for (std::size_t j = 0; j < i; ++j, ++e) {
+      out[i] += h[e] * y[j];
+      out[j] += h[e] * y[i];
+    }
+    out[i] += (h[e++] + ridge[i]) * y[i];
+  }
+  return out;
+}
+
+}  // namespace
+
+PressureSplit::PressureSplit(std::size_t capacity, std::size_t plane_capacity) {
+  if (capacity == 0) {
+    throw InvalidArgument("PressureSplit: capacity = 0 rows; expected >= 1");
+  }
+  rows_.resize(capacity);
+  active_.resize(capacity);
+  trial_active_.resize(capacity);
+  planes_.resize(plane_capacity);
+}
+
+void PressureSplit::Begin() noexcept {
+  count_ = 0;
+  plane_count_ = 0;
+  ridge_.fill(0.0);  // holds the traces until Solve
+}
+
+bool PressureSplit::AddRow(const Vec3& a, const Vec3& r, double depth, bool one_sided) noexcept {
+  if (count_ == rows_.size()) return false;
+  const Vec3 c = r.cross(a);
+  Row& row = rows_[count_++];
+  row.w = {a.x(), a.y(), a.z(), c.x(), c.y(), c.z()};
+  row.d = std::max(depth, 1e-12);
+  row.one_sided = one_sided ? 1.0 : 0.0;
+  ridge_[0] += row.d * a.squaredNorm();
+  ridge_[3] += row.d * c.squaredNorm();
+  return true;
+}
+
+int PressureSplit::AddPlane(const Vec3& n) noexcept {
+  if (plane_count_ == planes_.size()) return -1;
+  Plane& plane = planes_[plane_count_];
+  plane.n = n;
+  plane.s0 = 0.0;
+  plane.s1.setZero();
+  plane.s2.fill(0.0);
+  return static_cast<int>(plane_count_++);
+}
+
+void PressureSplit::AddTangentPoint(int p, const Vec3& r, double depth) noexcept {
+  if (p < 0 || static_cast<std::size_t>(p) >= plane_count_) return;
+  Plane& plane = planes_[static_cast<std::size_t>(p)];
+  const double d = std::max(depth, 1e-12);
+  const Vec3 dr = d * r;
+  plane.s0 += d;
+  plane.s1 += dr;
+  plane.s2[0] += dr.x() * r.x();
+  plane.s2[1] += dr.x() * r.y();
+  plane.s2[2] += dr.x() * r.z();
+  plane.s2[3] += dr.y() * r.y();
+  plane.s2[4] += dr.y() * r.z();
+  plane.s2[5] += dr.z() * r.z();
+}
+
+// A plane's Hessian Σ δ Jᵀ P J over its points, J = [I, −[r]×] (u = J y = y_f + y_τ × r):
+// [[Σδ P, −P [s1]×], [[s1]× P, tr(S2) I − S2 − [n]× S2 [n]×ᵀ]]. Adds its traces (those of two
+// tangent rows a point: 2 Σδ and tr(S2) + nᵀ S2 n) to `traces`.
+void PressureSplit::BuildPlane(Plane* plane, Vec6* traces) noexcept {
+  const Vec3& n = plane->n;
+  const auto& q = plane->s2;
+  Mat3 s2;
+  s2 << q[0], q[1], q[2], q[1], q[3], q[4], q[2], q[4], q[5];
+  const Mat3 p = Mat3::Identity() - n * n.transpose();
+  const Mat3 n_x = Skew(n);
+  const Mat3 ff = plane->s0 * p;
+  const Mat3 tf = Skew(plane->s1) * p;
+  const Mat3 tt = s2.trace() * Mat3::Identity() - s2 - n_x * s2 * n_x.transpose();
+  Mat6 m;
+  m << ff, tf.transpose(), tf, tt;
+  std::size_t e = 0;
+  for (int i = 0; i < 6; ++i) {
+    for (int j = 0; j <= i; ++j) plane->h[e++] = m(i, j);
+  }
+  (*traces)[0] += 2.0 * plane->s0;
+  (*traces)[3] += s2.trace() + n.dot(s2 * n);
+}
+
+void PressureSplit::PlaneWrench(int p, Vec3* force, Vec3* moment) const noexcept {
+  if (p < 0 || static_cast<std::size_t>(p) >= plane_count_) {
+    force->setZero();
+    moment->setZero();
+    return;
+  }
+  const Vec6 w = Times(planes_[static_cast<std::size_t>(p)].h, Vec6{}, y_);
+  *force = Vec3(w[0], w[1], w[2]);
+  *moment = Vec3(w[3], w[4], w[5]);
+}
+
+// The hot loop of a solve (21 multiply-adds a row): unrolled.
+void PressureSplit::AddOuter(Sym6* h, const Vec6& w, double d) noexcept {
+  std::size_t e = 0;
+#pragma GCC unroll 6
+  for (std::size_t i = 0; i < 6; ++i) {
+    const double dw = d * w[i];
+#pragma GCC unroll 6
+    for (std::size_t j = 0; j <= i; ++j) (*h)[e++] += dw * w[j];
+  }
+}
+
+// Signs of w_k·y into trial_active_; h (the current piece's H) becomes the trial's by the rows
+// that change sign. Returns how many did.
+std::size_t PressureSplit::Pass(const Vec6& y, Sym6* h) noexcept {
+  std::size_t changes = 0;
+  for (std::size_t k = 0; k < count_; ++k) {
+    const Row& row = rows_[k];
+    const unsigned char on = (row.one_sided == 0.0 || Dot(row.w, y) > 0.0) ? 1 : 0;
+    trial_active_[k] = on;
+    if (on != active_[k]) {
+      AddOuter(h, row.w, on ? row.d : -row.d);
+      ++changes;
+    }
+  }
+  return changes;
+}
+
+// φ(y) on the piece with Hessian h: ½ yᵀ (h + D) y − W·y.
+double PressureSplit::Objective(const Sym6& h, const Vec6& y) const noexcept {
+  return 0.5 * Dot(y, Times(h, ridge_, y)) - Dot(target_, y);
+}
+
+// The piece's minimizer (h + D)⁻¹ W.
+Vec6 PressureSplit::Minimizer(const Sym6& h) const noexcept {
+  Mat6 m;
+  std::size_t e = 0;
+  for (int i = 0; i < 6; ++i) {
+    for (int j = 0; j <= i; ++j, ++e) m(i, j) = m(j, i) = h[e];
+    m(i, i) += ridge_[static_cast<std::size_t>(i)];
+  }
+  const Eigen::Matrix<double, 6, 1> w(target_.data());
+  const Eigen::Matrix<double, 6, 1> y = m.ldlt().solve(w);
+  return {y[0], y[1], y[2], y[3], y[4], y[5]};
+}
+
+PressureSplit::Result PressureSplit::Solve(const Vec3& F, const Vec3& tau, int max_steps) noexcept {
+  Result result;
+  target_ = {F.x(), F.y(), F.z(), tau.x(), tau.y(), tau.z()};
+  // The planes' part of H is the same on every piece.
+  Sym6 base{};
+  for (std::size_t p = 0; p < plane_count_; ++p) {
+    BuildPlane(&planes_[p], &ridge_);
+    for (std::size_t e = 0; e < base.size(); ++e) base[e] += planes_[p].h[e];
+  }
+  {
+    const double force_trace = std::max(ridge_[0], 1e-300);
+    const double torque_trace = std::max(ridge_[3], kMinLever2 * force_trace);
+    for (std::size_t i = 0; i < 3; ++i) {
+      ridge_[i] = kRidge * force_trace;
+      ridge_[i + 3] = kRidge * torque_trace;
+    }
+  }
+  Sym6 h = base;
+  const auto start_cold = [&]() noexcept {
+    h = base;
+    for (std::size_t k = 0; k < count_; ++k) {
+      AddOuter(&h, rows_[k].w, rows_[k].d);
+      active_[k] = 1;
+    }
+    y_ = Minimizer(h);
+  };
+  // The current piece: y's signs and their H.
+  if (has_y_) {
+    std::fill(active_.begin(), active_.begin() + static_cast<std::ptrdiff_t>(count_), 0);
+  } else {
+    start_cold();
+  }
+  (void)Pass(y_, &h);
+  std::swap(active_, trial_active_);
+  ++result.passes;
+  if (has_y_ && std::find(active_.begin(), active_.begin() + static_cast<std::ptrdiff_t>(count_),
+                          1) == active_.begin() + static_cast<std::ptrdiff_t>(count_)) {
+    start_cold();  // the old y presses no row: start afresh
+    (void)Pass(y_, &h);
+    std::swap(active_, trial_active_);
+    ++result.passes;
+  }
+
+  while (result.steps < max_steps) {
+    const Vec6 y_next = Minimizer(h);
+    Vec6 dy, gradient = Times(h, ridge_, y_);
+    for (std::size_t i = 0; i < 6; ++i) {
+      dy[i] = y_next[i] - y_[i];
+      gradient[i] -= target_[i];
+    }
+    const double slope = Dot(gradient, dy);  // −gᵀ(h + D)⁻¹g <= 0
+    if (!(slope < 0.0)) {  // y already minimizes its piece, which no sign change left
+      result.converged = std::isfinite(slope);
+      break;
+    }
+    const double phi = Objective(h, y_);
+    double t = 1.0;
+    Vec6 trial;
+    Sym6 trial_h;
+    std::size_t changes = 0;
+    for (int halving = 0;; ++halving) {
+      for (std::size_t i = 0; i < 6; ++i) trial[i] = y_[i] + t * dy[i];
+      trial_h = h;
+      changes = Pass(trial, &trial_h);
+      ++result.passes;
+      if (Objective(trial_h, trial) <= phi + kArmijo * t * slope || halving == kMaxHalvings) break;
+      t *= 0.5;
+    }
+    y_ = trial;
+    h = trial_h;
+    std::swap(active_, trial_active_);
+    ++result.steps;
+    if (changes == 0 && t == 1.0) {  // the piece's minimizer, and still its piece
+      result.converged = true;
+      break;
+    }
+  }
+  has_y_ = true;
+  for (const double v : y_) has_y_ = has_y_ && std::isfinite(v);
+  if (!has_y_) {
+    y_.fill(0.0);
+    result.converged = false;
+  }
+  for (std::size_t k = 0; k < count_; ++k) result.active += lambda(k) != 0.0 ? 1 : 0;
+  return result;
+}
+
+double PressureSplit::lambda(std::size_t k) const noexcept {
+  if (k >= count_) return 0.0;
+  const Row& row = rows_[k];
+  const double s = Dot(row.w, y_);
+  return row.d * (row.one_sided != 0.0 ? std::max(0.0, s) : s);
+}
+
+}  // namespace mrh::render
