@@ -296,13 +296,17 @@ double LocalContactSolver::RelativeStartVelocity(const Row& r, const Vec3& dir) 
 }
 
 double LocalContactSolver::RelativeVelocity(const Row& r, const Vec3& dir) const noexcept {
+  return dir.dot(RelativeVelocityVector(r));
+}
+
+Vec3 LocalContactSolver::RelativeVelocityVector(const Row& r) const noexcept {
   const Body& A = bodies_[static_cast<std::size_t>(r.c.a)];
   Vec3 v = A.v + A.w.cross(r.rA);
   if (r.c.b >= 0) {
     const Body& B = bodies_[static_cast<std::size_t>(r.c.b)];
     v -= B.v + B.w.cross(r.rB);
   }
-  return dir.dot(v);
+  return v;
 }
 
 void LocalContactSolver::ApplyImpulse(Row& r, const Vec3& P) noexcept {
@@ -328,10 +332,9 @@ double LocalContactSolver::SolveRow(Row& r, bool reverse) noexcept {
   if (r.c.pyramidal) {
     return std::max(change, SolveFrictionBox(r, r.c.mu * ln * std::sqrt(0.5), reverse));
   }
-  double l1 = r.lambda[1] +
-              (r.target[1] - RelativeVelocity(r, r.d[1]) - r.R * r.lambda[1]) * r.inv_w[1];
-  double l2 = r.lambda[2] +
-              (r.target[2] - RelativeVelocity(r, r.d[2]) - r.R * r.lambda[2]) * r.inv_w[2];
+  const Vec3 v = RelativeVelocityVector(r);  // both tangents see the same state
+  double l1 = r.lambda[1] + (r.target[1] - r.d[1].dot(v) - r.R * r.lambda[1]) * r.inv_w[1];
+  double l2 = r.lambda[2] + (r.target[2] - r.d[2].dot(v) - r.R * r.lambda[2]) * r.inv_w[2];
   ProjectOnDisc(r.c.mu * ln, &l1, &l2);
   change = std::max({change, VelocityChange(l1 - r.lambda[1], r.inv_w[1]),
                      VelocityChange(l2 - r.lambda[2], r.inv_w[2])});

@@ -50,19 +50,23 @@ Vec6 Times(const Sym& h, const Vec6& ridge, const Vec6& y) noexcept {
 
 }  // namespace
 
-PressureSplit::PressureSplit(std::size_t capacity, std::size_t plane_capacity) {
+PressureSplit::PressureSplit(std::size_t capacity, std::size_t pair_capacity) {
   if (capacity == 0) {
     throw InvalidArgument("PressureSplit: capacity = 0 rows; expected >= 1");
   }
   rows_.resize(capacity);
   active_.resize(capacity);
   trial_active_.resize(capacity);
-  planes_.resize(plane_capacity);
+  planes_.resize(pair_capacity);
+  group_n_.resize(pair_capacity);
+  moments_.resize(pair_capacity);
+  trial_moments_.resize(pair_capacity);
 }
 
 void PressureSplit::Begin() noexcept {
   count_ = 0;
   plane_count_ = 0;
+  group_count_ = 0;
   ridge_.fill(0.0);  // holds the traces until Solve
 }
 
@@ -72,9 +76,23 @@ bool PressureSplit::AddRow(const Vec3& a, const Vec3& r, double depth, bool one_
   Row& row = rows_[count_++];
   row.w = {a.x(), a.y(), a.z(), c.x(), c.y(), c.z()};
   row.d = std::max(depth, 1e-12);
-  row.one_sided = one_sided ? 1.0 : 0.0;
+  row.group = -1;
+  row.one_sided = one_sided ? 1u : 0u;
   ridge_[0] += row.d * a.squaredNorm();
   ridge_[3] += row.d * c.squaredNorm();
+  return true;
+}
+
+int PressureSplit::AddGroup(const Vec3& n) noexcept {
+  if (group_count_ == group_n_.size()) return -1;
+  group_n_[group_count_] = n;
+  return static_cast<int>(group_count_++);
+}
+
+bool PressureSplit::AddGroupRow(int g, const Vec3& r, double depth) noexcept {
+  if (g < 0 || static_cast<std::size_t>(g) >= group_count_) return false;
+  if (!AddRow(group_n_[static_cast<std::size_t>(g)], r, depth)) return false;
+  rows_[count_ - 1].group = g;
   return true;
 }
 
@@ -148,16 +166,58 @@ void PressureSplit::AddOuter(Sym6* h, const Vec6& w, double d) noexcept {
   }
 }
 
-// Signs of w_k·y into trial_active_; h (the current piece's H) becomes the trial's by the rows
-// that change sign. Returns how many did.
-std::size_t PressureSplit::Pass(const Vec6& y, Sym6* h) noexcept {
+// Row k into (sign +1) or out of (−1) a piece's H: its group's moments, or h itself.
+void PressureSplit::AddRowTo(std::size_t k, double sign, Sym6* h, Moments* moments) const noexcept {
+  const Row& row = rows_[k];
+  const double d = sign * row.d;
+  if (row.group < 0) {
+    AddOuter(h, row.w, d);
+    return;
+  }
+  Moments& m = moments[static_cast<std::size_t>(row.group)];
+  const double c0 = row.w[3], c1 = row.w[4], c2 = row.w[5];
+  m.s0 += d;
+  m.sc[0] += d * c0;
+  m.sc[1] += d * c1;
+  m.sc[2] += d * c2;
+  m.cc[0] += d * c0 * c0;
+  m.cc[1] += d * c0 * c1;
+  m.cc[2] += d * c0 * c2;
+  m.cc[3] += d * c1 * c1;
+  m.cc[4] += d * c1 * c2;
+  m.cc[5] += d * c2 * c2;
+}
+
+// Σ over a group's rows of δ w wᵀ, w = (n, c): [[s0 n nᵀ, n scᵀ], [sc nᵀ, Σδ c cᵀ]].
+PressureSplit::Sym6 PressureSplit::Assembled(const Sym6& h, const Moments* moments) const noexcept {
+  Sym6 out = h;
+  for (std::size_t g = 0; g < group_count_; ++g) {
+    const Moments& m = moments[g];
+    const Vec3& n = group_n_[g];
+    const double nn[3] = {n.x(), n.y(), n.z()};
+    std::size_t e = 0;
+    for (std::size_t i = 0; i < 3; ++i) {  // force block
+      for (std::size_t j = 0; j <= i; ++j) out[e++] += m.s0 * nn[i] * nn[j];
+    }
+    static constexpr std::size_t kCc[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
+    for (std::size_t i = 0; i < 3; ++i) {  // torque rows: sc_i nᵀ, then Σδ c_i c_j
+      for (std::size_t j = 0; j < 3; ++j) out[e++] += m.sc[i] * nn[j];
+      for (std::size_t j = 0; j <= i; ++j) out[e++] += m.cc[kCc[i][j]];
+    }
+  }
+  return out;
+}
+
+// Signs of w_k·y into trial_active_; (h, moments), the current piece's H, become the trial's by
+// the rows that change sign. Returns how many did.
+std::size_t PressureSplit::Pass(const Vec6& y, Sym6* h, Moments* moments) noexcept {
   std::size_t changes = 0;
   for (std::size_t k = 0; k < count_; ++k) {
     const Row& row = rows_[k];
-    const unsigned char on = (row.one_sided == 0.0 || Dot(row.w, y) > 0.0) ? 1 : 0;
+    const unsigned char on = (row.one_sided == 0u || Dot(row.w, y) > 0.0) ? 1 : 0;
     trial_active_[k] = on;
     if (on != active_[k]) {
-      AddOuter(h, row.w, on ? row.d : -row.d);
+      AddRowTo(k, on ? 1.0 : -1.0, h, moments);
       ++changes;
     }
   }
@@ -199,14 +259,20 @@ PressureSplit::Result PressureSplit::Solve(const Vec3& F, const Vec3& tau, int m
       ridge_[i + 3] = kRidge * torque_trace;
     }
   }
+  // The current piece's H is Assembled(h, moments_).
   Sym6 h = base;
+  const auto clear_moments = [&](std::vector<Moments>* m) noexcept {
+    std::fill(m->begin(), m->begin() + static_cast<std::ptrdiff_t>(group_count_), Moments{});
+  };
+  clear_moments(&moments_);
   const auto start_cold = [&]() noexcept {
     h = base;
+    clear_moments(&moments_);
     for (std::size_t k = 0; k < count_; ++k) {
-      AddOuter(&h, rows_[k].w, rows_[k].d);
+      AddRowTo(k, 1.0, &h, moments_.data());
       active_[k] = 1;
     }
-    y_ = Minimizer(h);
+    y_ = Minimizer(Assembled(h, moments_.data()));
   };
   // The current piece: y's signs and their H.
   if (has_y_) {
@@ -214,20 +280,21 @@ PressureSplit::Result PressureSplit::Solve(const Vec3& F, const Vec3& tau, int m
   } else {
     start_cold();
   }
-  (void)Pass(y_, &h);
+  (void)Pass(y_, &h, moments_.data());
   std::swap(active_, trial_active_);
   ++result.passes;
   if (has_y_ && std::find(active_.begin(), active_.begin() + static_cast<std::ptrdiff_t>(count_),
                           1) == active_.begin() + static_cast<std::ptrdiff_t>(count_)) {
     start_cold();  // the old y presses no row: start afresh
-    (void)Pass(y_, &h);
+    (void)Pass(y_, &h, moments_.data());
     std::swap(active_, trial_active_);
     ++result.passes;
   }
 
   while (result.steps < max_steps) {
-    const Vec6 y_next = Minimizer(h);
-    Vec6 dy, gradient = Times(h, ridge_, y_);
+    const Sym6 full = Assembled(h, moments_.data());
+    const Vec6 y_next = Minimizer(full);
+    Vec6 dy, gradient = Times(full, ridge_, y_);
     for (std::size_t i = 0; i < 6; ++i) {
       dy[i] = y_next[i] - y_[i];
       gradient[i] -= target_[i];
@@ -237,7 +304,7 @@ PressureSplit::Result PressureSplit::Solve(const Vec3& F, const Vec3& tau, int m
       result.converged = std::isfinite(slope);
       break;
     }
-    const double phi = Objective(h, y_);
+    const double phi = Objective(full, y_);
     double t = 1.0;
     Vec6 trial;
     Sym6 trial_h;
@@ -245,13 +312,15 @@ PressureSplit::Result PressureSplit::Solve(const Vec3& F, const Vec3& tau, int m
     for (int halving = 0;; ++halving) {
       for (std::size_t i = 0; i < 6; ++i) trial[i] = y_[i] + t * dy[i];
       trial_h = h;
-      changes = Pass(trial, &trial_h);
+      std::copy_n(moments_.begin(), group_count_, trial_moments_.begin());
+      changes = Pass(trial, &trial_h, trial_moments_.data());
       ++result.passes;
-      if (Objective(trial_h, trial) <= phi + kArmijo * t * slope || halving == kMaxHalvings) break;
+      if (Objective(Assembled(trial_h, trial_moments_.data()), trial) <= phi + kArmijo * t * slope || halving == kMaxHalvings) break;
       t *= 0.5;
     }
     y_ = trial;
     h = trial_h;
+    std::swap(moments_, trial_moments_);
     std::swap(active_, trial_active_);
     ++result.steps;
     if (changes == 0 && t == 1.0) {  // the piece's minimizer, and still its piece
@@ -273,7 +342,7 @@ double PressureSplit::lambda(std::size_t k) const noexcept {
   if (k >= count_) return 0.0;
   const Row& row = rows_[k];
   const double s = Dot(row.w, y_);
-  return row.d * (row.one_sided != 0.0 ? std::max(0.0, s) : s);
+  return row.d * (row.one_sided != 0u ? std::max(0.0, s) : s);
 }
 
 }  // namespace mrh::render

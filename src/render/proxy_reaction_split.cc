@@ -35,15 +35,24 @@ void ProxyRenderer::SplitAcrossPairs(const TickIr& ir, std::size_t touched,
   // way in its pair's plane (its cone is the solver's business, not the split's): a two-sided
   // tangent plane per pair in place of a one-sided row along the slip, whose clipping otherwise
   // flips with the rubbing direction and leaves the split many Newton steps.
-  std::array<int, ir::kMaxGeometricPairs> plane{};
+  std::array<int, ir::kMaxGeometricPairs> plane{}, group{};
   plane.fill(-1);
+  group.fill(-1);
+  std::array<Vec3, ir::kMaxGeometricPairs> group_n;
   split_.Begin();
   for (std::size_t k = 0; k < row_count_; ++k) {
     const double depth = ir.points[static_cast<std::size_t>(info_[k].point)].depth;
     const auto i = static_cast<std::size_t>(info_[k].pair);
-    if (info_[k].kind == ProxyRowKind::kNormal) {
+    if (info_[k].kind == ProxyRowKind::kNormal) {  // a pair's normal rows share its normal
       split_row_[split_.size()] = static_cast<int>(k);
-      (void)split_.AddRow(rows_[k].a, rows_[k].r, depth);
+      if (group[i] < 0) {
+        group[i] = split_.AddGroup(rows_[k].a);
+        group_n[i] = rows_[k].a;
+      }
+      if (group[i] < 0 || rows_[k].a != group_n[i] ||
+          !split_.AddGroupRow(group[i], rows_[k].r, depth)) {
+        (void)split_.AddRow(rows_[k].a, rows_[k].r, depth);
+      }
       continue;
     }
     if (plane[i] < 0) plane[i] = split_.AddPlane(ir.pairs[i].n_W);

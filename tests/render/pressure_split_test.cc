@@ -195,8 +195,9 @@ TEST(PressureSplit, TwoSidedTangentRowsCarrySidewaysForcesEitherWay) {
 }
 
 // A tangent plane is two two-sided rows along orthonormal tangents at each of its points,
-// summed: two tilted patches with their own normals, loaded both ways, give the same normal λ
-// and the same per-patch tangential wrench (and that wrench lies in the plane).
+// summed, and a normal group is its rows: two tilted patches with their own normals, loaded
+// both ways, give the same normal λ and the same per-patch tangential wrench (and that wrench
+// lies in the plane), with the normals as plain rows and as groups.
 TEST(PressureSplit, ATangentPlaneIsTwoTangentRowsAPoint) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -220,7 +221,7 @@ TEST(PressureSplit, ATangentPlaneIsTwoTangentRowsAPoint) {
     rows.push_back({t1, rows[k].r, rows[k].depth, false});
     rows.push_back({n.cross(t1), rows[k].r, rows[k].depth, false});
   }
-  PressureSplit explicit_rows(rows.size()), planes(normal_rows, 2);
+  PressureSplit explicit_rows(rows.size()), planes(normal_rows, 2), grouped(normal_rows, 2);
   for (int trial = 0; trial < 20; ++trial) {
     Load(rows, &explicit_rows);
     planes.Begin();
@@ -229,14 +230,24 @@ TEST(PressureSplit, ATangentPlaneIsTwoTangentRowsAPoint) {
       ASSERT_TRUE(planes.AddRow(rows[k].a, rows[k].r, rows[k].depth));
       planes.AddTangentPoint(plane[patch_of[k]], rows[k].r, rows[k].depth);
     }
+    grouped.Begin();
+    const int group[2] = {grouped.AddGroup(normals[0]), grouped.AddGroup(normals[1])};
+    const int grouped_plane[2] = {grouped.AddPlane(normals[0]), grouped.AddPlane(normals[1])};
+    for (std::size_t k = 0; k < normal_rows; ++k) {
+      ASSERT_TRUE(grouped.AddGroupRow(group[patch_of[k]], rows[k].r, rows[k].depth));
+      grouped.AddTangentPoint(grouped_plane[patch_of[k]], rows[k].r, rows[k].depth);
+    }
     const Vec3 f(u(rng), u(rng), 3.0 + u(rng));
     const Vec3 tau = Vec3(0.03 + 0.03 * u(rng), 0.02 * u(rng), 0.02).cross(f);
     ASSERT_TRUE(explicit_rows.Solve(f, tau).converged) << "trial " << trial;
     ASSERT_TRUE(planes.Solve(f, tau).converged) << "trial " << trial;
+    ASSERT_TRUE(grouped.Solve(f, tau).converged) << "trial " << trial;
     double scale = 0.0;
     for (std::size_t k = 0; k < normal_rows; ++k) scale = std::max(scale, explicit_rows.lambda(k));
     for (std::size_t k = 0; k < normal_rows; ++k) {
       EXPECT_NEAR(planes.lambda(k), explicit_rows.lambda(k), 1e-9 * scale) << "trial " << trial;
+      EXPECT_NEAR(grouped.lambda(k), explicit_rows.lambda(k), 1e-9 * scale) << "trial " << trial;
+      EXPECT_EQ(grouped.direction(k), rows[k].a);
     }
     Vec3 total_f = Vec3::Zero(), total_tau = Vec3::Zero();
     for (int patch = 0; patch < 2; ++patch) {
@@ -261,6 +272,8 @@ TEST(PressureSplit, ATangentPlaneIsTwoTangentRowsAPoint) {
     EXPECT_LT((total_tau - tau).norm(), 1e-7) << "trial " << trial;
   }
   EXPECT_EQ(planes.AddPlane(Vec3::UnitZ()), -1);  // capacity 2
+  EXPECT_EQ(grouped.AddGroup(Vec3::UnitZ()), -1);
+  EXPECT_FALSE(grouped.AddGroupRow(5, Vec3::Zero(), 1e-3));
 }
 
 // Successive ticks: the warm start gives the cold start's answer in fewer passes.

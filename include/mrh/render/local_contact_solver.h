@@ -132,6 +132,7 @@ class LocalContactSolver {
   double RelativeStartVelocity(const Row& r, const Vec3& dir) const noexcept;
   void ApplyImpulse(Row& r, const Vec3& P) noexcept;
   double RelativeVelocity(const Row& r, const Vec3& dir) const noexcept;
+  Vec3 RelativeVelocityVector(const Row& r) const noexcept;  // v_A − v_B at the contact (m/s)
   double SolveRow(Row& r, bool reverse) noexcept;
   double SolveFrictionBox(Row& r, double limit, bool reverse) noexcept;
   bool Finish(double dt) noexcept;

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "mrh/core/spatial.h"
@@ -43,9 +44,9 @@ class PressureSplit {
     std::size_t active = 0;  ///< rows with λ > 0
   };
 
-  /// Room for `capacity` rows (>= 1) and `plane_capacity` tangent planes. Throws
-  /// InvalidArgument for capacity 0.
-  explicit PressureSplit(std::size_t capacity, std::size_t plane_capacity = 0);
+  /// Room for `capacity` rows (>= 1), `pair_capacity` tangent planes and as many normal groups.
+  /// Throws InvalidArgument for capacity 0.
+  explicit PressureSplit(std::size_t capacity, std::size_t pair_capacity = 0);
 
   /// Forgets the warm start (next Solve starts from the unclipped solution).
   void Reset() noexcept { has_y_ = false; }
@@ -56,6 +57,15 @@ class PressureSplit {
   /// to 1e-12). A one-sided row (a normal) only pushes, λ >= 0; a two-sided one (a tangent of
   /// a point with friction, whose force may point either way) has λ of either sign, λ = δ w·y.
   bool AddRow(const Vec3& a, const Vec3& r, double depth, bool one_sided = true) noexcept;
+
+  /// Starts a group of one-sided rows along one shared unit direction n (a pair's normal);
+  /// returns its index, or -1 when the pair capacity is reached. Its rows (AddGroupRow) are
+  /// rows like AddRow's, but the solve keeps their part of H as the group's moments Σδ, Σδ c,
+  /// Σδ c cᵀ of c = r × n (10 multiply-adds a sign change instead of 21).
+  int AddGroup(const Vec3& n) noexcept;
+  /// AddRow(n of group g, r, depth) in group g (false, and nothing added, for an invalid g or
+  /// a full split).
+  bool AddGroupRow(int g, const Vec3& r, double depth) noexcept;
 
   /// Starts a tangent plane ⊥ the unit normal n (returns its index, or -1 when the plane
   /// capacity is reached). Points added to it take a force of either sign anywhere in the plane,
@@ -87,7 +97,15 @@ class PressureSplit {
   struct Row {
     std::array<double, 6> w;  // (a, r × a)
     double d;
-    double one_sided;  // 1 or 0 (a double: one 64-byte line per row)
+    std::int32_t group;       // normal group, or -1
+    std::uint32_t one_sided;  // 1 or 0 (one 64-byte line per row)
+  };
+  // A normal group's part of H on a piece: Σδ, Σδ c, Σδ c cᵀ (xx, xy, xz, yy, yz, zz) over
+  // its active rows, c = r × n.
+  struct Moments {
+    double s0;
+    std::array<double, 3> sc;
+    std::array<double, 6> cc;
   };
   using Sym6 = std::array<double, 21>;  // lower triangle, row by row
 
@@ -102,13 +120,19 @@ class PressureSplit {
   static void BuildPlane(Plane* plane, std::array<double, 6>* traces) noexcept;
   static void AddOuter(Sym6* h, const std::array<double, 6>& w, double d) noexcept;
   // Pass at y_trial: signs into trial_active_, H of the trial from h_ by the sign changes.
-  std::size_t Pass(const std::array<double, 6>& y, Sym6* h) noexcept;
+  std::size_t Pass(const std::array<double, 6>& y, Sym6* h, Moments* moments) noexcept;
+  void AddRowTo(std::size_t k, double sign, Sym6* h, Moments* moments) const noexcept;
+  // h plus the groups' parts.
+  Sym6 Assembled(const Sym6& h, const Moments* moments) const noexcept;
   double Objective(const Sym6& h, const std::array<double, 6>& y) const noexcept;
   std::array<double, 6> Minimizer(const Sym6& h) const noexcept;
 
   std::vector<Row> rows_;
   std::vector<unsigned char> active_, trial_active_;
   std::vector<Plane> planes_;
+  std::vector<Vec3> group_n_;
+  std::vector<Moments> moments_, trial_moments_;
+  std::size_t group_count_ = 0;
   std::size_t count_ = 0;
   std::size_t plane_count_ = 0;
   std::array<double, 6> target_{};
