@@ -268,6 +268,11 @@ int RunT36(const std::filesystem::path& out, bool quiet) {
   for (const char* bar : {"force", "sd", "position", "spin"}) {
     checks.Add(fmt::format("face_local_dynamics_6dof_{}", bar), face[bar].get<bool>());
   }
+  // And proxy-6dof at 20 ms flings nothing in any case (peak speed below 2x the reference's).
+  for (const Case& c : kCases) {
+    checks.Add(fmt::format("{}_proxy_6dof_20ms_no_fling", c.name),
+               summary["cases"][c.name]["proxy-6dof@20ms"]["bars"]["no_fling"].get<bool>());
+  }
   WriteText(out / "t3_6.csv", tables.csv.Csv());
   WriteText(out / "t3_6.md", tables.md.Markdown());
   Plot(out, "t3_6", PlotScript(), quiet);

@@ -6,18 +6,9 @@
 #include <chrono>
 
 #include "mrh/world/world.h"
+#include "pointer_ahead.h"
 
 namespace mrh::physics::internal {
-namespace {
-
-// The pointer `t` seconds after the report: its pose moved on with its velocity.
-Pose PointerAhead(const ir::HapticReport& report, double t) {
-  return Pose{
-      report.X_WP.p + t * report.V_WP.v,
-      (QuatFromRotationVector(t * report.V_WP.w) * report.X_WP.q.normalized()).normalized()};
-}
-
-}  // namespace
 
 LocalDynamics6dofPhysics::LocalDynamics6dofPhysics(const MethodContext& context)
     : world_(context.world),

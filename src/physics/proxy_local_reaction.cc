@@ -6,18 +6,25 @@
 #include <cmath>
 
 #include "mrh/world/world.h"
+#include "pointer_ahead.h"
 
 namespace mrh::physics::internal {
 
-ProxyLocalReaction::ProxyLocalReaction(const world::World& world, int pointer_body,
+ProxyLocalReaction::ProxyLocalReaction(world::World& world, int pointer_body,
                                        const engine::RenderingSettings& rendering,
                                        const render::ProxyRendererSettings& settings,
                                        double physics_dt, double haptic_dt)
-    : builder_(world, pointer_body, rendering),
+    : exporter_(&world),
+      model_(std::make_unique<ir::LocalContactModel>()),
+      builder_(world, pointer_body, rendering),
       snapshot_(std::make_unique<ir::PhysicsSnapshot>()),
       renderer_(settings),
       physics_dt_(physics_dt),
-      substeps_(std::max(1, static_cast<int>(std::lround(physics_dt / haptic_dt)))) {}
+      substeps_(std::max(1, static_cast<int>(std::lround(physics_dt / haptic_dt)))) {
+  const auto capacity = static_cast<std::size_t>(world.num_bodies());
+  seeds_.reserve(capacity);
+  motions_.reserve(capacity);
+}
 
 ProxyLocalReaction::LocalBody* ProxyLocalReaction::Find(int body) {
   for (LocalBody& b : bodies_) {
@@ -64,6 +71,27 @@ void ProxyLocalReaction::StartBodies(const world::World& world) {
   }
 }
 
+// The touched free bodies' contact island into solver_, from the world as it is now.
+void ProxyLocalReaction::StartIsland() {
+  seeds_.clear();
+  motions_.clear();
+  for (const LocalBody& b : bodies_) {
+    if (!exporter_.IsFreeBody(b.body)) continue;
+    seeds_.push_back(b.body);
+    motions_.push_back(static_cast<int>(motions_.size()));
+  }
+  solver_.Clear();
+  if (seeds_.empty()) return;
+  (void)exporter_.Export(seeds_, motions_, model_.get());
+  solver_.Adopt(*model_);
+  for (LocalBody& b : bodies_) {
+    b.local = -1;
+    for (std::size_t i = 0; i < solver_.size(); ++i) {
+      if (solver_.world_body(i) == b.body) b.local = static_cast<int>(i);
+    }
+  }
+}
+
 // ir_ = base_ with every touched object at its local pose and the points at pointer pose X_WP.
 void ProxyLocalReaction::PoseIr(const Pose& X_WP) {
   ir_ = base_;
@@ -100,12 +128,29 @@ void ProxyLocalReaction::Substep(double h, const Pose& X_WP) {
     b.last_force = w.f;
     b.impulse.f += w.f * h;
     b.impulse.tau += (w.tau + (b.com - b.com0).cross(w.f)) * h;
+    if (b.local >= 0) {
+      const auto i = static_cast<std::size_t>(b.local);
+      solver_.AddForce(i, w.f, b.com);
+      solver_.AddTorque(i, w.tau);
+      island_touched_ = island_touched_ || !(w.f.isZero(0.0) && w.tau.isZero(0.0));
+      continue;
+    }
     const Mat3 R = b.q.toRotationMatrix();
     const Mat3 inertia_W = R * b.inertia_B * R.transpose();
     b.v += h * (w.f / b.mass + b.a_other);
     b.w += h * (inertia_W.inverse() * w.tau + b.alpha_other);
     b.com += h * b.v;
     b.q = (QuatFromRotationVector(h * b.w) * b.q).normalized();
+  }
+  if (solver_.size() == 0) return;
+  (void)solver_.Step(h);  // a non-finite body is held (LocalContactSolver::Step)
+  for (LocalBody& b : bodies_) {
+    if (b.local < 0) continue;
+    const auto i = static_cast<std::size_t>(b.local);
+    b.com = solver_.p_WCm(i);
+    b.q = solver_.X_WB(i).q.normalized();
+    b.v = solver_.V_WCm(i).v;
+    b.w = solver_.V_WCm(i).w;
   }
 }
 
@@ -131,6 +176,14 @@ void ProxyLocalReaction::Finish(world::World& world) {
   memory_.Clear();
   for (const LocalBody& b : bodies_) {
     const bool touched = !(b.impulse.f.isZero(0.0) && b.impulse.tau.isZero(0.0));
+    if (b.local >= 0) {  // AfterStep sets it (and its island): the world receives the reaction
+      if (touched) {
+        proxy_.AddImpulse(b.body, b.impulse.f, b.impulse.tau, b.last_force);
+        applied_.AddImpulse(b.body, b.impulse.f, b.impulse.tau, b.last_force);
+      }
+      (void)memory_.PushBack(BodyMemory{b.body, b.v, b.w, Wrench{}});
+      continue;
+    }
     const Wrench J = touched ? DisplacementImpulse(b) : Wrench{};
     const world::BodyState state = world.body_state(b.body);
     (void)memory_.PushBack(BodyMemory{b.body, state.V_WCm.v, state.V_WCm.w, J});
@@ -145,11 +198,7 @@ void ProxyLocalReaction::Apply(world::World& world, const ir::HapticReport& repo
   pointer_impulse_ = Wrench{};
   pointer_origin_ = report.X_WP.p;
   // The pointer during this step: the report's pose moved on with the report's velocity.
-  const Quat q_WP = report.X_WP.q.normalized();
-  const auto pointer_at = [&](double t) {
-    return Pose{report.X_WP.p + t * report.V_WP.v,
-                (QuatFromRotationVector(t * report.V_WP.w) * q_WP).normalized()};
-  };
+  const auto pointer_at = [&](double t) { return PointerAhead(report, t); };
   // The IR of the objects as they are now, for the pointer where it will be at the step's end,
   // so the contact points cover the region it will penetrate (the snapshot's IR, built for the
   // report's pose, may hold only a closest point when the pointer is just arriving).
@@ -160,9 +209,18 @@ void ProxyLocalReaction::Apply(world::World& world, const ir::HapticReport& repo
   interpolator_.Adopt(*snapshot_);
   interpolator_.Evaluate(1.0, X_WP_end, &base_);
   StartBodies(world);
+  StartIsland();
+  island_touched_ = false;
   const double h = physics_dt_ / substeps_;
   for (int s = 0; s < substeps_; ++s) Substep(h, pointer_at((s + 1) * h));
   Finish(world);
+}
+
+void ProxyLocalReaction::AfterStep(world::World& world) {
+  if (!island_touched_) return;
+  for (std::size_t i = 0; i < solver_.size(); ++i) {
+    (void)world.SetBodyState(solver_.world_body(i), solver_.X_WB(i), solver_.V_WCm(i));
+  }
 }
 
 }  // namespace mrh::physics::internal

@@ -71,6 +71,11 @@ class LocalContactSolver {
 
   /// Adds force f_W (N, world) at p_W (m, world) on local body i for the next Step(). RT-safe.
   void AddForce(std::size_t i, const Vec3& f_W, const Vec3& p_W) noexcept;
+  /// Adds a pure moment tau_W (N·m, world) on local body i for the next Step(). RT-safe.
+  void AddTorque(std::size_t i, const Vec3& tau_W) noexcept {
+    bodies_[i].pushed = true;
+    bodies_[i].tau += tau_W;
+  }
 
   /// Advances one tick of dt (s). Returns false if a state became non-finite: that body is
   /// then kept at its pose with zero twist. RT-safe.
