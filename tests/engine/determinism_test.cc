@@ -67,6 +67,8 @@ TEST(DeterminismTest, LockstepTraceMatchesGoldenHash) {
   // when the island pairs took the renderer's wrench (was: the force at the f_k centre of
   // pressure).
   EXPECT_EQ(PushHash("local-dynamics-6dof"), 8266108435880990875ull);
+  // proxy-6dof's "local" reaction through the box's contact island (stop 27).
+  EXPECT_EQ(PushHash("proxy-6dof"), 14868773309384318601ull);
 }
 
 }  // namespace
