@@ -84,8 +84,7 @@ void ProxyLocalReaction::StartIsland() {
   if (seeds_.empty()) return;
   (void)exporter_.Export(seeds_, motions_, model_.get());
   solver_.Adopt(*model_);
-  for (LocalBody& b : bodies_) {
-    b.local = -1;
+  for (LocalBody& b : bodies_) {  // local is -1 from StartBodies
     for (std::size_t i = 0; i < solver_.size(); ++i) {
       if (solver_.world_body(i) == b.body) b.local = static_cast<int>(i);
     }

@@ -100,25 +100,14 @@ int PressureSplit::AddPlane(const Vec3& n) noexcept {
   if (plane_count_ == planes_.size()) return -1;
   Plane& plane = planes_[plane_count_];
   plane.n = n;
-  plane.s0 = 0.0;
-  plane.s1.setZero();
-  plane.s2.fill(0.0);
+  plane.r = Moments{};
   return static_cast<int>(plane_count_++);
 }
 
 void PressureSplit::AddTangentPoint(int p, const Vec3& r, double depth) noexcept {
   if (p < 0 || static_cast<std::size_t>(p) >= plane_count_) return;
   Plane& plane = planes_[static_cast<std::size_t>(p)];
-  const double d = std::max(depth, 1e-12);
-  const Vec3 dr = d * r;
-  plane.s0 += d;
-  plane.s1 += dr;
-  plane.s2[0] += dr.x() * r.x();
-  plane.s2[1] += dr.x() * r.y();
-  plane.s2[2] += dr.x() * r.z();
-  plane.s2[3] += dr.y() * r.y();
-  plane.s2[4] += dr.y() * r.z();
-  plane.s2[5] += dr.z() * r.z();
+  plane.r.Add(std::max(depth, 1e-12), r.x(), r.y(), r.z());
 }
 
 // A plane's Hessian Σ δ Jᵀ P J over its points, J = [I, −[r]×] (u = J y = y_f + y_τ × r):
@@ -126,13 +115,14 @@ void PressureSplit::AddTangentPoint(int p, const Vec3& r, double depth) noexcept
 // tangent rows a point: 2 Σδ and tr(S2) + nᵀ S2 n) to `traces`.
 void PressureSplit::BuildPlane(Plane* plane, Vec6* traces) noexcept {
   const Vec3& n = plane->n;
-  const auto& q = plane->s2;
+  const Moments& levers = plane->r;
+  const auto& q = levers.s2;
   Mat3 s2;
   s2 << q[0], q[1], q[2], q[1], q[3], q[4], q[2], q[4], q[5];
   const Mat3 p = Mat3::Identity() - n * n.transpose();
   const Mat3 n_x = Skew(n);
-  const Mat3 ff = plane->s0 * p;
-  const Mat3 tf = Skew(plane->s1) * p;
+  const Mat3 ff = levers.s0 * p;
+  const Mat3 tf = Skew(Vec3(levers.s1[0], levers.s1[1], levers.s1[2])) * p;
   const Mat3 tt = s2.trace() * Mat3::Identity() - s2 - n_x * s2 * n_x.transpose();
   Mat6 m;
   m << ff, tf.transpose(), tf, tt;
@@ -140,7 +130,7 @@ void PressureSplit::BuildPlane(Plane* plane, Vec6* traces) noexcept {
   for (int i = 0; i < 6; ++i) {
     for (int j = 0; j <= i; ++j) plane->h[e++] = m(i, j);
   }
-  (*traces)[0] += 2.0 * plane->s0;
+  (*traces)[0] += 2.0 * levers.s0;
   (*traces)[3] += s2.trace() + n.dot(s2 * n);
 }
 
@@ -174,21 +164,10 @@ void PressureSplit::AddRowTo(std::size_t k, double sign, Sym6* h, Moments* momen
     AddOuter(h, row.w, d);
     return;
   }
-  Moments& m = moments[static_cast<std::size_t>(row.group)];
-  const double c0 = row.w[3], c1 = row.w[4], c2 = row.w[5];
-  m.s0 += d;
-  m.sc[0] += d * c0;
-  m.sc[1] += d * c1;
-  m.sc[2] += d * c2;
-  m.cc[0] += d * c0 * c0;
-  m.cc[1] += d * c0 * c1;
-  m.cc[2] += d * c0 * c2;
-  m.cc[3] += d * c1 * c1;
-  m.cc[4] += d * c1 * c2;
-  m.cc[5] += d * c2 * c2;
+  moments[static_cast<std::size_t>(row.group)].Add(d, row.w[3], row.w[4], row.w[5]);
 }
 
-// Σ over a group's rows of δ w wᵀ, w = (n, c): [[s0 n nᵀ, n scᵀ], [sc nᵀ, Σδ c cᵀ]].
+// Σ over a group's rows of δ w wᵀ, w = (n, c): [[s0 n nᵀ, n s1ᵀ], [s1 nᵀ, s2]].
 PressureSplit::Sym6 PressureSplit::Assembled(const Sym6& h, const Moments* moments) const noexcept {
   Sym6 out = h;
   for (std::size_t g = 0; g < group_count_; ++g) {
@@ -199,17 +178,16 @@ PressureSplit::Sym6 PressureSplit::Assembled(const Sym6& h, const Moments* momen
     for (std::size_t i = 0; i < 3; ++i) {  // force block
       for (std::size_t j = 0; j <= i; ++j) out[e++] += m.s0 * nn[i] * nn[j];
     }
-    static constexpr std::size_t kCc[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
-    for (std::size_t i = 0; i < 3; ++i) {  // torque rows: sc_i nᵀ, then Σδ c_i c_j
-      for (std::size_t j = 0; j < 3; ++j) out[e++] += m.sc[i] * nn[j];
-      for (std::size_t j = 0; j <= i; ++j) out[e++] += m.cc[kCc[i][j]];
+    static constexpr std::size_t kS2[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
+    for (std::size_t i = 0; i < 3; ++i) {  // torque rows: s1_i nᵀ, then Σδ c_i c_j
+      for (std::size_t j = 0; j < 3; ++j) out[e++] += m.s1[i] * nn[j];
+      for (std::size_t j = 0; j <= i; ++j) out[e++] += m.s2[kS2[i][j]];
     }
   }
   return out;
 }
 
-// Signs of w_k·y into trial_active_; (h, moments), the current piece's H, become the trial's by
-// the rows that change sign. Returns how many did.
+// Returns how many rows changed sign (see the header).
 std::size_t PressureSplit::Pass(const Vec6& y, Sym6* h, Moments* moments) noexcept {
   std::size_t changes = 0;
   for (std::size_t k = 0; k < count_; ++k) {

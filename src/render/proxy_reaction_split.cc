@@ -38,18 +38,14 @@ void ProxyRenderer::SplitAcrossPairs(const TickIr& ir, std::size_t touched,
   std::array<int, ir::kMaxGeometricPairs> plane{}, group{};
   plane.fill(-1);
   group.fill(-1);
-  std::array<Vec3, ir::kMaxGeometricPairs> group_n;
   split_.Begin();
   for (std::size_t k = 0; k < row_count_; ++k) {
     const double depth = ir.points[static_cast<std::size_t>(info_[k].point)].depth;
     const auto i = static_cast<std::size_t>(info_[k].pair);
     if (info_[k].kind == ProxyRowKind::kNormal) {  // a pair's normal rows share its normal
       split_row_[split_.size()] = static_cast<int>(k);
-      if (group[i] < 0) {
-        group[i] = split_.AddGroup(rows_[k].a);
-        group_n[i] = rows_[k].a;
-      }
-      if (group[i] < 0 || rows_[k].a != group_n[i] ||
+      if (group[i] < 0) group[i] = split_.AddGroup(rows_[k].a);
+      if (group[i] < 0 || rows_[k].a != split_.group_direction(group[i]) ||
           !split_.AddGroupRow(group[i], rows_[k].r, depth)) {
         (void)split_.AddRow(rows_[k].a, rows_[k].r, depth);
       }

@@ -36,6 +36,17 @@ std::vector<Point> Patch(int n, double h, double z, double depth) {
   return points;
 }
 
+// Patch(n, h, 0, depth_a) and Patch(n, h, 0, depth_b) moved by `offset`.
+std::vector<Point> TwoPatches(int n, double h, double depth_a, double depth_b,
+                              const Vec3& offset) {
+  auto points = Patch(n, h, 0.0, depth_a);
+  for (auto& p : Patch(n, h, 0.0, depth_b)) {
+    p.r += offset;
+    points.push_back(p);
+  }
+  return points;
+}
+
 void Load(const std::vector<Point>& points, PressureSplit* split) {
   split->Begin();
   for (const Point& p : points) ASSERT_TRUE(split->AddRow(p.a, p.r, p.depth, p.one_sided));
@@ -140,11 +151,7 @@ TEST(PressureSplit, APatchPartlyLiftsOffUnderALargeMoment) {
 TEST(PressureSplit, RandomWrenchesOverTwoPatchesMeetTheOptimalityConditions) {
   std::mt19937 rng(14);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  auto points = Patch(6, 0.04, 0.0, 1e-3);
-  for (auto& p : Patch(6, 0.04, 0.0, 2e-3)) {
-    p.r += Vec3(0.15, 0.02, 0.01);
-    points.push_back(p);
-  }
+  auto points = TwoPatches(6, 0.04, 1e-3, 2e-3, Vec3(0.15, 0.02, 0.01));
   const std::size_t normals = points.size();
   for (std::size_t k = 0; k < normals; k += 2) {  // tangential rows on every other point
     points.push_back({Vec3(1, 0, 0), points[k].r, points[k].depth});
@@ -170,11 +177,7 @@ TEST(PressureSplit, RandomWrenchesOverTwoPatchesMeetTheOptimalityConditions) {
 TEST(PressureSplit, TwoSidedTangentRowsCarrySidewaysForcesEitherWay) {
   std::mt19937 rng(41);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  auto points = Patch(5, 0.04, 0.0, 1e-3);
-  for (auto& p : Patch(5, 0.04, 0.0, 1e-3)) {
-    p.r += Vec3(0.12, 0.0, 0.0);
-    points.push_back(p);
-  }
+  auto points = TwoPatches(5, 0.04, 1e-3, 1e-3, Vec3(0.12, 0.0, 0.0));
   const std::size_t normals = points.size();
   for (std::size_t k = 0; k < normals; ++k) {
     points.push_back({Vec3(1, 0, 0), points[k].r, points[k].depth, false});

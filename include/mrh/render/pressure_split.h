@@ -78,6 +78,10 @@ class PressureSplit {
   /// plane p (ignored for an invalid p).
   void AddTangentPoint(int p, const Vec3& r, double depth) noexcept;
   std::size_t plane_count() const noexcept { return plane_count_; }
+  /// Group g's direction n (g valid).
+  const Vec3& group_direction(int g) const noexcept {
+    return group_n_[static_cast<std::size_t>(g)];
+  }
   /// The wrench plane p's points carry in the last Solve: force (N) and moment about x (N·m).
   void PlaneWrench(int p, Vec3* force, Vec3* moment) const noexcept;
 
@@ -100,26 +104,38 @@ class PressureSplit {
     std::int32_t group;       // normal group, or -1
     std::uint32_t one_sided;  // 1 or 0 (one 64-byte line per row)
   };
-  // A normal group's part of H on a piece: Σδ, Σδ c, Σδ c cᵀ (xx, xy, xz, yy, yz, zz) over
-  // its active rows, c = r × n.
+  // Weighted moments of vectors v_k: Σδ, Σδ v, Σδ v vᵀ (xx, xy, xz, yy, yz, zz). A plane's of
+  // its points' levers r; a normal group's, on a piece, of c = r × n over its active rows.
   struct Moments {
-    double s0;
-    std::array<double, 3> sc;
-    std::array<double, 6> cc;
+    double s0 = 0.0;
+    std::array<double, 3> s1{};
+    std::array<double, 6> s2{};
+    void Add(double d, double x, double y, double z) noexcept {
+      const double dx = d * x, dy = d * y, dz = d * z;
+      s0 += d;
+      s1[0] += dx;
+      s1[1] += dy;
+      s1[2] += dz;
+      s2[0] += dx * x;
+      s2[1] += dx * y;
+      s2[2] += dx * z;
+      s2[3] += dy * y;
+      s2[4] += dy * z;
+      s2[5] += dz * z;
+    }
   };
   using Sym6 = std::array<double, 21>;  // lower triangle, row by row
 
   struct Plane {
     Vec3 n = Vec3::Zero();
-    double s0 = 0.0;                  // Σ δ
-    Vec3 s1 = Vec3::Zero();           // Σ δ r
-    std::array<double, 6> s2{};       // Σ δ r rᵀ: xx, xy, xz, yy, yz, zz
-    Sym6 h{};                         // its Hessian block, built by Solve
+    Moments r;  // of the levers
+    Sym6 h{};   // its Hessian block, built by Solve
   };
 
   static void BuildPlane(Plane* plane, std::array<double, 6>* traces) noexcept;
   static void AddOuter(Sym6* h, const std::array<double, 6>& w, double d) noexcept;
-  // Pass at y_trial: signs into trial_active_, H of the trial from h_ by the sign changes.
+  // Pass at y: signs into trial_active_; (h, moments), the current piece's H, become the
+  // trial's by the rows that change sign.
   std::size_t Pass(const std::array<double, 6>& y, Sym6* h, Moments* moments) noexcept;
   void AddRowTo(std::size_t k, double sign, Sym6* h, Moments* moments) const noexcept;
   // h plus the groups' parts.
