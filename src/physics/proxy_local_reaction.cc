@@ -197,7 +197,9 @@ void ProxyLocalReaction::Apply(world::World& world, const ir::HapticReport& repo
   pointer_impulse_ = Wrench{};
   pointer_origin_ = report.X_WP.p;
   // The pointer during this step: the report's pose moved on with the report's velocity.
-  const auto pointer_at = [&](double t) { return PointerAhead(report, t); };
+  const auto pointer_at = [&](double t) {
+    return PointerAhead(report, t);
+  };
   // The IR of the objects as they are now, for the pointer where it will be at the step's end,
   // so the contact points cover the region it will penetrate (the snapshot's IR, built for the
   // report's pose, may hold only a closest point when the pointer is just arriving).

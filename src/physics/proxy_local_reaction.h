@@ -4,19 +4,18 @@
 
 #include <memory>
 #include <optional>
-
 #include <vector>
 
-#include "mrh/core/fixed_vector.h"
 #include "geometric_ir_builder.h"
-#include "mrh/ir/local_contact.h"
-#include "mrh/render/local_contact_solver.h"
-#include "mrh/world/contact_export.h"
+#include "mrh/core/fixed_vector.h"
 #include "mrh/core/spatial.h"
+#include "mrh/ir/local_contact.h"
 #include "mrh/ir/snapshot.h"
 #include "mrh/render/ir_interpolator.h"
+#include "mrh/render/local_contact_solver.h"
 #include "mrh/render/proxy_renderer.h"
 #include "mrh/render/tick_ir.h"
+#include "mrh/world/contact_export.h"
 
 namespace mrh::world {
 class World;
@@ -91,6 +90,7 @@ class ProxyLocalReaction {
   /// The physics-side proxy's wrench on the pointer integrated over the last Apply: force (N·s)
   /// and moment about pointer_origin() (N·m·s).
   const Wrench& pointer_impulse() const noexcept { return pointer_impulse_; }
+
   const Vec3& pointer_origin() const noexcept { return pointer_origin_; }
 
  private:
@@ -114,6 +114,7 @@ class ProxyLocalReaction {
     Vec3 last_force = Vec3::Zero();   // the last substep's reaction force
     int local = -1;                   // index in solver_, or -1 (integrated here)
   };
+
   // What a body looked like before the previous step and what it was given then.
   struct BodyMemory {
     int body = -1;

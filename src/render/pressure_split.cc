@@ -293,7 +293,10 @@ PressureSplit::Result PressureSplit::Solve(const Vec3& F, const Vec3& tau, int m
       std::copy_n(moments_.begin(), group_count_, trial_moments_.begin());
       changes = Pass(trial, &trial_h, trial_moments_.data());
       ++result.passes;
-      if (Objective(Assembled(trial_h, trial_moments_.data()), trial) <= phi + kArmijo * t * slope || halving == kMaxHalvings) break;
+      if (Objective(Assembled(trial_h, trial_moments_.data()), trial) <=
+              phi + kArmijo * t * slope ||
+          halving == kMaxHalvings)
+        break;
       t *= 0.5;
     }
     y_ = trial;

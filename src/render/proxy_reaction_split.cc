@@ -26,9 +26,9 @@ constexpr int kMaxNewtonSteps = 20;
 // the penetrating points themselves, spread as a compliant contact would spread them:
 // minimize Σ λ_k² / δ_k subject to Σ λ_k a_k = F, Σ λ_k r_k × a_k = τ, λ_k >= 0 (δ_k the
 // point's depth; a linear pressure on a flat patch), solved by PressureSplit (a piecewise Newton
-// method on its 6-vector dual, warm-started from the last tick). Whatever of (F, τ) the points cannot carry (a torque outside the
-// patches' reach) goes to the pairs in proportion to their force. Σ over the pairs is (F, τ)
-// exactly, so action = reaction holds in force and moment.
+// method on its 6-vector dual, warm-started from the last tick). Whatever of (F, τ) the points
+// cannot carry (a torque outside the patches' reach) goes to the pairs in proportion to their
+// force. Σ over the pairs is (F, τ) exactly, so action = reaction holds in force and moment.
 void ProxyRenderer::SplitAcrossPairs(const TickIr& ir, std::size_t touched,
                                      const ProxyOutput* out) noexcept {
   // Normal rows push (λ >= 0). A point with a friction row may take a tangential force either
@@ -76,9 +76,9 @@ void ProxyRenderer::SplitAcrossPairs(const TickIr& ir, std::size_t touched,
     load += force_pair_[i].norm();
   }
   for (std::size_t i = 0; i < ir.pairs.size(); ++i) {
-    const double share =
-        load > 0.0 ? force_pair_[i].norm() / load
-                   : (pair_rows_[i] > 0 ? 1.0 / static_cast<double>(touched) : 0.0);
+    const double share = load > 0.0
+                             ? force_pair_[i].norm() / load
+                             : (pair_rows_[i] > 0 ? 1.0 / static_cast<double>(touched) : 0.0);
     force_pair_[i] += share * left_f;
     torque_pair_[i] += share * left_tau;
   }

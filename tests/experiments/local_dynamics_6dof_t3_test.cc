@@ -22,15 +22,16 @@ struct WrenchTap final : engine::Recorder {
     rendered.push_back(tick.rendered_W);
     contacts.push_back(tick.contacts);
   }
+
   void OnStep(const engine::StepRecord&, const world::World&) override {}
+
   std::vector<Wrench> rendered;
   std::vector<int> contacts;
 };
 
 WrenchTap RunSession(const char* session_file, const std::string& method) {
-  const session::Session s = session::LoadSession(std::string(MRH_SOURCE_DIR) + "/scenes/" +
-                                                      session_file,
-                                                  {"method=" + method});
+  const session::Session s = session::LoadSession(
+      std::string(MRH_SOURCE_DIR) + "/scenes/" + session_file, {"method=" + method});
   EXPECT_EQ(s.engine.method, method);
   auto engine = session::MakeEngine(s);
   WrenchTap tap;
@@ -39,7 +40,7 @@ WrenchTap RunSession(const char* session_file, const std::string& method) {
 }
 
 struct Difference {
-  double force = 0.0, torque = 0.0;       // largest per-tick difference (N, N·m)
+  double force = 0.0, torque = 0.0;          // largest per-tick difference (N, N·m)
   double max_force = 0.0, max_torque = 0.0;  // largest of the proxy-6dof run
 };
 

@@ -37,8 +37,7 @@ std::vector<Point> Patch(int n, double h, double z, double depth) {
 }
 
 // Patch(n, h, 0, depth_a) and Patch(n, h, 0, depth_b) moved by `offset`.
-std::vector<Point> TwoPatches(int n, double h, double depth_a, double depth_b,
-                              const Vec3& offset) {
+std::vector<Point> TwoPatches(int n, double h, double depth_a, double depth_b, const Vec3& offset) {
   auto points = Patch(n, h, 0.0, depth_a);
   for (auto& p : Patch(n, h, 0.0, depth_b)) {
     p.r += offset;
@@ -220,7 +219,8 @@ TEST(PressureSplit, ATangentPlaneIsTwoTangentRowsAPoint) {
   for (std::size_t k = 0; k < normal_rows; ++k) {
     const Vec3 n = normals[patch_of[k]];
     const double angle = 3.0 * u(rng);  // any tangent basis
-    const Vec3 t1 = std::cos(angle) * n.unitOrthogonal() + std::sin(angle) * n.cross(n.unitOrthogonal());
+    const Vec3 t1 =
+        std::cos(angle) * n.unitOrthogonal() + std::sin(angle) * n.cross(n.unitOrthogonal());
     rows.push_back({t1, rows[k].r, rows[k].depth, false});
     rows.push_back({n.cross(t1), rows[k].r, rows[k].depth, false});
   }
@@ -333,8 +333,11 @@ TEST(PressureSplit, SolveDoesNotAllocate) {
 }
 
 TEST(PressureSplit, ZeroCapacityIsRefused) {
-  EXPECT_THAT([] { PressureSplit split(0); },
-              ::testing::ThrowsMessage<InvalidArgument>(::testing::HasSubstr("capacity = 0")));
+  EXPECT_THAT(
+      [] {
+        PressureSplit split(0);
+      },
+      ::testing::ThrowsMessage<InvalidArgument>(::testing::HasSubstr("capacity = 0")));
 }
 
 }  // namespace

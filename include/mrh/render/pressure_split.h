@@ -25,10 +25,10 @@ namespace mrh::render {
 /// diagonal ridge (1e-8 of the force and of the torque block's trace), which keeps y bounded
 /// where W has parts no point can carry (a sideways force on a frictionless face, a torque about
 /// the normal of coplanar normal rows); the carried wrench Σ λ_k w_k then misses W by that
-/// part, which the caller sees and deals with. On a piece (a fixed set A of rows with w_k·y > 0) φ's Hessian is
-/// H_A + D with H_A = Σ_A δ_k w_k w_kᵀ and its gradient (H_A + D) y − W, so a Newton step is one
-/// 6×6 solve y ← (H_A + D)⁻¹ W, and only the rows that change sign change H_A. Each step is
-/// one pass over the rows computing w_k·y (6 multiply-adds) plus a rank-one update per sign
+/// part, which the caller sees and deals with. On a piece (a fixed set A of rows with w_k·y > 0)
+/// φ's Hessian is H_A + D with H_A = Σ_A δ_k w_k w_kᵀ and its gradient (H_A + D) y − W, so a Newton
+/// step is one 6×6 solve y ← (H_A + D)⁻¹ W, and only the rows that change sign change H_A. Each
+/// step is one pass over the rows computing w_k·y (6 multiply-adds) plus a rank-one update per sign
 /// change; a backtracking line search (Armijo) keeps it convergent. The step with no sign
 /// change is the exact minimum. The last Solve's y warm-starts the next (successive haptic
 /// ticks barely change W), so a sustained contact takes one or two passes.
@@ -53,9 +53,10 @@ class PressureSplit {
 
   /// Starts a problem with no rows; add them with AddRow.
   void Begin() noexcept;
-  /// Adds a row (false, and nothing added, when the capacity is reached): unit direction a, lever r = p_k − x (m), weight δ (> 0; smaller values are raised
-  /// to 1e-12). A one-sided row (a normal) only pushes, λ >= 0; a two-sided one (a tangent of
-  /// a point with friction, whose force may point either way) has λ of either sign, λ = δ w·y.
+  /// Adds a row (false, and nothing added, when the capacity is reached): unit direction a,
+  /// lever r = p_k − x (m), weight δ (> 0; smaller values are raised to 1e-12). A one-sided row
+  /// (a normal) only pushes, λ >= 0; a two-sided one (a tangent of a point with friction, whose
+  /// force may point either way) has λ of either sign, λ = δ w·y.
   bool AddRow(const Vec3& a, const Vec3& r, double depth, bool one_sided = true) noexcept;
 
   /// Starts a group of one-sided rows along one shared unit direction n (a pair's normal);
@@ -77,11 +78,14 @@ class PressureSplit {
   /// Adds a point at lever r (m) with weight δ (> 0; smaller values are raised to 1e-12) to
   /// plane p (ignored for an invalid p).
   void AddTangentPoint(int p, const Vec3& r, double depth) noexcept;
+
   std::size_t plane_count() const noexcept { return plane_count_; }
+
   /// Group g's direction n (g valid).
   const Vec3& group_direction(int g) const noexcept {
     return group_n_[static_cast<std::size_t>(g)];
   }
+
   /// The wrench plane p's points carry in the last Solve: force (N) and moment about x (N·m).
   void PlaneWrench(int p, Vec3* force, Vec3* moment) const noexcept;
 
@@ -89,11 +93,14 @@ class PressureSplit {
   Result Solve(const Vec3& F, const Vec3& tau, int max_steps = 20) noexcept;
 
   std::size_t size() const noexcept { return count_; }
+
   std::size_t capacity() const noexcept { return rows_.size(); }
+
   /// Row k's direction a.
   Vec3 direction(std::size_t k) const noexcept {
     return Vec3(rows_[k].w[0], rows_[k].w[1], rows_[k].w[2]);
   }
+
   /// λ_k of the last Solve (N): >= 0 for one-sided rows.
   double lambda(std::size_t k) const noexcept;
 
@@ -104,12 +111,14 @@ class PressureSplit {
     std::int32_t group;       // normal group, or -1
     std::uint32_t one_sided;  // 1 or 0 (one 64-byte line per row)
   };
+
   // Weighted moments of vectors v_k: Σδ, Σδ v, Σδ v vᵀ (xx, xy, xz, yy, yz, zz). A plane's of
   // its points' levers r; a normal group's, on a piece, of c = r × n over its active rows.
   struct Moments {
     double s0 = 0.0;
     std::array<double, 3> s1{};
     std::array<double, 6> s2{};
+
     void Add(double d, double x, double y, double z) noexcept {
       const double dx = d * x, dy = d * y, dz = d * z;
       s0 += d;
@@ -124,6 +133,7 @@ class PressureSplit {
       s2[5] += dz * z;
     }
   };
+
   using Sym6 = std::array<double, 21>;  // lower triangle, row by row
 
   struct Plane {
