@@ -232,7 +232,8 @@ struct T36Result {
   std::string case_name;
   std::string method;         ///< e.g. "local-dynamics-6dof@20ms"
   double mean_f = 0.0, sd_f = 0.0;      ///< N
-  double mean_tau = 0.0, sd_tau = 0.0;  ///< N·m
+  double mean_tau = 0.0, sd_tau = 0.0;  ///< N·m, of |τ|
+  Vec3 mean_tau_W = Vec3::Zero();       ///< N·m, mean rendered torque vector (world)
   double peak_spin = 0.0;               ///< rad/s
   double peak_speed = 0.0;              ///< m/s, the boxes' COM
   std::vector<Vec3> pose_at;            ///< m, world

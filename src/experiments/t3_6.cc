@@ -32,25 +32,40 @@ struct Case {
   const char* scene;
   double y, z;        // pointer offset (m)
   double push_until;  // s; the pointer holds still afterwards
+  bool mirror;        // the scene and the push are symmetric under y -> -y
 };
 
 // The box reaches the wall at 2.5 s; the pointer stops 8 mm further (about 16 N of press).
 
-constexpr Case kCases[] = {{"face", "t3_6_push.xml", 0.0, 0.05, kDuration},
-                           {"offcentre", "t3_6_push.xml", 0.03, 0.05, kDuration},
-                           {"tip", "t3_6_tip.xml", 0.0, 0.085, kDuration},
-                           {"wall", "t3_6_wall.xml", 0.0, 0.05, 2.6},
-                           {"row", "t3_6_row.xml", 0.0, 0.05, kDuration}};
+constexpr Case kCases[] = {{"face", "t3_6_push.xml", 0.0, 0.05, kDuration, true},
+                           {"offcentre", "t3_6_push.xml", 0.03, 0.05, kDuration, false},
+                           {"tip", "t3_6_tip.xml", 0.0, 0.085, kDuration, true},
+                           {"wall", "t3_6_wall.xml", 0.0, 0.05, 2.6, true},
+                           {"row", "t3_6_row.xml", 0.0, 0.05, kDuration, true}};
 
 struct Variant {
   const char* label;
   const char* method;
   double physics_dt;
+  double dy;  // m, extra pointer offset along y (the sensitivity runs)
 };
 
-constexpr Variant kVariants[] = {{"proxy-6dof@1ms", "proxy-6dof", 0.001},
-                                 {"proxy-6dof@20ms", "proxy-6dof", 0.02},
-                                 {"local-dynamics-6dof@20ms", "local-dynamics-6dof", 0.02}};
+// The reference check: the reference and local-dynamics-6dof again with the pointer 10 µm to
+// either side, a fifth of a Novint Falcon's resolution and far below what a hand can place. A
+// result that changes more than the bar under that offset is not a property of the push.
+constexpr double kNudge = 1e-5;  // m
+
+constexpr Variant kVariants[] = {
+    {"proxy-6dof@1ms", "proxy-6dof", 0.001, 0.0},
+    {"proxy-6dof@20ms", "proxy-6dof", 0.02, 0.0},
+    {"local-dynamics-6dof@20ms", "local-dynamics-6dof", 0.02, 0.0},
+    {"proxy-6dof@1ms y-10um", "proxy-6dof", 0.001, -kNudge},
+    {"proxy-6dof@1ms y+10um", "proxy-6dof", 0.001, kNudge},
+    {"local-dynamics-6dof@20ms y-10um", "local-dynamics-6dof", 0.02, -kNudge},
+    {"local-dynamics-6dof@20ms y+10um", "local-dynamics-6dof", 0.02, kNudge}};
+constexpr std::size_t kCompared = 3;  // the three methods; the rest are the check's
+// kVariants' indices of a method's nudged runs (reference first, then local-dynamics-6dof).
+constexpr std::size_t kNudged[2][2] = {{3, 4}, {5, 6}};
 
 session::Session MakeSession(const Case& c, const Variant& v) {
   nlohmann::json j;
@@ -66,9 +81,9 @@ session::Session MakeSession(const Case& c, const Variant& v) {
                     {"friction", 0.3}};
   j["safety"] = {{"ramp", false}};
   const double x_end = kX0 + kSpeed * c.push_until;
-  nlohmann::json frames = {{0.0, kX0, c.y, c.z, 1, 0, 0, 0},
-                           {c.push_until, x_end, c.y, c.z, 1, 0, 0, 0}};
-  if (c.push_until < kDuration) frames.push_back({kDuration, x_end, c.y, c.z, 1, 0, 0, 0});
+  const double y = c.y + v.dy;
+  nlohmann::json frames = {{0.0, kX0, y, c.z, 1, 0, 0, 0}, {c.push_until, x_end, y, c.z, 1, 0, 0, 0}};
+  if (c.push_until < kDuration) frames.push_back({kDuration, x_end, y, c.z, 1, 0, 0, 0});
   j["device"] = {{"type", "scripted"}, {"keyframes", frames}};
   return session::ParseSession(j.dump(), ScenesDir(), {},
                                fmt::format("t3.6 {} ({})", c.name, v.label));
@@ -80,6 +95,7 @@ struct Tap final : engine::Recorder {
     t.push_back(tick.t);
     f.push_back(tick.rendered_W.f.norm());
     tau.push_back(tick.rendered_W.tau.norm());
+    tau_W.push_back(tick.rendered_W.tau);
   }
 
   void OnStep(const engine::StepRecord& step, const world::World& world) override {
@@ -109,6 +125,7 @@ struct Tap final : engine::Recorder {
 
   std::vector<int> boxes;
   std::vector<double> t, f, tau;
+  std::vector<Vec3> tau_W;
   std::vector<Step> steps;
 };
 
@@ -128,6 +145,13 @@ T36Result Analyze(const Tap& tap) {
   T36Result r;
   MeanSd(tap.t, tap.f, &r.mean_f, &r.sd_f);
   MeanSd(tap.t, tap.tau, &r.mean_tau, &r.sd_tau);
+  double n = 0.0;
+  for (std::size_t i = 0; i < tap.t.size(); ++i) {
+    if (tap.t[i] < kFrom) continue;
+    r.mean_tau_W += tap.tau_W[i];
+    n += 1.0;
+  }
+  if (n > 0.0) r.mean_tau_W /= n;
   for (const Tap::Step& s : tap.steps) {
     r.peak_spin = std::max(r.peak_spin, s.spin);
     if (s.t >= kSpeedFrom) r.peak_speed = std::max(r.peak_speed, s.speed);
@@ -165,7 +189,7 @@ std::string PlotScript() {
       300 * std::size(kCases), std::size(kCases));
   const auto panel = [&](const Case& c, const char* what, const char* file, int column) {
     gp += fmt::format("set title '{}: {}'\nset xlabel 't (s)'\nplot ", c.name, what);
-    for (std::size_t i = 0; i < std::size(kVariants); ++i) {
+    for (std::size_t i = 0; i < kCompared; ++i) {
       gp += fmt::format("{}'runs/{}_{}.csv' using 1:{} with lines title '{}' noenhanced",
                         i ? ", " : "", RunSlug(c, kVariants[i]), file, column, kVariants[i].label);
     }
@@ -229,6 +253,56 @@ nlohmann::json Compare(const Case& c, const Variant& v, const T36Result& r, cons
             {"no_fling", r.peak_speed < 2.0 * ref.peak_speed}}}};
 }
 
+// The reference check of one case: how much the reference and local-dynamics-6dof move when the
+// pointer is nudged 10 µm sideways, in units of the bars (5 % of the reference's |f|,
+// 10 % of its |τ|, 2 cm), and, where the case is mirror-symmetric (y -> -y), the share of the
+// mean torque in τ_x and τ_z, which change sign under that mirror: the symmetric push defines
+// none of it. Returns the figures as JSON; adds rows to `table`.
+nlohmann::json CheckReference(const Case& c, const std::vector<T36Result>& runs, Table* table) {
+  const T36Result& ref = runs[0];
+  nlohmann::json out;
+  for (int m = 0; m < 2; ++m) {
+    const T36Result* member[3] = {&runs[m == 0 ? 0 : 2], &runs[kNudged[m][0]], &runs[kNudged[m][1]]};
+    double f_lo = member[0]->mean_f, f_hi = f_lo, t_lo = member[0]->mean_tau, t_hi = t_lo;
+    double pose = 0.0, side = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      f_lo = std::min(f_lo, member[i]->mean_f);
+      f_hi = std::max(f_hi, member[i]->mean_f);
+      t_lo = std::min(t_lo, member[i]->mean_tau);
+      t_hi = std::max(t_hi, member[i]->mean_tau);
+      for (int j = 0; j < i; ++j) pose = std::max(pose, PoseError(*member[i], *member[j]));
+      for (const Vec3& p : member[i]->pose_at) side = std::max(side, std::abs(p.y() - c.y));
+    }
+    const double f_bars = (f_hi - f_lo) / (0.05 * ref.mean_f);
+    const double t_bars = ref.mean_tau > 0.0 ? (t_hi - t_lo) / (0.10 * ref.mean_tau) : 0.0;
+    const double pose_bars = pose / 0.02;
+    const Vec3& tau = member[0]->mean_tau_W;
+    const double odd = member[0]->mean_tau > 0.0 ? std::hypot(tau.x(), tau.z()) / member[0]->mean_tau
+                                                 : 0.0;
+    const char* label = kVariants[m == 0 ? 0 : 2].label;
+    table->Add({c.name, label, fmt::format("{:.3f}–{:.3f}", f_lo, f_hi),
+                fmt::format("{:.2f}", f_bars), fmt::format("{:.3f}–{:.3f}", t_lo, t_hi),
+                fmt::format("{:.2f}", t_bars), fmt::format("{:.4f}", pose),
+                fmt::format("{:.2f}", pose_bars),
+                fmt::format("{:+.3f} / {:+.3f} / {:+.3f}", member[1]->mean_tau_W.x(), tau.x(),
+                            member[2]->mean_tau_W.x()),
+                c.mirror ? fmt::format("{:.2f}", odd) : "—",
+                c.mirror ? fmt::format("{:.4f}", side) : "—"});
+    out[label] = {{"force_range_N", {f_lo, f_hi}},
+                  {"force_spread_bars", f_bars},
+                  {"torque_range_Nm", {t_lo, t_hi}},
+                  {"torque_spread_bars", t_bars},
+                  {"position_spread_m", pose},
+                  {"position_spread_bars", pose_bars},
+                  {"tau_x_Nm", {member[1]->mean_tau_W.x(), tau.x(), member[2]->mean_tau_W.x()}}};
+    if (c.mirror) {
+      out[label]["mirror_odd_torque_share"] = odd;
+      out[label]["max_side_offset_m"] = side;
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 std::vector<std::vector<T36Result>> RunT36Cases(const std::filesystem::path& out, bool quiet) {
@@ -256,10 +330,28 @@ int RunT36(const std::filesystem::path& out, bool quiet) {
   nlohmann::json summary;
   Tables tables;
   Checks checks;
+  Table check({"case", "method", "mean |f| at y ±10 µm (N)", "spread (bars)",
+               "mean |τ| at y ±10 µm (N·m)", "spread (bars)", "pos. spread at 4 s (m)",
+               "spread (bars)", "mean τ_x at −10 / 0 / +10 µm (N·m)", "mirror-odd share of τ",
+               "max |y| at 4 s (m)"});
   for (std::size_t ci = 0; ci < std::size(kCases); ++ci) {
-    for (std::size_t vi = 0; vi < std::size(kVariants); ++vi) {
-      summary["cases"][kCases[ci].name][kVariants[vi].label] =
-          Compare(kCases[ci], kVariants[vi], results[ci][vi], results[ci][0], &tables);
+    const Case& c = kCases[ci];
+    for (std::size_t vi = 0; vi < kCompared; ++vi) {
+      summary["cases"][c.name][kVariants[vi].label] =
+          Compare(c, kVariants[vi], results[ci][vi], results[ci][0], &tables);
+    }
+    const nlohmann::json rc = CheckReference(c, results[ci], &check);
+    summary["reference_check"][c.name] = rc;
+    // local-dynamics-6dof's result is a property of the push: a 10 µm nudge moves it by less
+    // than one bar, and in a mirror-symmetric case most of its torque is the mirror-even part.
+    const nlohmann::json& ld = rc["local-dynamics-6dof@20ms"];
+    for (const char* what : {"force", "torque", "position"}) {
+      checks.Add(fmt::format("{}_local_dynamics_6dof_{}_within_a_bar_under_10um", c.name, what),
+                 ld[fmt::format("{}_spread_bars", what)].get<double>() <= 1.0);
+    }
+    if (c.mirror) {
+      checks.Add(fmt::format("{}_local_dynamics_6dof_torque_mostly_mirror_even", c.name),
+                 ld["mirror_odd_torque_share"].get<double>() < 0.5);
     }
   }
   // The essential result: on the face push, local-dynamics-6dof at 20 ms meets the force, spread,
@@ -274,12 +366,15 @@ int RunT36(const std::filesystem::path& out, bool quiet) {
                summary["cases"][c.name]["proxy-6dof@20ms"]["bars"]["no_fling"].get<bool>());
   }
   WriteText(out / "t3_6.csv", tables.csv.Csv());
-  WriteText(out / "t3_6.md", tables.md.Markdown());
+  WriteText(out / "t3_6.md", tables.md.Markdown() + "\nReference check (pointer nudged 10 µm in y; "
+                                "a bar is 5 % of the reference's |f|, 10 % of its |τ|, 2 cm):\n\n" +
+                                check.Markdown());
+  WriteText(out / "t3_6_reference_check.csv", check.Csv());
   Plot(out, "t3_6", PlotScript(), quiet);
   summary["experiment"] = "t3.6";
   summary["machine"] = MachineTag();
   summary["window_s"] = {kFrom, kDuration};
-  if (!quiet) std::cout << tables.md.Markdown();
+  if (!quiet) std::cout << tables.md.Markdown() << "\n" << check.Markdown();
   return FinishExperiment(out, std::move(summary), checks, quiet);
 }
 
