@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// Experiment t3.6 (issue 14): a box pointer pushes, turns, tips and presses boxes on a floor;
+// Experiment t3.6 (issue 14): a box pointer pushes, turns, tips and presses boxes on a floor
+// (and, reported as open, pushes a box at its side edge);
 // proxy-6dof at 1 ms (the 6-DOF reference), proxy-6dof at 20 ms, local-dynamics-6dof at 20 ms.
 #include <fmt/format.h>
 
@@ -23,9 +24,10 @@ constexpr double kSpeed = 0.08;    // m/s along +x (scenes/t3_6_push.json)
 constexpr double kX0 = -0.16;      // m, pointer at t = 0; it touches the box at 1.25 s
 constexpr double kDuration = 5.0;  // s
 constexpr double kFrom = 2.0;      // s, statistics window 2–5 s
-constexpr double kSpeedFrom = 1.0;  // s, peak speed from here: after the boxes settled on the
-                                    // floor (a 20 ms step drops them at g Δt = 0.2 m/s), before the touch
-constexpr double kPoseAt = 4.0;    // s, the issue's "box positions within 2 cm after 4 s"
+constexpr double kSpeedFrom =
+    1.0;  // s, peak speed from here: after the boxes settled on the
+          // floor (a 20 ms step drops them at g Δt = 0.2 m/s), before the touch
+constexpr double kPoseAt = 4.0;  // s, the issue's "box positions within 2 cm after 4 s"
 
 struct Case {
   const char* name;
@@ -33,6 +35,7 @@ struct Case {
   double y, z;        // pointer offset (m)
   double push_until;  // s; the pointer holds still afterwards
   bool mirror;        // the scene and the push are symmetric under y -> -y
+  bool open = false;  // a known failure (docs/architecture.md): reported, not checked
 };
 
 // The box reaches the wall at 2.5 s; the pointer stops 8 mm further (about 16 N of press).
@@ -41,7 +44,10 @@ constexpr Case kCases[] = {{"face", "t3_6_push.xml", 0.0, 0.05, kDuration, true}
                            {"offcentre", "t3_6_push.xml", 0.03, 0.05, kDuration, false},
                            {"tip", "t3_6_tip.xml", 0.0, 0.085, kDuration, true},
                            {"wall", "t3_6_wall.xml", 0.0, 0.05, 2.6, true},
-                           {"row", "t3_6_row.xml", 0.0, 0.05, kDuration, true}};
+                           {"row", "t3_6_row.xml", 0.0, 0.05, kDuration, true},
+                           // The pointer centred on the box's side edge, half its face overhanging:
+                           // local-dynamics-6dof flings the box (open, see docs/architecture.md).
+                           {"edge", "t3_6_push.xml", 0.05, 0.05, kDuration, false, true}};
 
 struct Variant {
   const char* label;
@@ -82,7 +88,8 @@ session::Session MakeSession(const Case& c, const Variant& v) {
   j["safety"] = {{"ramp", false}};
   const double x_end = kX0 + kSpeed * c.push_until;
   const double y = c.y + v.dy;
-  nlohmann::json frames = {{0.0, kX0, y, c.z, 1, 0, 0, 0}, {c.push_until, x_end, y, c.z, 1, 0, 0, 0}};
+  nlohmann::json frames = {{0.0, kX0, y, c.z, 1, 0, 0, 0},
+                           {c.push_until, x_end, y, c.z, 1, 0, 0, 0}};
   if (c.push_until < kDuration) frames.push_back({kDuration, x_end, y, c.z, 1, 0, 0, 0});
   j["device"] = {{"type", "scripted"}, {"keyframes", frames}};
   return session::ParseSession(j.dump(), ScenesDir(), {},
@@ -262,7 +269,8 @@ nlohmann::json CheckReference(const Case& c, const std::vector<T36Result>& runs,
   const T36Result& ref = runs[0];
   nlohmann::json out;
   for (int m = 0; m < 2; ++m) {
-    const T36Result* member[3] = {&runs[m == 0 ? 0 : 2], &runs[kNudged[m][0]], &runs[kNudged[m][1]]};
+    const T36Result* member[3] = {&runs[m == 0 ? 0 : 2], &runs[kNudged[m][0]],
+                                  &runs[kNudged[m][1]]};
     double f_lo = member[0]->mean_f, f_hi = f_lo, t_lo = member[0]->mean_tau, t_hi = t_lo;
     double pose = 0.0, side = 0.0;
     for (int i = 0; i < 3; ++i) {
@@ -277,8 +285,8 @@ nlohmann::json CheckReference(const Case& c, const std::vector<T36Result>& runs,
     const double t_bars = ref.mean_tau > 0.0 ? (t_hi - t_lo) / (0.10 * ref.mean_tau) : 0.0;
     const double pose_bars = pose / 0.02;
     const Vec3& tau = member[0]->mean_tau_W;
-    const double odd = member[0]->mean_tau > 0.0 ? std::hypot(tau.x(), tau.z()) / member[0]->mean_tau
-                                                 : 0.0;
+    const double odd =
+        member[0]->mean_tau > 0.0 ? std::hypot(tau.x(), tau.z()) / member[0]->mean_tau : 0.0;
     const char* label = kVariants[m == 0 ? 0 : 2].label;
     table->Add({c.name, label, fmt::format("{:.3f}–{:.3f}", f_lo, f_hi),
                 fmt::format("{:.2f}", f_bars), fmt::format("{:.3f}–{:.3f}", t_lo, t_hi),
@@ -301,6 +309,17 @@ nlohmann::json CheckReference(const Case& c, const std::vector<T36Result>& runs,
     }
   }
   return out;
+}
+
+// The cases reported but not checked, as a markdown paragraph (empty if none).
+std::string OpenCases() {
+  std::string s;
+  for (const Case& c : kCases) {
+    if (c.open) s += fmt::format("{}{}", s.empty() ? "" : ", ", c.name);
+  }
+  return s.empty() ? s
+                   : "\nOpen (reported, not checked; docs/architecture.md): " + s +
+                         ". local-dynamics-6dof flings the box there.\n";
 }
 
 }  // namespace
@@ -344,6 +363,7 @@ int RunT36(const std::filesystem::path& out, bool quiet) {
     summary["reference_check"][c.name] = rc;
     // local-dynamics-6dof's result is a property of the push: a 10 µm nudge moves it by less
     // than one bar, and in a mirror-symmetric case most of its torque is the mirror-even part.
+    if (c.open) continue;
     const nlohmann::json& ld = rc["local-dynamics-6dof@20ms"];
     for (const char* what : {"force", "torque", "position"}) {
       checks.Add(fmt::format("{}_local_dynamics_6dof_{}_within_a_bar_under_10um", c.name, what),
@@ -366,9 +386,11 @@ int RunT36(const std::filesystem::path& out, bool quiet) {
                summary["cases"][c.name]["proxy-6dof@20ms"]["bars"]["no_fling"].get<bool>());
   }
   WriteText(out / "t3_6.csv", tables.csv.Csv());
-  WriteText(out / "t3_6.md", tables.md.Markdown() + "\nReference check (pointer nudged 10 µm in y; "
-                                "a bar is 5 % of the reference's |f|, 10 % of its |τ|, 2 cm):\n\n" +
-                                check.Markdown());
+  WriteText(out / "t3_6.md",
+            tables.md.Markdown() + OpenCases() +
+                "\nReference check (pointer nudged 10 µm in y; "
+                "a bar is 5 % of the reference's |f|, 10 % of its |τ|, 2 cm):\n\n" +
+                check.Markdown());
   WriteText(out / "t3_6_reference_check.csv", check.Csv());
   Plot(out, "t3_6", PlotScript(), quiet);
   summary["experiment"] = "t3.6";
