@@ -234,6 +234,7 @@ struct T36Result {
   double mean_f = 0.0, sd_f = 0.0;      ///< N
   double mean_tau = 0.0, sd_tau = 0.0;  ///< N·m, of |τ|
   Vec3 mean_tau_W = Vec3::Zero();       ///< N·m, mean rendered torque vector (world)
+  double sliding_f = 0.0;               ///< N, Coulomb's μ Σm |g| if the boxes slide, else 0
   double peak_spin = 0.0;               ///< rad/s
   double peak_speed = 0.0;              ///< m/s, the boxes' COM
   std::vector<Vec3> pose_at;            ///< m, world
