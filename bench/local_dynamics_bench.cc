@@ -3,14 +3,14 @@
 // contact model) with 500 cubes resting with friction (condim 3, pyramidal cones, μ = 1) on a
 // floor, the pointer pushing the first row at 0.1 m/s. One repetition = one physics period (20
 // haptic ticks, one physics step inline, lockstep); its time is the step's own compute time
-// (StepRecord). The scene's solver is Newton: with friction CG needs 30–75 iterations a step
-// at 500 cubes and stops 3 mm/s away from the converged solution; Newton reaches it (to 1e-14)
-// in 2–9 (docs/architecture.md, "Physics step cost at scale").
+// (StepRecord). The scene's solver is Newton at tolerance 1e-10: with friction CG stops 3 mm/s
+// away from the converged solution (tests/world/solver_reference_test.cc).
 // Report p50/p99 with: mrh_bench --benchmark_filter=LocalDynamics
 // MRH_BENCH_SMOKE=1 (the CI smoke run) runs 50 cubes for 3 steps instead.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <map>
 #include <cstdlib>
 #include <memory>
 #include <string>
@@ -47,7 +47,7 @@ std::string CubesXml(int cubes) {
               " 0.05\"><freejoint/><geom type=\"box\" size=\"0.05 0.05 0.05\" mass=\"0.2\"/>"
               "</body>";
   }
-  return "<mujoco><option timestep=\"0.02\" solver=\"Newton\"/><default><geom condim=\"3\"/>"
+  return "<mujoco><option timestep=\"0.02\" solver=\"Newton\" tolerance=\"1e-10\"/><default><geom condim=\"3\"/>"
          "</default><worldbody><geom type=\"plane\" size=\"20 20 0.1\"/>" +
          bodies + "<body name=\"pointer\" mocap=\"true\" pos=\"" + std::to_string(kStartX) +
          " 0 0.05\"><geom type=\"sphere\" size=\"0.02\" contype=\"0\" conaffinity=\"0\"/></body>"
@@ -76,8 +76,13 @@ struct Run {
   long tick = 0;
 };
 
+// One engine per cube count, kept across repetitions (the push goes on from step to step).
 Run& SharedRun(int cubes) {
-  static Run run = [cubes] {
+  static std::map<int, std::unique_ptr<Run>> runs;
+  std::unique_ptr<Run>& run = runs[cubes];
+  if (run) return *run;
+  run = std::make_unique<Run>();
+  run->engine = [cubes] {
     EngineSettings s;
     s.method = "local-dynamics";
     s.physics_dt = kPhysicsDt;
@@ -93,16 +98,15 @@ Run& SharedRun(int cubes) {
     // one the pointer starts at the origin, inside cube 0, and the first period launches it.
     auto device = std::make_unique<device::ExternalDevice>(specs);
     device->Feed(Reading(0.0));
-    Run r;
-    r.engine = std::make_unique<Engine>(world::World::LoadString(CubesXml(cubes)),
-                                        std::move(device), device::Calibration{}, s);
-    return r;
+    return std::make_unique<Engine>(world::World::LoadString(CubesXml(cubes)), std::move(device),
+                                    device::Calibration{}, s);
   }();
-  return run;
+  return *run;
 }
 
-void BM_LocalDynamicsStep500Friction(benchmark::State& state) {
-  Run& run = SharedRun(Smoke() ? 50 : 500);
+// One repetition of the push with `cubes` cubes (50 in the smoke run).
+void StepFriction(benchmark::State& state, int cubes) {
+  Run& run = SharedRun(Smoke() ? 50 : cubes);
   if (run.tick == 0) run.engine->Start(&run.times);
   for (auto _ : state) {
     for (int i = 0; i < kTicksPerStep; ++i, ++run.tick) {
@@ -114,9 +118,41 @@ void BM_LocalDynamicsStep500Friction(benchmark::State& state) {
 }
 
 
+void BM_LocalDynamicsStep500Friction(benchmark::State& state) {
+  StepFriction(state, 500);
+}
+
+// MuJoCo 3's sparse constraint storage: 1000 and 2000 cubes with friction in one world (MuJoCo
+// 2.2.2's dense arrays held ~650).
+void BM_LocalDynamicsStep1000Friction(benchmark::State& state) {
+  StepFriction(state, 1000);
+}
+
+void BM_LocalDynamicsStep2000Friction(benchmark::State& state) {
+  StepFriction(state, 2000);
+}
+
 // 100 steps: the pointer reaches the first cube after ~0.02 s and pushes it for 2 s (row 0's
 // cubes join one after another).
 BENCHMARK(BM_LocalDynamicsStep500Friction)
+    ->Unit(benchmark::kMillisecond)
+    ->UseManualTime()
+    ->Iterations(1)
+    ->Repetitions(Smoke() ? 3 : 100)
+    ->ReportAggregatesOnly(true)
+    ->ComputeStatistics("p50", [](const std::vector<double>& v) { return Percentile(v, 50.0); })
+    ->ComputeStatistics("p99", [](const std::vector<double>& v) { return Percentile(v, 99.0); });
+
+BENCHMARK(BM_LocalDynamicsStep1000Friction)
+    ->Unit(benchmark::kMillisecond)
+    ->UseManualTime()
+    ->Iterations(1)
+    ->Repetitions(Smoke() ? 3 : 100)
+    ->ReportAggregatesOnly(true)
+    ->ComputeStatistics("p50", [](const std::vector<double>& v) { return Percentile(v, 50.0); })
+    ->ComputeStatistics("p99", [](const std::vector<double>& v) { return Percentile(v, 99.0); });
+
+BENCHMARK(BM_LocalDynamicsStep2000Friction)
     ->Unit(benchmark::kMillisecond)
     ->UseManualTime()
     ->Iterations(1)

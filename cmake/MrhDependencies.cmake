@@ -1,8 +1,9 @@
 # SPDX-License-Identifier: Apache-2.0
-# Every dependency comes from a Debian package (scripts/install-deps.sh); nothing is downloaded.
+# Every dependency comes from a Debian package, except MuJoCo: the pinned PyPI wheel's C library
+# (cmake/MrhMujoco.cmake). scripts/install-deps.sh installs both; nothing is downloaded here.
 find_package(Threads REQUIRED)
 find_package(Eigen3 3.4 REQUIRED NO_MODULE)
-find_package(mujoco 2.2 REQUIRED)
+include(${PROJECT_SOURCE_DIR}/cmake/MrhMujoco.cmake)
 find_package(fcl 0.7 REQUIRED)
 find_package(Qhull REQUIRED)
 find_package(nlohmann_json 3.10 REQUIRED)

@@ -4,6 +4,11 @@
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
+# MuJoCo travels with the package: its library beside the module libraries, found by installed
+# binaries through $ORIGIN/../lib and by consumers through mrhapticsConfig.cmake (mujoco::mujoco).
+install(FILES ${MRH_MUJOCO_LIBRARY} DESTINATION ${CMAKE_INSTALL_LIBDIR})
+set(MRH_MUJOCO_LIBRARY_NAME libmujoco.so.${MRH_MUJOCO_VERSION})
+
 get_property(mrh_modules GLOBAL PROPERTY MRH_MODULES)
 
 install(DIRECTORY include/mrh DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})

@@ -1,6 +1,11 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: Apache-2.0
-# Installs the Debian packages mrhaptics needs, only those missing. Idempotent, non-interactive.
+# Installs what mrhaptics needs, only what is missing. Idempotent, non-interactive.
+# - Debian packages (apt-get).
+# - MuJoCo: the PyPI `mujoco` wheel of the version pinned in scripts/mujoco-version.txt, unpacked
+#   into build/deps (pip --target: the system's Python is not touched, so this also works where
+#   pip is externally managed). CMake takes its C headers and libmujoco.so from there
+#   (cmake/MrhMujoco.cmake); MRH_DEPS_DIR overrides the folder.
 # Usage: scripts/install-deps.sh [--no-viewer]   (run as root, or with sudo available)
 # The viewer's packages (GLFW, Dear ImGui, Xvfb for its headless tests and screenshots) are
 # installed by default; --no-viewer leaves them out (the build then has no `mrh view`).
@@ -8,8 +13,8 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake pkg-config
-  libmujoco-dev libfcl-dev libqhull-dev libeigen3-dev
+  build-essential cmake pkg-config python3 python3-pip
+  libfcl-dev libqhull-dev libeigen3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev
   gnuplot-nox
@@ -35,15 +40,27 @@ for p in "${packages[@]}"; do
 done
 if [[ ${#missing[@]} -eq 0 ]]; then
   echo "install-deps: all ${#packages[@]} packages present"
-  exit 0
+else
+  echo "install-deps: installing ${missing[*]}"
+  sudo_cmd=()
+  if [[ $(id -u) -ne 0 ]]; then
+    command -v sudo >/dev/null || { echo "install-deps: run as root or install sudo" >&2; exit 1; }
+    sudo_cmd=(sudo)
+  fi
+  export DEBIAN_FRONTEND=noninteractive
+  "${sudo_cmd[@]}" apt-get update -q
+  "${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
 fi
 
-echo "install-deps: installing ${missing[*]}"
-sudo_cmd=()
-if [[ $(id -u) -ne 0 ]]; then
-  command -v sudo >/dev/null || { echo "install-deps: run as root or install sudo" >&2; exit 1; }
-  sudo_cmd=(sudo)
+root="$(cd "$(dirname "$0")/.." && pwd)"
+mujoco_version="$(head -n1 "$root/scripts/mujoco-version.txt")"
+deps_dir="${MRH_DEPS_DIR:-$root/build/deps}"
+if [[ -f "$deps_dir/mujoco/libmujoco.so.$mujoco_version" && -f "$deps_dir/mujoco/include/mujoco/mujoco.h" ]]; then
+  echo "install-deps: MuJoCo $mujoco_version present in $deps_dir"
+else
+  echo "install-deps: installing MuJoCo $mujoco_version (PyPI wheel) into $deps_dir"
+  rm -rf "$deps_dir/mujoco" "$deps_dir"/mujoco-*.dist-info
+  mkdir -p "$deps_dir"
+  python3 -m pip install -q --no-deps --no-warn-script-location --disable-pip-version-check \
+    --root-user-action=ignore --target "$deps_dir" "mujoco==$mujoco_version"
 fi
-export DEBIAN_FRONTEND=noninteractive
-"${sudo_cmd[@]}" apt-get update -q
-"${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"

@@ -121,7 +121,7 @@ bool SetJointsFromBodyState(const mjModel& m, mjData* d, int body, const Pose& X
   const int first = m.body_jntadr[body];
   if (count == 1 && m.jnt_type[first] == mjJNT_FREE) return SetFree(m, d, body, X_WB, V_WCm);
   // Slide and hinge coordinates are relative to the parent, which must not move.
-  if (m.body_weldid[m.body_parentid[body]] != 0) return false;
+  if (!HasNoDofs(m, m.body_parentid[body])) return false;
   if (count == 1 && m.jnt_type[first] == mjJNT_HINGE) return SetHinge(m, d, body, X_WB, V_WCm);
   for (int j = first; j < first + count; ++j) {
     if (m.jnt_type[j] != mjJNT_SLIDE) return false;

@@ -129,15 +129,16 @@ bool IslandSolve::Prepare(const mjModel& m, mjData* d, int body, int max_dofs,
     D_[k] = d->efc_D[r];
     aref_[k] = d->efc_aref[r];
   }
-  // The island block of M: each dof's row of qM runs down its chain of parent dofs.
+  // The island block of M: each dof's row of MuJoCo's sparse M (lower triangle, CSR) holds the
+  // dof and its chain of parent dofs, all in the island.
   M_.setZero(n, n);
   Eigen::VectorXd a_smooth(n), guess(n);
   for (Eigen::Index i = 0; i < n; ++i) {
     const int g = dofs_[static_cast<std::size_t>(i)];
-    int address = m.dof_Madr[g];
-    for (int j = g; j >= 0; j = m.dof_parentid[j], ++address) {
-      const int lj = local_of_dof_[static_cast<std::size_t>(j)];
-      M_(i, lj) = M_(lj, i) = d->qM[address];
+    const int first = m.M_rowadr[g];
+    for (int k = first; k < first + m.M_rownnz[g]; ++k) {
+      const int lj = local_of_dof_[static_cast<std::size_t>(m.M_colind[k])];
+      M_(i, lj) = M_(lj, i) = d->M[k];
     }
     a_smooth[i] = qacc_smooth[g];
     guess[i] = qacc[g];  // MuJoCo's own solution: the active set is nearly right

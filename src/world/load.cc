@@ -7,7 +7,6 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -15,6 +14,7 @@
 #include <mutex>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <system_error>
 
 #include "mrh/core/error.h"
@@ -48,9 +48,13 @@ thread_local const std::string* current_scene = nullptr;
 // SceneError while the scene loads (exit code 2).
 [[noreturn]] void ThrowMujocoError(const char* message) {
   const std::string scene = current_scene != nullptr ? *current_scene : "(unknown scene)";
+  const bool out_of_memory = std::string_view(message).find("out of memory") != std::string::npos;
   throw RuntimeError(scene + ": MuJoCo error: " + OneLine(message) +
-                     "; the simulation cannot continue (check the scene's sizes and solver "
-                     "settings)");
+                     "; the simulation cannot continue (" +
+                     (out_of_memory ? "its arena is full: raise <size memory=...> in the scene, or "
+                                      "remove it and mrhaptics sizes the arena"
+                                    : "check the scene's sizes and solver settings") +
+                     ")");
 }
 
 // MuJoCo's default warning handler prints to stdout and appends to MUJOCO_LOG.TXT in the working
@@ -194,7 +198,7 @@ class QuietStdio {
   int saved_err_ = -1;
 };
 
-// `text` is the scene's MJCF, for the buffer sizes it sets itself (internal::SizeBuffers).
+// `text` is the scene's MJCF, for the memory sizes it sets itself (internal::SizeArena).
 internal::ModelPtr LoadOrThrow(const char* file, const mjVFS* vfs, const std::string& origin,
                                const std::string& text) {
   InstallMujocoHandlers();
@@ -207,16 +211,8 @@ internal::ModelPtr LoadOrThrow(const char* file, const mjVFS* vfs, const std::st
   } catch (const RuntimeError& e) {
     throw SceneError(e.what());
   }
-  const internal::ExplicitSizes sizes = internal::FindExplicitSizes(text);
-  if (!model && sizes.njmax && std::strstr(error.data(), "could not create mjData") != nullptr) {
-    // MuJoCo's compiler allocates data with the scene's own sizes (model_size.cc's limit).
-    throw SceneError(origin + ": MuJoCo 2.2.2 could not allocate its data for the scene's <size "
-                     "njmax>: its dense constraint arrays (njmax x dofs, njmax x njmax) must stay "
-                     "under 2.1 GB; lower njmax or remove it (mrhaptics then sizes it from the "
-                     "scene)");
-  }
   if (!model) throw SceneError(origin + ": " + OneLine(error.data()));
-  internal::SizeBuffers(model.get(), sizes, origin);
+  internal::SizeArena(model.get(), internal::FindExplicitSizes(text));
   return model;
 }
 
@@ -295,10 +291,9 @@ World World::LoadFile(const std::filesystem::path& path, const LoadOptions& opti
 
 World World::LoadString(const std::string& xml, const LoadOptions& options,
                         const std::string& origin) {
-  // MuJoCo 2.2 loads only from files: stage the text as a file of a virtual file system. Relative
-  // asset paths in the text then resolve against the working directory.
+  // Staged as a file of a virtual file system, so that MuJoCo's one loader serves both paths.
+  // Relative asset paths in the text then resolve against the working directory.
   constexpr char kName[] = "mrh_scene.xml";
-  // (MuJoCo ends the process on an empty virtual file.)
   if (xml.empty()) {
     throw SceneError(origin + ": the scene text is empty; expected MJCF (<mujoco>...</mujoco>)");
   }
@@ -311,12 +306,11 @@ World World::LoadString(const std::string& xml, const LoadOptions& options,
     ~VfsCleanup() { mj_deleteVFS(vfs); }
   } cleanup{vfs.get()};
 
-  if (mj_makeEmptyFileVFS(vfs.get(), kName, static_cast<int>(xml.size())) != 0) {
+  if (xml.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()) ||
+      mj_addBufferVFS(vfs.get(), kName, xml.data(), static_cast<int>(xml.size())) != 0) {
     throw SceneError(origin + ": cannot stage the scene text for MuJoCo (" +
                      std::to_string(xml.size()) + " bytes)");
   }
-  const int file = mj_findFileVFS(vfs.get(), kName);
-  std::memcpy(vfs->filedata[file], xml.data(), xml.size());
   auto impl = std::make_unique<Impl>();
   internal::InitializeState(LoadOrThrow(kName, vfs.get(), origin, xml), origin, options, impl.get());
   return World(std::move(impl));
@@ -352,12 +346,16 @@ void InitializeState(ModelPtr model, const std::string& origin, const LoadOption
   impl->load_warnings = SceneWarnings(*model, origin);
   DescribeModel(*model, origin, &impl->bodies, &impl->geoms);
   impl->pointer_body = SetUpPointer(model.get(), origin, options, &impl->bodies, &impl->geoms);
-  impl->data.reset(mj_makeData(model.get()));
+  try {
+    impl->data.reset(mj_makeData(model.get()));
+  } catch (const RuntimeError&) {
+    impl->data.reset();  // MuJoCo reports a failed allocation as an error
+  }
   if (!impl->data) {
-    throw SceneError(origin + ": MuJoCo could not allocate the scene's data (njmax " +
-                     std::to_string(model->njmax) + ", nconmax " + std::to_string(model->nconmax) +
-                     ", nstack " + std::to_string(model->nstack) +
-                     "); lower <size> or remove it (mrhaptics sizes the buffers from the scene)");
+    throw SceneError(origin + ": MuJoCo could not allocate the scene's data (arena " +
+                     std::to_string(model->narena) +
+                     " bytes); lower <size memory> or remove it (mrhaptics then sizes the arena "
+                     "from the scene)");
   }
   if (options.dynamic_pointer) mj_setConst(model.get(), impl->data.get());
   // B2 computes every contact itself (contact-volume penalty, physics::ContactVolumePhysics).
@@ -365,10 +363,7 @@ void InitializeState(ModelPtr model, const std::string& origin, const LoadOption
   impl->model = std::move(model);
   impl->snapshot_size = SnapshotSize(*impl->model);
   // Everything derived from qpos (poses, contacts) is valid right after loading.
-  // The stack the solver is expected to use is mapped now, not during the first steps.
-  impl->TouchStack(PlanBuffers(*impl->model).stack_use);
   mj_forward(impl->model.get(), impl->data.get());
-  impl->TouchStackAfterStep();
 }
 
 }  // namespace internal

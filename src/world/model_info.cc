@@ -122,9 +122,7 @@ BodyInfo DescribeBody(const mjModel& m, int b) {
   info.inertia_B = R * ToVec3(m.body_inertia + 3 * b).asDiagonal() * R.transpose();
   info.p_BCm = ToVec3(m.body_ipos + 3 * b);
   info.is_mocap = m.body_mocapid[b] >= 0;
-  // body_weldid is 0 for the world, bodies welded to it, mocap bodies and bodies welded to them:
-  // none has a degree of freedom.
-  info.is_static = m.body_weldid[b] == 0;
+  info.is_static = HasNoDofs(m, b);
   for (int g = 0; g < m.body_geomnum[b]; ++g) info.geoms.push_back(m.body_geomadr[b] + g);
   return info;
 }

@@ -18,6 +18,8 @@
 #include "world/world_impl.h"
 
 namespace mrh::world {
+
+static_assert(mjNISLAND == 20, "Perturber::saved_solver_iter_ holds mjData::solver_niter");
 namespace {
 
 using internal::IsFreeBody;
@@ -139,7 +141,8 @@ void Perturber::Begin(std::span<const int> bodies) {
     if (!IsFreeBody(m, body) && !IsSlideBody(m, body)) forward_skip_ = false;
   }
   world_->Save(&snapshot_);
-  saved_solver_iter_ = world_->impl_->data->solver_iter;
+  std::copy_n(world_->impl_->data->solver_niter, mjNISLAND, saved_solver_iter_.begin());
+  saved_nisland_ = world_->impl_->data->nisland;
   dt_ = m.opt.timestep;
   start_.resize(bodies_.size());
   zero_.resize(bodies_.size());
@@ -186,7 +189,7 @@ const double* Perturber::TestWarmStart() const {
 }
 
 void Perturber::CountTestIterations() {
-  const int used = world_->impl_->data->solver_iter;
+  const int used = internal::SolverIterations(*world_->impl_->data);
   counters_.force_run_solver_iterations += used;
   counters_.max_force_run_solver_iterations =
       std::max(counters_.max_force_run_solver_iterations, used);
@@ -198,7 +201,7 @@ void Perturber::ZeroForceRun() {
   if (forward_skip_) {
     // Begin() already did this run's forward pass; its results are still in the data.
     RecordBaseContacts();
-    counters_.zero_force_solver_iterations += world_->impl_->data->solver_iter;
+    counters_.zero_force_solver_iterations += internal::SolverIterations(*world_->impl_->data);
     ++counters_.forward_skip_runs;
   } else {
     {
@@ -207,7 +210,7 @@ void Perturber::ZeroForceRun() {
     }
     RecordBaseContacts();  // the step's forward pass ran at the saved state
     const mjData& d = *world_->impl_->data;
-    counters_.zero_force_solver_iterations += d.solver_iter;
+    counters_.zero_force_solver_iterations += internal::SolverIterations(d);
     std::copy_n(d.qacc, world_->impl_->model->nv, zero_solution_.data());
     CaptureFullStep(&zero_q_, &zero_twists_);
     for (std::size_t i = 0; i < bodies_.size(); ++i) {
@@ -381,7 +384,9 @@ void Perturber::CollectGroup(int measured, const Mat3& F_inverse) {
 void Perturber::End() {
   MRH_DEMAND(open_);
   world_->Restore(snapshot_);
-  world_->impl_->data->solver_iter = saved_solver_iter_;  // World::solver_iterations(): the step's
+  // World::solver_iterations(): the step's
+  std::copy_n(saved_solver_iter_.begin(), mjNISLAND, world_->impl_->data->solver_niter);
+  world_->impl_->data->nisland = saved_nisland_;
   open_ = false;  // the velocities stay readable until the next Begin()
 }
 

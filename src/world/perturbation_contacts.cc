@@ -89,14 +89,16 @@ Twist Perturber::NewContactVelocityChange(int body, std::span<const std::uint64_
     any = true;
   }
   if (!any) return Twist{};
-  // M_B: the body's own block of the joint-space mass matrix (its dofs form one chain in qM).
+  // M_B: the body's own block of the joint-space mass matrix (its dofs form one chain; a row of
+  // MuJoCo's sparse lower-triangular M lists the dof's ancestors in increasing order).
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxOwnDofs, kMaxOwnDofs> M(count,
                                                                                        count);
   M.setZero();
   for (int i = 0; i < count; ++i) {
-    int address = m.dof_Madr[first + i];
-    for (int j = first + i; j >= first; j = m.dof_parentid[j], ++address) {
-      M(i, j - first) = M(j - first, i) = d.qM[address];
+    const int row = first + i;
+    for (int k = m.M_rowadr[row]; k < m.M_rowadr[row] + m.M_rownnz[row]; ++k) {
+      const int j = m.M_colind[k];
+      if (j >= first) M(i, j - first) = M(j - first, i) = d.M[k];
     }
   }
   const auto dq = (M.llt().solve(generalized) * m.opt.timestep).eval();

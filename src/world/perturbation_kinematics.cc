@@ -16,7 +16,7 @@ bool IsFreeBody(const mjModel& m, int body) {
 
 bool IsSlideBody(const mjModel& m, int body) {
   const int count = m.body_jntnum[body];
-  if (count == 0 || m.body_weldid[m.body_parentid[body]] != 0) return false;
+  if (count == 0 || !internal::HasNoDofs(m, m.body_parentid[body])) return false;
   for (int j = m.body_jntadr[body]; j < m.body_jntadr[body] + count; ++j) {
     if (m.jnt_type[j] != mjJNT_SLIDE) return false;
   }

@@ -179,7 +179,7 @@ void SceneRenderer::FrameBodies(const std::vector<int>& bodies) {
 
 void SceneRenderer::MoveCamera(CameraMotion motion, double dx, double dy) {
   impl_->OrbitToMujoco();
-  mjv_moveCamera(impl_->model.get(), ToMujoco(motion), dx, dy, &impl_->scene, &impl_->camera);
+  mjv_moveCamera(impl_->model.get(), ToMujoco(motion), dx, dy, &impl_->camera);
   impl_->MujocoToOrbit();
 }
 
@@ -219,8 +219,9 @@ bool SceneRenderer::AddArrow(const Vec3& from_W, const Vec3& to_W, double width,
   if ((to_W - from_W).norm() < kMinArrowLength) return true;
   mjvGeom* g = impl_->NewGeom(mjGEOM_ARROW, color);
   if (g == nullptr) return false;
-  mjv_makeConnector(g, mjGEOM_ARROW, width, from_W.x(), from_W.y(), from_W.z(), to_W.x(), to_W.y(),
-                    to_W.z());
+  const mjtNum from[3] = {from_W.x(), from_W.y(), from_W.z()};
+  const mjtNum to[3] = {to_W.x(), to_W.y(), to_W.z()};
+  mjv_connector(g, mjGEOM_ARROW, width, from, to);
   return true;
 }
 

@@ -25,11 +25,11 @@ void CheckBody(const mjModel& m, int body) {
 }  // namespace
 
 int World::num_bodies() const {
-  return impl_->model->nbody;
+  return static_cast<int>(impl_->model->nbody);
 }
 
 int World::num_geoms() const {
-  return impl_->model->ngeom;
+  return static_cast<int>(impl_->model->ngeom);
 }
 
 const BodyInfo& World::body(int id) const {
@@ -97,9 +97,8 @@ void World::Step() {
   const internal::MujocoScope scope(impl_->origin);
   mjData* d = impl_->data.get();
   mj_step(impl_->model.get(), d);
-  impl_->TouchStackAfterStep();
   // The wrenches were for this step only.
-  mju_zero(d->xfrc_applied, 6 * impl_->model->nbody);
+  mju_zero(d->xfrc_applied, static_cast<int>(6 * impl_->model->nbody));
   impl_->kinematics_stale = true;
 }
 
@@ -185,7 +184,7 @@ int World::num_contacts() const {
 }
 
 int World::solver_iterations() const {
-  return impl_->data->solver_iter;
+  return internal::SolverIterations(*impl_->data);
 }
 
 std::vector<std::string> World::SimulatorWarnings() const {
@@ -194,13 +193,12 @@ std::vector<std::string> World::SimulatorWarnings() const {
     const char* what;
     const char* fix;
   };
-  static constexpr std::array<Kind, 8> kKinds{{
+  static constexpr std::array<Kind, 7> kKinds{{
       {mjWARN_INERTIA, "(near) singular inertia matrix", "give every body positive mass/inertia"},
       {mjWARN_CONTACTFULL, "contact buffer full, contacts dropped",
-       "raise <size nconmax=...> in the scene"},
+       "raise <size nconmax=...> or <size memory=...> in the scene, or remove them"},
       {mjWARN_CNSTRFULL, "constraint buffer full, constraints dropped",
-       "raise <size njmax=...> (and nstack) in the scene"},
-      {mjWARN_VGEOMFULL, "visual geom buffer full", "raise the viewer's maxgeom"},
+       "raise <size memory=...> (or njmax) in the scene, or remove it"},
       {mjWARN_BADQPOS, "bad number in qpos, state reset", "lower the timestep or the gains"},
       {mjWARN_BADQVEL, "bad number in qvel, state reset", "lower the timestep or the gains"},
       {mjWARN_BADQACC, "bad number in qacc, state reset", "lower the timestep or the gains"},

@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
-#include <cstring>
 #include <memory>
 #include <string>
 #include <vector>
@@ -32,6 +31,16 @@ struct DataDeleter {
 
 using ModelPtr = std::unique_ptr<mjModel, ModelDeleter>;
 using DataPtr = std::unique_ptr<mjData, DataDeleter>;
+
+/// True if neither `body` nor any of its ancestors has a joint: the world, bodies welded to it
+/// and mocap bodies (whose poses the user sets) with what is welded to them. (MuJoCo 3's
+/// body_weldid no longer maps mocap bodies to the world.)
+inline bool HasNoDofs(const mjModel& m, int body) {
+  for (int b = body; b > 0; b = m.body_parentid[b]) {
+    if (m.body_jntnum[b] > 0) return false;
+  }
+  return true;
+}
 
 /// Bodies and geoms of `m` as engine-neutral descriptions. `origin` names the scene in errors.
 /// @throws mrh::SceneError for a geom type mrhaptics cannot represent (height field).
@@ -62,8 +71,6 @@ struct WorldState {
   // Set when qpos, qvel or mocap changed without MuJoCo recomputing positions (after mj_step the
   // positions it holds are those at the start of the step). Getters refresh on demand.
   bool kinematics_stale = false;
-  // mjtNums of data->stack whose pages have been touched (TouchStack).
-  std::int64_t stack_touched = 0;
 
   /// Recomputes body and geom poses and body velocities from qpos, qvel and mocap if stale.
   /// Does not allocate.
@@ -74,52 +81,31 @@ struct WorldState {
     mj_comVel(model.get(), data.get());
     kinematics_stale = false;
   }
-
-  /// Touches the pages of MuJoCo's stack (data->stack) up to `mjtnums` (at most nstack), when
-  /// the stack is free (between MuJoCo calls). The stack is one block that mj_makeData leaves
-  /// unmapped, and the kernel maps each page on its first touch (~3-10 µs here): left to the
-  /// solver, a 500-box step with friction mapped them during steps, at 33 ms p99 against a 4-6 ms
-  /// median (issue 13; Newton allocates 3 nv² mjtNums and reaches new parts of that as contacts
-  /// change). Does not allocate.
-  void TouchStack(std::int64_t mjtnums) {
-    const std::int64_t end = std::min<std::int64_t>(model->nstack, mjtnums);
-    if (end <= stack_touched) return;
-    std::memset(data->stack + stack_touched, 0,
-                sizeof(mjtNum) * static_cast<std::size_t>(end - stack_touched));
-    stack_touched = end;
-  }
-
-  /// After a step: keeps the stack touched ~6 % beyond its deepest use so far (maxuse_stack), so a
-  /// use that grows with the contacts maps its pages here, now and then, not inside a step.
-  void TouchStackAfterStep() {
-    const std::int64_t used = data->maxuse_stack;
-    if (used + used / 64 > stack_touched) TouchStack(used + used / 16);
-  }
 };
 
-/// Which of MuJoCo's buffer sizes the scene's MJCF text sets itself (<size njmax nconmax
-/// nstack>; comments skipped, <include>d files not read).
+/// Solver iterations of the last step: the most any constraint island took (MuJoCo 3 counts them
+/// per island, the first mjNISLAND islands; one count when islands are off or there are none).
+inline int SolverIterations(const mjData& d) {
+  const int islands = std::clamp(d.nisland, 1, static_cast<int>(mjNISLAND));
+  return *std::max_element(d.solver_niter, d.solver_niter + islands);
+}
+
+/// Which of MuJoCo's memory sizes the scene's MJCF text sets itself (<size memory njmax
+/// nconmax>; comments skipped, <include>d files not read).
 struct ExplicitSizes {
-  bool njmax = false, nconmax = false, nstack = false;
+  bool memory = false, njmax = false, nconmax = false;
+  bool any() const { return memory || njmax || nconmax; }
 };
 ExplicitSizes FindExplicitSizes(const std::string& mjcf);
 
-/// MuJoCo 2.2.2 buffer sizes for `m` (model_size.cc): contacts and constraint rows its moving
-/// geoms need resting among neighbours with the scene's largest condim and its cone, the
-/// stack its solver needs, and the most rows MuJoCo 2.2.2 can allocate with m.nv dofs.
-struct BufferPlan {
-  std::int64_t nconmax = 0, njmax = 0, nstack = 0;
-  std::int64_t resting_rows = 0;  ///< rows of the floor contacts alone
-  std::int64_t max_rows = 0;      ///< njmax limit of MuJoCo 2.2.2's int-sized data buffer
-  std::int64_t buffer_bytes = 0;  ///< constraint and contact arrays at njmax, nconmax
-  std::int64_t stack_use = 0;     ///< the stack the solver is expected to use (half of nstack)
-};
-BufferPlan PlanBuffers(const mjModel& m);
+/// The bytes of mjData's arena (contacts, constraints and the solver's stack) for `m`
+/// (model_size.cc): generous for every moving geom resting among neighbours, and never more
+/// than MuJoCo's own default (m.narena as compiled), which grows with the square of the dofs.
+/// The arena is allocated untouched: only the part a step uses costs memory.
+std::int64_t PlanArena(const mjModel& m);
 
-/// Sets m's nconmax, njmax and nstack from PlanBuffers, except those the scene sets itself.
-/// @throws mrh::SceneError naming `origin` if the rows its resting contacts need exceed what
-/// MuJoCo 2.2.2 can allocate.
-void SizeBuffers(mjModel* m, const ExplicitSizes& explicit_sizes, const std::string& origin);
+/// Sets m.narena from PlanArena unless the scene sizes MuJoCo's memory itself.
+void SizeArena(mjModel* m, const ExplicitSizes& explicit_sizes);
 
 /// While alive, MuJoCo errors raised on this thread name `scene` (see load.cc). RT-safe (one
 /// thread_local pointer store). `scene` must outlive the scope.

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // Issue 13 item 3: the friction piles (t4.3 with condim 3, the 500-cube step benchmark) use
-// MuJoCo's Newton solver at its default tolerance instead of CG. A solver change must not change
+// MuJoCo's Newton solver at tolerance 1e-10 instead of CG (MuJoCo 3.14's default 1e-8 stops
+// 4.7 µm/s short on this pile). A solver change must not change
 // the physics: from every state of a reference trajectory (Newton at tolerance 1e-15, i.e.
 // converged), one step with the scene's solver must give the reference's velocities.
 #include <gtest/gtest.h>
@@ -69,8 +70,8 @@ double LargestStepError(const std::string& solver_options) {
   return largest;
 }
 
-TEST(SolverReferenceTest, NewtonAtDefaultToleranceGivesTheConvergedVelocitiesOfAPushedPile) {
-  EXPECT_LT(LargestStepError("solver=\"Newton\""), kVelocityTolerance);
+TEST(SolverReferenceTest, NewtonAtTolerance1e10GivesTheConvergedVelocitiesOfAPushedPile) {
+  EXPECT_LT(LargestStepError("solver=\"Newton\" tolerance=\"1e-10\""), kVelocityTolerance);
 }
 
 // Why not CG: at its default tolerance it stops early on the same pile (measured: 2.9 mm/s at

@@ -201,7 +201,9 @@ class Perturber {
 
   World* world_;
   PerturberSettings settings_;
-  int saved_solver_iter_ = 0;  // mjData::solver_iter at Begin(): the real step's
+  // mjData::solver_niter and nisland at Begin(): the real step's (World::solver_iterations()).
+  std::array<int, 20> saved_solver_iter_{};
+  int saved_nisland_ = 0;
   bool model_allows_skip_ = false;  // Euler integrator and no joint damping
   Snapshot snapshot_;
   std::vector<int> bodies_;
