@@ -75,7 +75,10 @@ void ContactExporter::Collide(bool refresh_kinematics) {
   }
   for (int g = 0; g < m->ngeom; ++g) m->geom_margin[g] = margins_[static_cast<std::size_t>(g)];
   if (!whole_world_) DisableFarGeoms();
-  mj_collision(m, w.data.get());
+  {
+    const internal::MujocoScope scope(w.origin);  // MuJoCo's errors name the scene
+    mj_collision(m, w.data.get());
+  }
   if (!whole_world_) RestoreFilters();
   for (int g = 0; g < m->ngeom; ++g) m->geom_margin[g] = saved_margin_[static_cast<std::size_t>(g)];
 }

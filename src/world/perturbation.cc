@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Perturbation simulations over MuJoCo 2.2: minimal state copy and mj_forwardSkip from the
+// Perturbation simulations over MuJoCo: minimal state copy and mj_forwardSkip from the
 // velocity stage (DEPENDENCIES.md), with a full step as the exact fallback.
 #include "mrh/world/perturbation.h"
 
@@ -171,6 +171,7 @@ void Perturber::SetUpForwardSkip() {
   std::copy_n(d->qacc_warmstart, m->nv, warmstart_.data());
   {
     const SolverOverride solver(w.model.get(), settings_);
+    const internal::MujocoScope scope(w.origin);
     mj_forwardSkip(m, d, mjSTAGE_NONE, 1);
   }
   std::copy_n(d->qacc_smooth, m->nv, zero_smooth_.data());
@@ -261,7 +262,10 @@ Twist Perturber::RunForwardSkip(std::size_t index, const Vec3& f_W, const Vec3& 
     xfrc[i] += f_W[i];
     xfrc[3 + i] += tau[i];
   }
-  mj_forwardSkip(m, d, mjSTAGE_VEL, 1);
+  {
+    const internal::MujocoScope scope(world_->impl_->origin);
+    mj_forwardSkip(m, d, mjSTAGE_VEL, 1);
+  }
   CountTestIterations();
   std::copy_n(saved.data(), 6, xfrc);
   if (slot >= 0) std::copy_n(d->qacc, m->nv, run_q_[static_cast<std::size_t>(slot)].data());
