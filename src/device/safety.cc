@@ -17,6 +17,7 @@ namespace {
 constexpr double kMaxRampTime = 60.0;           // s
 constexpr double kMaxWatchdogTimeout = 3600.0;  // s
 constexpr double kMaxWatchdogFade = 60.0;       // s
+constexpr double kMaxBodySpeed = 1e4;           // m/s
 constexpr double kMaxForce = 1e4;               // N
 constexpr double kMaxTorque = 1e3;              // N*m
 
@@ -76,6 +77,7 @@ void SafetySettings::Validate() const {
   RequireNonNegative(ramp_time, "safety.ramp_time", "s", kMaxRampTime);
   RequireNonNegative(watchdog_timeout, "safety.watchdog_timeout", "s", kMaxWatchdogTimeout);
   RequireNonNegative(watchdog_fade, "safety.watchdog_fade", "s", kMaxWatchdogFade);
+  RequireNonNegative(max_body_speed, "safety.max_body_speed", "m/s", kMaxBodySpeed);
 }
 
 // The const-reference parameters are the public signature; one copy at setup is free.

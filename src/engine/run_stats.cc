@@ -10,7 +10,8 @@ namespace mrh::engine::internal {
 
 PhysicsSide EngineState::MakePhysicsSide(Recorder* recorder) {
   return PhysicsSide(method.physics.get(), &world,
-                     PhysicsSide::Exchange{&snapshots, &reports, &tick_records}, recorder);
+                     PhysicsSide::Exchange{&snapshots, &reports, &tick_records}, recorder,
+                     settings.safety.max_body_speed);
 }
 
 void RunPhysicsThread(PhysicsSide& physics, const std::atomic<bool>& done) {

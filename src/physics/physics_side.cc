@@ -6,6 +6,7 @@
 #include <string>
 #include <utility>
 
+#include "mrh/core/error.h"
 #include "mrh/core/stats.h"
 #include "mrh/physics/physics_side.h"
 #include "mrh/world/world.h"
@@ -13,8 +14,12 @@
 namespace mrh::physics {
 
 PhysicsSide::PhysicsSide(MethodPhysics* method, world::World* world, const Exchange& exchange,
-                         Recorder* recorder)
-    : method_(method), world_(world), exchange_(exchange), recorder_(recorder) {}
+                         Recorder* recorder, double max_body_speed)
+    : method_(method),
+      world_(world),
+      exchange_(exchange),
+      recorder_(recorder),
+      max_body_speed_(max_body_speed) {}
 
 void PhysicsSide::Start(const ir::HapticReport& initial) {
   input_ = initial;
@@ -45,6 +50,9 @@ void PhysicsSide::Step(std::int64_t k) {
   const auto t0 = std::chrono::steady_clock::now();
   method_->PhysicsStep(input_, &out);
   const auto t1 = std::chrono::steady_clock::now();
+  if (std::string diverged = world_->FindDivergence(max_body_speed_); !diverged.empty()) {
+    throw RuntimeError(std::move(diverged));
+  }
   const ir::HapticReport* applied = method_->applied_reaction();
   AddToTotals(applied != nullptr ? *applied : input_);
   out.step = k;

@@ -91,12 +91,14 @@ inline constexpr std::array<std::string_view, 2> kRenderingSpecialKeys{{"rotatio
                                                                         "tool_inertia"}};
 
 /// `safety` block.
-inline constexpr std::array<Field<device::SafetySettings>, 4> kSafetyFields{{
+inline constexpr std::array<Field<device::SafetySettings>, 5> kSafetyFields{{
     {"ramp", &device::SafetySettings::ramp, "", "engage ramp on/off"},
     {"ramp_time", &device::SafetySettings::ramp_time, "s", "engage ramp length"},
     {"watchdog_timeout", &device::SafetySettings::watchdog_timeout, "s",
      "physics silence before the output fades"},
     {"watchdog_fade", &device::SafetySettings::watchdog_fade, "s", "fade-out length"},
+    {"max_body_speed", &device::SafetySettings::max_body_speed, "m/s",
+     "a free body faster than this ends the run as diverged (0: no speed test)"},
 }};
 
 /// `device.hand` block.

@@ -5,6 +5,7 @@
 #include <mujoco/mujoco.h>
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -71,6 +72,8 @@ struct WorldState {
   // Set when qpos, qvel or mocap changed without MuJoCo recomputing positions (after mj_step the
   // positions it holds are those at the start of the step). Getters refresh on demand.
   bool kinematics_stale = false;
+  // MuJoCo's bad qpos/qvel/qacc warning counts at the last FindDivergence call.
+  std::array<int, 3> bad_number_seen{};
 
   /// Recomputes body and geom poses and body velocities from qpos, qvel and mocap if stale.
   /// Does not allocate.

@@ -102,3 +102,20 @@ bad_input_test(PointerBodyNotFoundNamesTheKey
 mrh_cli_test(ProxyRunsWithoutPointerRadius 0 stdout "^ok: " validate ${bad}/box_pointer.json)
 mrh_cli_test(ConcaveMeshWarns 0 stderr "^mrh: warning: .*concave_mesh\\.xml: mesh 'L' .*convex hull"
              run ${bad}/concave_mesh.json --quiet --out ${CMAKE_CURRENT_BINARY_DIR}/concave_out)
+
+# Divergence is a fault (issue 33): exit 1 with one line naming the scene, the body and the time.
+function(diverged_test name regex)
+  add_test(NAME cli.diverged.${name} COMMAND ${one_line} 1 ${regex} -- ${mrh_bin} ${ARGN}
+           WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+  set_tests_properties(cli.diverged.${name} PROPERTIES LABELS apps TIMEOUT 60)
+endfunction()
+diverged_test(StiffSpringResetsTheState
+              "${err}.*diverging_scene\\.xml: the simulation diverged at t = .* bad number in .* body 'arm'.*likely causes"
+              run ${fixtures}/diverging.json --out ${CMAKE_BINARY_DIR}/cli_diverged_spring)
+diverged_test(BodyFasterThanMaxBodySpeed
+              "${err}.*thrown_scene\\.xml: the simulation diverged at t = 0\\.02 s: body 'ball' moves at 30 m/s, over safety\\.max_body_speed = 20 m/s"
+              run ${fixtures}/thrown.json --out ${CMAKE_BINARY_DIR}/cli_diverged_thrown)
+# The guard can be raised: the same throw then runs to the end.
+mrh_cli_test(MaxBodySpeedRaisedLetsTheThrowRun 0 stdout "^summary: "
+             run ${fixtures}/thrown.json --set safety.max_body_speed=50
+             --out ${CMAKE_BINARY_DIR}/cli_thrown_allowed)

@@ -329,5 +329,43 @@ TEST(WorldWarningsTest, DivergenceIsReportedWithItsFixAndNotLoggedToAFile) {
   EXPECT_FALSE(std::filesystem::exists("MUJOCO_LOG.TXT"));
 }
 
+TEST(WorldDivergenceTest, NoneForAHealthyScene) {
+  World world = World::LoadString(kBoxScene, testing::kNoPointer);
+  for (int i = 0; i < 10; ++i) {
+    world.Step();
+    EXPECT_EQ(world.FindDivergence(20.0), "");
+  }
+}
+
+TEST(WorldDivergenceTest, MujocoResettingTheStateIsReportedOnceNamingTheBody) {
+  World world = World::LoadString(kDivergingScene, testing::kNoPointer, "spring.xml");
+  world.Step();
+  const std::string why = world.FindDivergence(20.0);
+  EXPECT_THAT(why, HasSubstr("spring.xml: the simulation diverged at t = "));
+  EXPECT_THAT(why, HasSubstr("bad number in qacc"));
+  EXPECT_THAT(why, HasSubstr("body #1"));
+  EXPECT_THAT(why, HasSubstr("likely causes"));
+  EXPECT_EQ(why.find('\n'), std::string::npos);
+  EXPECT_EQ(world.FindDivergence(20.0), "");  // nothing new since the last call
+}
+
+// A free body's centre-of-mass speed includes its spin about an off-centre origin: a body
+// spinning at 100 rad/s whose COM is 0.3 m from its frame origin moves at 30 m/s.
+TEST(WorldDivergenceTest, FreeBodyFasterThanTheLimitIsNamedWithItsSpeed) {
+  World world = World::LoadString(R"(<mujoco><option gravity="0 0 0"/><worldbody>
+      <body name="spinner" pos="0 0 1"><freejoint/>
+        <geom type="sphere" pos="0.3 0 0" size="0.01" mass="1"/></body>
+      </worldbody>
+      <keyframe><key name="spin" qpos="0 0 1 1 0 0 0" qvel="0 0 0 0 0 100"/></keyframe>
+      </mujoco>)",
+                                  testing::kNoPointer, "spin.xml");
+  world.ApplyKeyframe("spin");
+  EXPECT_EQ(world.FindDivergence(31.0), "");
+  const std::string why = world.FindDivergence(29.0);
+  EXPECT_THAT(why, HasSubstr("spin.xml: the simulation diverged at t = 0 s: body 'spinner' "
+                             "moves at 30 m/s, over safety.max_body_speed = 29 m/s"));
+  EXPECT_EQ(world.FindDivergence(0.0), "");  // 0 disables the speed test
+}
+
 }  // namespace
 }  // namespace mrh::world

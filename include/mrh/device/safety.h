@@ -30,6 +30,10 @@ struct SafetySettings {
   /// output fades linearly to zero over `watchdog_fade` (s); it recovers when snapshots return.
   double watchdog_timeout = 0.25;
   double watchdog_fade = 0.1;
+  /// Divergence guard (m/s): a free body whose centre of mass moves faster than this ends the
+  /// run as a fault (the physics side stops, the watchdog fades the output, exit code 1). 0
+  /// disables the speed test; a non-finite state or MuJoCo resetting it always ends the run.
+  double max_body_speed = 20.0;
 
   /// @throws mrh::InvalidArgument naming the key for a non-finite or negative time.
   void Validate() const;

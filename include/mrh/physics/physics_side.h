@@ -41,14 +41,17 @@ class PhysicsSide {
     SpscRing<haptic::TickRecord>* tick_records;     ///< haptic → recorder
   };
 
-  /// `recorder` may be null.
+  /// `recorder` may be null. `max_body_speed` (m/s) is the divergence guard of Step (see
+  /// world::World::FindDivergence; <= 0: no speed test).
   PhysicsSide(MethodPhysics* method, world::World* world, const Exchange& exchange,
-              Recorder* recorder);
+              Recorder* recorder, double max_body_speed);
 
   /// Publishes the snapshot of the initial state (for haptic period 0); `initial` carries the
   /// pointer's initial pose.
   void Start(const ir::HapticReport& initial);
   /// Runs physics step k with `input` (the merged report of period k−1) into the write slot.
+  /// @throws mrh::RuntimeError (one line naming the scene, body, time and likely causes) when
+  /// the simulation has diverged: the run ends as a fault, never goes on from a reset state.
   void Step(std::int64_t k);
   /// Pops every pending report into the next step's input; returns how many there were.
   int TakeReports();
@@ -69,6 +72,7 @@ class PhysicsSide {
   world::World* world_;
   Exchange exchange_;
   Recorder* recorder_;
+  double max_body_speed_;
   ir::HapticReport input_;
   ir::HapticReport popped_;
   StepRecord last_step_;

@@ -149,6 +149,12 @@ class World {
   /// there were none. MuJoCo itself prints nothing and writes no MUJOCO_LOG.TXT: these lines are
   /// the only report (the engine copies them into RunStats::warnings).
   std::vector<std::string> SimulatorWarnings() const;
+  /// After a step: why the simulation has diverged, or "" if it has not. Diverged means MuJoCo
+  /// found a bad number in qpos, qvel or qacc since the last call (and reset the state), a joint
+  /// coordinate or velocity is not finite, or a free body's centre of mass moves faster than
+  /// `max_body_speed` (m/s; <= 0 disables the speed test). The text names the body, the time
+  /// and the likely causes, in one line. Does not allocate unless it reports.
+  std::string FindDivergence(double max_body_speed);
 
   Snapshot MakeSnapshot() const;
   void Save(Snapshot* snapshot) const;

@@ -1,0 +1,91 @@
+// SPDX-License-Identifier: Apache-2.0
+// World::FindDivergence: a diverged simulation is a fault to report, never a state to go on from.
+#include <mujoco/mujoco.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "mrh/world/world.h"
+#include "world/world_impl.h"
+
+namespace mrh::world {
+namespace {
+
+constexpr char kLikelyCauses[] =
+    "likely causes: rendering gains too stiff for the time step (stiffness, rot_stiffness, "
+    "rotation_weight), a physics_dt too long for the scene, or a scene whose bodies are too "
+    "light for its contacts";
+
+std::string BodyName(const mjModel& m, int body) {
+  const char* name = mj_id2name(&m, mjOBJ_BODY, body);
+  return name != nullptr && name[0] != '\0' ? "body '" + std::string(name) + "'"
+                                           : "body #" + std::to_string(body);
+}
+
+// `value` with `digits` significant digits ("2.88", not "2.880000000000002").
+std::string Rounded(double value, int digits) {
+  std::array<char, 32> text{};
+  std::snprintf(text.data(), text.size(), "%.*g", digits, value);
+  return text.data();
+}
+
+std::string At(const mjData& d) {
+  return " at t = " + Rounded(d.time, 6) + " s";
+}
+
+}  // namespace
+
+std::string World::FindDivergence(double max_body_speed) {
+  const mjModel& m = *impl_->model;
+  const mjData& d = *impl_->data;
+  static constexpr std::array<int, 3> kBad = {mjWARN_BADQPOS, mjWARN_BADQVEL, mjWARN_BADQACC};
+  static constexpr std::array<const char*, 3> kWhat = {"qpos", "qvel", "qacc"};
+  for (std::size_t i = 0; i < kBad.size(); ++i) {
+    const mjWarningStat& w = d.warning[kBad[i]];
+    if (w.number == impl_->bad_number_seen[i]) continue;
+    impl_->bad_number_seen[i] = w.number;
+    const int dof = w.lastinfo;
+    const int body = dof >= 0 && dof < m.nv ? m.dof_bodyid[dof] : -1;
+    return impl_->origin + ": the simulation diverged" + At(d) + ": MuJoCo found a bad number in " +
+           kWhat[i] + (body >= 0 ? " of " + BodyName(m, body) : std::string()) +
+           " and reset the state; " + kLikelyCauses;
+  }
+  for (int j = 0; j < m.njnt; ++j) {
+    const int body = m.jnt_bodyid[j];
+    const int qadr = m.jnt_qposadr[j];
+    const int vadr = m.jnt_dofadr[j];
+    const int nq = m.jnt_type[j] == mjJNT_FREE ? 7 : m.jnt_type[j] == mjJNT_BALL ? 4 : 1;
+    const int nv = m.jnt_type[j] == mjJNT_FREE ? 6 : m.jnt_type[j] == mjJNT_BALL ? 3 : 1;
+    bool finite = true;
+    for (int k = 0; k < nq; ++k) finite = finite && std::isfinite(d.qpos[qadr + k]);
+    for (int k = 0; k < nv; ++k) finite = finite && std::isfinite(d.qvel[vadr + k]);
+    if (!finite) {
+      return impl_->origin + ": the simulation diverged" + At(d) + ": " + BodyName(m, body) +
+             " has a non-finite position or velocity; " + kLikelyCauses;
+    }
+    if (max_body_speed <= 0.0 || m.jnt_type[j] != mjJNT_FREE) continue;
+    // A free joint's qvel is the body origin's world velocity and the angular velocity in body
+    // axes: v_Cm = v + R (ω_B × p_BCm).
+    const mjtNum* v = d.qvel + vadr;
+    mjtNum lever_B[3];
+    mju_cross(lever_B, v + 3, m.body_ipos + 3 * body);
+    mjtNum lever_W[3];
+    mjtNum quat[4];
+    mju_copy4(quat, d.qpos + qadr + 3);
+    mju_normalize4(quat);
+    mju_rotVecQuat(lever_W, lever_B, quat);
+    const double speed = std::sqrt((v[0] + lever_W[0]) * (v[0] + lever_W[0]) +
+                                   (v[1] + lever_W[1]) * (v[1] + lever_W[1]) +
+                                   (v[2] + lever_W[2]) * (v[2] + lever_W[2]));
+    if (speed > max_body_speed) {
+      return impl_->origin + ": the simulation diverged" + At(d) + ": " + BodyName(m, body) +
+             " moves at " + Rounded(speed, 4) + " m/s, over safety.max_body_speed = " +
+             Rounded(max_body_speed, 4) + " m/s; " + kLikelyCauses;
+    }
+  }
+  return {};
+}
+
+}  // namespace mrh::world
