@@ -48,9 +48,12 @@ std::string World::FindDivergence(double max_body_speed) {
     impl_->bad_number_seen[i] = w.number;
     const int dof = w.lastinfo;
     const int body = dof >= 0 && dof < m.nv ? m.dof_bodyid[dof] : -1;
-    return impl_->origin + ": the simulation diverged" + At(d) + ": MuJoCo found a bad number in " +
-           kWhat[i] + (body >= 0 ? " of " + BodyName(m, body) : std::string()) +
-           " and reset the state; " + kLikelyCauses;
+    // MuJoCo's reset set the time back to 0: name the step in which it happened.
+    return impl_->origin + ": the simulation diverged at t = " +
+           Rounded(impl_->step_start_time + m.opt.timestep, 6) +
+           " s: MuJoCo found a bad number in " + kWhat[i] +
+           (body >= 0 ? " of " + BodyName(m, body) : std::string()) + " and reset the state; " +
+           kLikelyCauses;
   }
   for (int j = 0; j < m.njnt; ++j) {
     const int body = m.jnt_bodyid[j];

@@ -96,6 +96,7 @@ void World::ApplyKeyframe(const std::string& name) {
 void World::Step() {
   const internal::MujocoScope scope(impl_->origin);
   mjData* d = impl_->data.get();
+  impl_->step_start_time = d->time;
   mj_step(impl_->model.get(), d);
   // The wrenches were for this step only.
   mju_zero(d->xfrc_applied, static_cast<int>(6 * impl_->model->nbody));

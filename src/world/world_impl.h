@@ -72,8 +72,10 @@ struct WorldState {
   // Set when qpos, qvel or mocap changed without MuJoCo recomputing positions (after mj_step the
   // positions it holds are those at the start of the step). Getters refresh on demand.
   bool kinematics_stale = false;
-  // MuJoCo's bad qpos/qvel/qacc warning counts at the last FindDivergence call.
+  // MuJoCo's bad qpos/qvel/qacc warning counts at the last FindDivergence call, and the time at
+  // the start of the last World::Step (a reset inside the step sets d->time back to 0).
   std::array<int, 3> bad_number_seen{};
+  double step_start_time = 0.0;
 
   /// Recomputes body and geom poses and body velocities from qpos, qvel and mocap if stale.
   /// Does not allocate.
