@@ -28,6 +28,7 @@ ContactExporter::ContactExporter(World* world, double margin, bool whole_world)
   saved_margin_.resize(static_cast<std::size_t>(world->num_geoms()));
   margins_.resize(static_cast<std::size_t>(world->num_geoms()));
   saved_filter_.resize(2 * static_cast<std::size_t>(world->num_geoms()));
+  saved_body_margin_.resize(static_cast<std::size_t>(world->num_bodies()));
   local_index_.assign(static_cast<std::size_t>(world->num_bodies()), -1);
   near_.assign(static_cast<std::size_t>(world->num_bodies()), 0);
   near_bodies_.reserve(static_cast<std::size_t>(world->num_bodies()));
@@ -74,6 +75,14 @@ void ContactExporter::Collide(bool refresh_kinematics) {
     margins_[static_cast<std::size_t>(g)] = GeomMargin(g);
   }
   for (int g = 0; g < m->ngeom; ++g) m->geom_margin[g] = margins_[static_cast<std::size_t>(g)];
+  // MuJoCo's broadphase bounds each body by body_margin (the largest geom margin + gap, set when
+  // the model is compiled): raise it with the geoms' margins, or pairs within the raised margins
+  // are never tested.
+  std::copy_n(m->body_margin, m->nbody, saved_body_margin_.begin());
+  for (int g = 0; g < m->ngeom; ++g) {
+    mjtNum& bound = m->body_margin[m->geom_bodyid[g]];
+    bound = std::max(bound, m->geom_margin[g] + m->geom_gap[g]);
+  }
   if (!whole_world_) DisableFarGeoms();
   {
     const internal::MujocoScope scope(w.origin);  // MuJoCo's errors name the scene
@@ -81,6 +90,7 @@ void ContactExporter::Collide(bool refresh_kinematics) {
   }
   if (!whole_world_) RestoreFilters();
   for (int g = 0; g < m->ngeom; ++g) m->geom_margin[g] = saved_margin_[static_cast<std::size_t>(g)];
+  std::copy_n(saved_body_margin_.begin(), m->nbody, m->body_margin);
 }
 
 // True if geoms g and h may touch: the bounding-sphere test of MuJoCo's mj_collideGeoms (centre

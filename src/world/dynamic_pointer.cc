@@ -60,6 +60,7 @@ void SetUpDynamicPointer(mjModel* m, int body, const LoadOptions& options,
     m->geom_contype[g] = 1;
     m->geom_conaffinity[g] = 1;
   }
+  RefreshBodyCollisionMasks(m, body);
   info->mass = m->body_mass[body];
   const Mat3 R = Quat(m->body_iquat[4 * body], m->body_iquat[4 * body + 1],
                       m->body_iquat[4 * body + 2], m->body_iquat[4 * body + 3])

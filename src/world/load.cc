@@ -252,6 +252,7 @@ int SetUpPointer(mjModel* m, const std::string& origin, const LoadOptions& optio
     m->geom_conaffinity[g] = 0;
     (*geoms)[static_cast<std::size_t>(g)].collides = false;
   }
+  internal::RefreshBodyCollisionMasks(m, body);
   // Explicit <contact><pair> elements bypass contype/conaffinity.
   for (int p = 0; p < m->npair; ++p) {
     if (m->geom_bodyid[m->pair_geom1[p]] == body || m->geom_bodyid[m->pair_geom2[p]] == body) {

@@ -43,6 +43,20 @@ inline bool HasNoDofs(const mjModel& m, int body) {
   return true;
 }
 
+/// Recomputes MuJoCo's per-body collision masks (body_contype, body_conaffinity: the OR over the
+/// body's geoms, which the broadphase tests before any geom) after geom masks changed.
+inline void RefreshBodyCollisionMasks(mjModel* m, int body) {
+  int contype = 0;
+  int conaffinity = 0;
+  for (int g = m->body_geomadr[body]; g >= 0 && g < m->body_geomadr[body] + m->body_geomnum[body];
+       ++g) {
+    contype |= m->geom_contype[g];
+    conaffinity |= m->geom_conaffinity[g];
+  }
+  m->body_contype[body] = contype;
+  m->body_conaffinity[body] = conaffinity;
+}
+
 /// Bodies and geoms of `m` as engine-neutral descriptions. `origin` names the scene in errors.
 /// @throws mrh::SceneError for a geom type mrhaptics cannot represent (height field).
 void DescribeModel(const mjModel& m, const std::string& origin, std::vector<BodyInfo>* bodies,

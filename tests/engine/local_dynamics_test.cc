@@ -183,13 +183,6 @@ TEST_P(RowOfCubesTest, FeltMassIsTheWholeRowAndTheGlobalRowMovesAlong) {
   constexpr double kRelTol = 0.03;
   constexpr double kDuration = 0.8;  // contact lasts π√(M/k) ≤ 0.23 s from t ≈ 0.1 s
   const int k = GetParam();
-  if (k >= 4) {
-    // Open (issue 32): MuJoCo 3.14 pushes the overlapping row apart before the pointer's push
-    // reaches its far end (0.1 mm or 1 µm overlap alike: every contact gone by t = 0.2 s at the
-    // scene's 50 ms step), so rows of 4 and 5 leave at 0.05-0.14 m/s with a felt mass of
-    // 1.8-2.2 kg instead of 4-5. MuJoCo 2.2.2 kept the row one contact group.
-    GTEST_SKIP() << "row of " << k << ": MuJoCo 3 separates the row before the push (issue 32)";
-  }
   for (CorrectionModel model :
        {CorrectionModel::kVelocityResidual, CorrectionModel::kNewContacts}) {
     const std::string name =
