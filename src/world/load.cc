@@ -281,8 +281,9 @@ World World::LoadFile(const std::filesystem::path& path, const LoadOptions& opti
                      "); check the path or run from the directory it is relative to");
   }
   if (options.dynamic_pointer) {
-    return LoadString(internal::MakePointerDynamic(ReadScene(path), options.pointer_body, origin),
-                      options, origin);
+    // The rewritten text keeps the scene's folder for its relative asset paths.
+    return LoadText(internal::MakePointerDynamic(ReadScene(path), options.pointer_body, origin),
+                    options, origin, path.parent_path());
   }
   auto impl = std::make_unique<Impl>();
   internal::InitializeState(LoadOrThrow(origin.c_str(), nullptr, origin, ReadScene(path)), origin, options,
@@ -292,9 +293,14 @@ World World::LoadFile(const std::filesystem::path& path, const LoadOptions& opti
 
 World World::LoadString(const std::string& xml, const LoadOptions& options,
                         const std::string& origin) {
+  return LoadText(xml, options, origin, {});
+}
+
+World World::LoadText(const std::string& xml, const LoadOptions& options, const std::string& origin,
+                      const std::filesystem::path& directory) {
   // Staged as a file of a virtual file system, so that MuJoCo's one loader serves both paths.
-  // Relative asset paths in the text then resolve against the working directory.
-  constexpr char kName[] = "mrh_scene.xml";
+  // MuJoCo resolves relative asset paths against the staged file's folder.
+  const std::string name = (directory / "mrh_scene.xml").string();
   if (xml.empty()) {
     throw SceneError(origin + ": the scene text is empty; expected MJCF (<mujoco>...</mujoco>)");
   }
@@ -308,12 +314,13 @@ World World::LoadString(const std::string& xml, const LoadOptions& options,
   } cleanup{vfs.get()};
 
   if (xml.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()) ||
-      mj_addBufferVFS(vfs.get(), kName, xml.data(), static_cast<int>(xml.size())) != 0) {
+      mj_addBufferVFS(vfs.get(), name.c_str(), xml.data(), static_cast<int>(xml.size())) != 0) {
     throw SceneError(origin + ": cannot stage the scene text for MuJoCo (" +
                      std::to_string(xml.size()) + " bytes)");
   }
   auto impl = std::make_unique<Impl>();
-  internal::InitializeState(LoadOrThrow(kName, vfs.get(), origin, xml), origin, options, impl.get());
+  internal::InitializeState(LoadOrThrow(name.c_str(), vfs.get(), origin, xml), origin, options,
+                            impl.get());
   return World(std::move(impl));
 }
 

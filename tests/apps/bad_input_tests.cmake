@@ -119,3 +119,11 @@ diverged_test(BodyFasterThanMaxBodySpeed
 mrh_cli_test(MaxBodySpeedRaisedLetsTheThrowRun 0 stdout "^summary: "
              run ${fixtures}/thrown.json --set safety.max_body_speed=50
              --out ${CMAKE_BINARY_DIR}/cli_thrown_allowed)
+
+# A scene's relative asset paths resolve against the scene's folder for every method, the
+# virtual-coupling tool's rewritten scene included (run from the project root, not that folder).
+foreach(method virtual-coupling local-dynamics proxy-6dof)
+  mrh_cli_test(RelativeMeshAssetLoadsFromAnotherFolder_${method} 0 stdout "^summary: "
+               run ${fixtures}/mesh_asset.json --method ${method}
+               --out ${CMAKE_BINARY_DIR}/cli_mesh_asset_${method})
+endforeach()

@@ -170,6 +170,10 @@ class World {
   friend class AcceleranceAccess;  // analytic accelerance and converged reference (accelerance.h)
   struct Impl;
   explicit World(std::unique_ptr<Impl> impl);
+  /// LoadString with relative asset paths resolved against `directory` (empty: the working
+  /// directory): LoadFile's rewritten dynamic-pointer text keeps its scene's folder.
+  static World LoadText(const std::string& xml, const LoadOptions& options,
+                        const std::string& origin, const std::filesystem::path& directory);
   std::unique_ptr<Impl> impl_;
 };
 
