@@ -176,8 +176,7 @@ int RunCommand(const RunOptions& o) {
   const bool on_servo_thread = servo != nullptr && s.engine.mode == engine::Mode::kRealtime;
   std::unique_ptr<engine::Engine> engine;
   if (!on_servo_thread) {
-    engine = std::make_unique<engine::Engine>(session::LoadWorld(s), std::move(owned_device),
-                                              s.device.calibration, s.engine);
+    engine = session::MakeEngine(s, std::move(owned_device));
   }
   const fs::path out = OutputDir(o, s);
   report::CsvRecorder recorder(out);

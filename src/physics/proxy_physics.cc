@@ -20,10 +20,10 @@ Mat3 PointerRotationWeight(const world::World& world, int pointer_body,
   const world::BodyInfo& pointer = world.body(pointer_body);
   if (!(pointer.mass > 0.0)) {
     throw SceneError(fmt::format(
-        "pointer body '{}' has mass {} kg, so its unit-mass inertia (the default rotation "
-        "weight, SPEC §3.10) is undefined; expected a body with mass > 0: give its geoms a "
-        "mass or density, or set rendering.rotation_weight",
-        pointer.name, pointer.mass));
+        "{}: pointer body '{}' has mass {} kg, so its unit-mass inertia (the default rotation "
+        "weight) is undefined; expected a body with mass > 0: give its geoms a mass or "
+        "density, or set rendering.rotation_weight",
+        world.origin(), pointer.name, pointer.mass));
   }
   // Parallel-axis shift from the COM to the body origin, where the lever arms start.
   const Vec3& c = pointer.p_BCm;

@@ -57,10 +57,15 @@ world::World LoadWorld(const Session& session) {
 }
 
 std::unique_ptr<engine::Engine> MakeEngine(const Session& session) {
-  world::World world = LoadWorld(session);
   std::unique_ptr<device::Device> device = WithFile(session, [&] {
     return MakeDevice(session);
   });
+  return MakeEngine(session, std::move(device));
+}
+
+std::unique_ptr<engine::Engine> MakeEngine(const Session& session,
+                                           std::unique_ptr<device::Device> device) {
+  world::World world = LoadWorld(session);
   return WithFile(session, [&] {
     return std::make_unique<engine::Engine>(std::move(world), std::move(device),
                                             session.device.calibration, session.engine);

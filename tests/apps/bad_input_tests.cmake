@@ -127,3 +127,12 @@ foreach(method virtual-coupling local-dynamics proxy-6dof)
                run ${fixtures}/mesh_asset.json --method ${method}
                --out ${CMAKE_BINARY_DIR}/cli_mesh_asset_${method})
 endforeach()
+
+# Errors of the engine's own checks name the file to edit (issue 39 item 8): the session for a
+# settings conflict, the scene for a massless 6-DOF pointer.
+bad_input_test(WatchdogShorterThanTwoStepsNamesTheSession
+               "${err}tests/apps/fixtures/tiny\\.json: safety\\.watchdog_timeout = 0\\.01 s must exceed"
+               run ${fixtures}/tiny.json --set safety.watchdog_timeout=0.01)
+bad_input_test(MasslessPointerNamesTheScene
+               "${err}.*massless_pointer_scene\\.xml: pointer body 'pointer' has mass 0 kg"
+               run ${fixtures}/massless_pointer.json)

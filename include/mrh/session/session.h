@@ -78,7 +78,11 @@ world::World LoadWorld(const Session& session);
 /// Builds the configured device. @throws mrh::InvalidArgument (e.g. unreadable trajectory).
 std::unique_ptr<device::Device> MakeDevice(const Session& session);
 
-/// LoadWorld + MakeDevice + engine construction.
+/// LoadWorld + MakeDevice + engine construction. Every error starts with the file to edit (the
+/// session's, unless it names the scene or a data file).
 std::unique_ptr<engine::Engine> MakeEngine(const Session& session);
+/// The same with a device the caller built (e.g. to read its counters after the run).
+std::unique_ptr<engine::Engine> MakeEngine(const Session& session,
+                                           std::unique_ptr<device::Device> device);
 
 }  // namespace mrh::session
