@@ -106,6 +106,21 @@ Session ParseDocument(const nlohmann::json& document, const Context& context) {
   session.device = internal::ParseDevice(
       root.Require("device", "an object with at least \"type\" (see docs/session-format.md)"));
   internal::CheckStiffnessLimit(root, session.device, session.engine.rendering.stiffness);
+  // A real device answers in wall-clock time, and lockstep runs the simulation as fast as it can
+  // without waiting for it (8 s of simulation in 0.02 s, no packet answered): such a session
+  // runs in real time unless it says otherwise, and saying "lockstep" is an error.
+  const std::string& type = session.device.type;
+  if (type == "forcedimension" || type == "openhaptics" || type == "udp") {
+    const auto mode = root.Find("mode");
+    if (!mode) {
+      session.engine.mode = engine::Mode::kRealtime;
+    } else if (session.engine.mode != engine::Mode::kRealtime) {
+      mode->Fail(fmt::format("\"{}\" with the real device \"{}\"",
+                             engine::ModeName(session.engine.mode), type),
+                 "\"realtime\" (lockstep never waits for the device; drop the key or set "
+                 "\"mode\": \"realtime\")");
+    }
+  }
   return session;
 }
 

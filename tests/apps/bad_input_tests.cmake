@@ -136,3 +136,8 @@ bad_input_test(WatchdogShorterThanTwoStepsNamesTheSession
 bad_input_test(MasslessPointerNamesTheScene
                "${err}.*massless_pointer_scene\\.xml: pointer body 'pointer' has mass 0 kg"
                run ${fixtures}/massless_pointer.json)
+
+# Issue 39 item 1: a real device in lockstep mode never gets an answer; the session is refused.
+bad_input_test(UdpDeviceInLockstepNamesTheModeToUse
+               "${err}tests/apps/fixtures/tiny\\.json: mode: \"lockstep\" with the real device \"udp\".*expected \"realtime\""
+               run ${fixtures}/tiny.json --mode lockstep --set "device={\"type\": \"udp\"}")

@@ -161,5 +161,24 @@ TEST(HardwareSessionTest, ForcesWrittenToTheDhdEqualTheDisplayedWrenchInTheDevic
   EXPECT_EQ(fake.Get<int()>("fakedhd_IsOpen")(), 0);
 }
 
+// Issue 39 item 1: lockstep never waits for a real device (8 s of simulation in 0.02 s, no packet
+// answered). A real device's session runs in real time unless it names a mode; "lockstep" is
+// refused naming the mode to use.
+TEST(HardwareSessionTest, RealDevicesRunInRealTimeAndRefuseLockstep) {
+  for (const char* type : {"udp", "forcedimension", "openhaptics"}) {
+    const std::string device = std::string(R"({"type": ")") + type + "\"}";
+    EXPECT_EQ(Parse(WithDevice(device)).engine.mode, engine::Mode::kRealtime) << type;
+    const std::string lockstep =
+        R"({"scene": "scene.xml", "mode": "lockstep", "device": )" + device + "}";
+    EXPECT_THAT([&] { (void)Parse(lockstep); },
+                ThrowsInvalid(std::string("session.json: mode: \"lockstep\" with the real device \"") +
+                              type + "\""))
+        << type;
+  }
+  // Simulated devices keep the default, lockstep.
+  EXPECT_EQ(Parse(WithDevice(R"({"type": "fixed", "pose": [0, 0, 0, 1, 0, 0, 0]})")).engine.mode,
+            engine::Mode::kLockstep);
+}
+
 }  // namespace
 }  // namespace mrh::session
