@@ -24,6 +24,11 @@ constexpr std::array<const char*, 12> kColumns{
     "comparison_mass", "speed", "comparison_first", "answer",          "comparison_heavier",
     "response_time",   "seed"};
 
+// What the fit needs; data from another tool (PsychoPy, a spreadsheet) may hold only these.
+// The other columns are bookkeeping of mrh's own runs, with defaults when absent.
+constexpr std::array<const char*, 5> kEssentialColumns{
+    "subject", "method", "standard_mass", "comparison_mass", "comparison_heavier"};
+
 std::vector<std::string> Split(const std::string& line) {
   std::vector<std::string> cells;
   std::stringstream in(line);
@@ -39,6 +44,9 @@ class RowReader {
   RowReader(const std::filesystem::path& file, int line, const std::map<std::string, int>& index,
             const std::vector<std::string>& cells)
       : file_(file), line_(line), index_(index), cells_(cells) {}
+
+  bool Has(const char* column) const { return index_.contains(column); }
+  int line() const { return line_; }
 
   const std::string& Text(const char* column) const {
     const int at = index_.at(column);
@@ -89,20 +97,25 @@ class RowReader {
   const std::vector<std::string>& cells_;
 };
 
+// Columns beyond kEssentialColumns default when absent: trial = the row's index, no standard
+// method, speed 0, comparison first 0, the answer that names the comparison when it was
+// called heavier, response time 0, seed 0.
 TrialRow ParseRow(const RowReader& r) {
   TrialRow row;
   row.subject = r.Text("subject");
-  row.trial = static_cast<int>(r.Integer("trial", 0, 1'000'000'000));
+  row.trial = r.Has("trial") ? static_cast<int>(r.Integer("trial", 0, 1'000'000'000))
+                             : r.line() - 2;
   row.method = r.Text("method");
-  row.standard_method = r.Text("standard_method");
+  if (r.Has("standard_method")) row.standard_method = r.Text("standard_method");
   row.standard_mass = r.Number("standard_mass");
   row.comparison_mass = r.Number("comparison_mass");
-  row.speed = r.Number("speed");
-  row.comparison_first = r.Integer("comparison_first", 0, 1) == 1;
-  row.answer = static_cast<int>(r.Integer("answer", 1, 2));
+  if (r.Has("speed")) row.speed = r.Number("speed");
+  if (r.Has("comparison_first")) row.comparison_first = r.Integer("comparison_first", 0, 1) == 1;
   row.comparison_heavier = r.Integer("comparison_heavier", 0, 1) == 1;
-  row.response_time = r.Number("response_time");
-  row.seed = r.Unsigned("seed");
+  row.answer = r.Has("answer") ? static_cast<int>(r.Integer("answer", 1, 2))
+               : (row.comparison_heavier == row.comparison_first ? 1 : 2);
+  if (r.Has("response_time")) row.response_time = r.Number("response_time");
+  if (r.Has("seed")) row.seed = r.Unsigned("seed");
   if (row.comparison_heavier != ((row.answer == 1) == row.comparison_first)) {
     r.Fail("comparison_heavier", row.comparison_heavier ? "1" : "0",
            fmt::format("{} (answer {} with comparison_first {})",
@@ -117,10 +130,12 @@ std::map<std::string, int> HeaderIndex(const std::filesystem::path& file,
   std::map<std::string, int> index;
   const std::vector<std::string> names = Split(header);
   for (int i = 0; i < static_cast<int>(names.size()); ++i) index[names[i]] = i;
-  for (const char* column : kColumns) {
+  for (const char* column : kEssentialColumns) {
     if (!index.contains(column)) {
-      throw InvalidArgument(fmt::format("{}:1: no column \"{}\"; expected the header {}",
-                                        file.string(), column, TrialsHeader()));
+      throw InvalidArgument(fmt::format(
+          "{}:1: no column \"{}\"; expected at least subject, method, standard_mass, "
+          "comparison_mass and comparison_heavier (mrh's own header: {})",
+          file.string(), column, TrialsHeader()));
     }
   }
   return index;

@@ -87,6 +87,28 @@ TEST(TrialsTest, BadFilesNameTheLineAndTheColumn) {
   EXPECT_THAT(ErrorOf(header + "A,0,impulse\n"), HasSubstr("column standard_method"));
 }
 
+// Issue 39 item 7: data from another tool holds only what the fit needs, in any order.
+TEST(TrialsTest, FiveEssentialColumnsAreEnough) {
+  const fs::path dir = TempDir("mrh_trials_five_");
+  std::ofstream(dir / "t.csv") << "comparison_mass,subject,comparison_heavier,method,standard_mass\n"
+                                  "45,P1,0,impulse,60\n75,P1,1,impulse,60\n";
+  const std::vector<TrialRow> rows = ReadTrials(dir / "t.csv");
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[1].subject, "P1");
+  EXPECT_EQ(rows[1].method, "impulse");
+  EXPECT_EQ(rows[1].standard_mass, 60.0);
+  EXPECT_EQ(rows[1].comparison_mass, 75.0);
+  EXPECT_TRUE(rows[1].comparison_heavier);
+  EXPECT_FALSE(rows[0].comparison_heavier);
+  EXPECT_EQ(rows[0].trial, 0);  // the row's index
+  EXPECT_EQ(rows[1].trial, 1);
+  EXPECT_EQ(rows[1].answer, 2);  // stimulus 2 was the comparison (comparison_first 0)
+  EXPECT_EQ(rows[0].answer, 1);
+  fs::remove_all(dir);
+  EXPECT_THAT(ErrorOf("subject,method,standard_mass,comparison_mass\n"),
+              HasSubstr("no column \"comparison_heavier\"; expected at least subject"));
+}
+
 TEST(AnalysisTest, GroupsBySubjectAndMethodAndWritesExactlyTheDocumentedKeys) {
   std::vector<TrialRow> rows;
   int trial = 0;

@@ -34,7 +34,9 @@ std::string TrialsHeader();
 /// @throws mrh::InvalidArgument if a text field holds a comma, quote or line break.
 std::string FormatTrialRow(const TrialRow& row);
 
-/// Every row of a trials file (header checked; columns in any order; blank lines skipped).
+/// Every row of a trials file (header checked; columns in any order; blank lines skipped). Only
+/// subject, method, standard_mass, comparison_mass and comparison_heavier are required; absent
+/// bookkeeping columns take the defaults documented in docs/psychophysics.md.
 /// @throws mrh::InvalidArgument naming the file, line and column for a missing column, a bad
 /// number, an answer other than 1/2, or comparison_heavier inconsistent with the answer.
 std::vector<TrialRow> ReadTrials(const std::filesystem::path& file);
