@@ -156,7 +156,8 @@ std::vector<std::string> SceneWarnings(const mjModel& m, const std::string& orig
     if (!IsConcave(m, mesh)) continue;
     warnings.push_back(origin + ": " + Name(m, mjOBJ_MESH, mesh, "mesh") +
                        " is concave and is replaced by its convex hull for collision and "
-                       "haptic rendering; split it into convex meshes if its hollows matter");
+                       "haptic rendering; if its hollows matter, build the object as one body of "
+                       "several convex geoms (see scenes/compound_mug.xml)");
   }
   return warnings;
 }

@@ -141,3 +141,7 @@ bad_input_test(MasslessPointerNamesTheScene
 bad_input_test(UdpDeviceInLockstepNamesTheModeToUse
                "${err}tests/apps/fixtures/tiny\\.json: mode: \"lockstep\" with the real device \"udp\".*expected \"realtime\""
                run ${fixtures}/tiny.json --mode lockstep --set "device={\"type\": \"udp\"}")
+
+# The compound (non-convex) example scene runs as shipped (issue 39 item 10).
+mrh_cli_test(CompoundMugSessionRuns 0 stdout "^summary: "
+             run scenes/compound_mug.json --out ${CMAKE_BINARY_DIR}/cli_compound_mug)

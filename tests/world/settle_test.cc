@@ -85,6 +85,24 @@ TEST_P(SettleTest, ConvexMeshOnABoxTableIsAtRestWithinOneSecond) {
   EXPECT_LT(r.max_spin, 10 * kRestSpin);
 }
 
+// scenes/compound_mug.xml: a non-convex object as one body of convex geoms (cylinder base, a
+// ring of wall boxes, a box handle) loads without the concave-mesh warning and stands at rest.
+TEST_P(SettleTest, CompoundMugStandsAtRest) {
+  World w = World::LoadFile(std::string(MRH_SOURCE_DIR) + "/scenes/compound_mug.xml", kNoPointer);
+  EXPECT_TRUE(w.LoadWarnings().empty());
+  w.set_timestep(GetParam());
+  const int mug = w.FindBody("mug");
+  const Vec3 start = w.body_state(mug).p_WCm;
+  const int steps = static_cast<int>(std::lround(1.0 / GetParam()));
+  for (int i = 0; i < steps; ++i) w.Step();
+  const BodyState s = w.body_state(mug);
+  EXPECT_LT(s.V_WCm.v.norm(), kRestSpeed);
+  EXPECT_LT(s.V_WCm.w.norm(), kRestSpin);
+  EXPECT_LT((s.p_WCm - start).head<2>().norm(), kRestDrift);
+  EXPECT_GT(s.X_WB.q.w(), 0.9999);  // upright
+  EXPECT_TRUE(w.SimulatorWarnings().empty());
+}
+
 // The haptic rate and the physics thread's usual step.
 INSTANTIATE_TEST_SUITE_P(Steps, SettleTest, ::testing::Values(0.001, 0.02),
                          [](const ::testing::TestParamInfo<double>& p) {
