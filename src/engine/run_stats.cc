@@ -77,6 +77,7 @@ void FillRunStats(EngineState& state, PhysicsSide& physics, Mode mode, double si
   FillHapticStats(state.haptic->counters(), stats);
   FillMethodStatus(state.haptic->counters(), state.method, stats);
   stats->method = state.method.name;
+  stats->device = state.device->counters();
   stats->mode = mode;
   stats->physics_dt = state.settings.physics_dt;
   stats->haptic_dt = state.settings.haptic_dt;

@@ -17,3 +17,4 @@ if(TARGET mrh_fake_hd)
   set_tests_properties(cli.RunOpenHapticsOnTheVendorsServoThread PROPERTIES
                        ENVIRONMENT FAKEHD_THREAD=1)
 endif()
+

@@ -105,6 +105,27 @@ TEST(SummaryTest, HoldsEveryFaultCounter) {
   EXPECT_EQ(f.at("ir_status").get<std::uint32_t>(), 0x5u);
 }
 
+// Issue 39 item 6: the device's own counters (network packets, vendor errors) are in the
+// summary, not only on stdout.
+TEST(SummaryTest, HoldsTheDeviceCounters) {
+  const TempDir dir;
+  engine::RunStats stats = MakeStats();
+  stats.device = device::DeviceCounters{.vendor_errors = 1,
+                                        .torque_dropped = 2,
+                                        .packets_malformed = 3,
+                                        .pose_timeouts = 4,
+                                        .poses_received = 5,
+                                        .wrenches_sent = 6};
+  const json d = WriteAndRead(dir, stats).at("device");
+  EXPECT_EQ(d.at("vendor_errors").get<std::int64_t>(), 1);
+  EXPECT_EQ(d.at("torque_dropped").get<std::int64_t>(), 2);
+  EXPECT_EQ(d.at("packets_malformed").get<std::int64_t>(), 3);
+  EXPECT_EQ(d.at("pose_timeouts").get<std::int64_t>(), 4);
+  EXPECT_EQ(d.at("poses_received").get<std::int64_t>(), 5);
+  EXPECT_EQ(d.at("wrenches_sent").get<std::int64_t>(), 6);
+  EXPECT_EQ(d.size(), 6u);
+}
+
 TEST(SummaryTest, HoldsImpulsesWithNormAndWarnings) {
   const TempDir dir;
   const json j = WriteAndRead(dir, MakeStats());

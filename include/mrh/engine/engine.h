@@ -59,6 +59,8 @@ struct RunStats {
   /// (ms, wall clock); per step in StepRecord / steps.csv.
   physics::PhaseTimes phase_ms;
   bool realtime_priority = false;            ///< SCHED_FIFO + mlockall granted
+  /// The device's own counters at the end of the run (vendor errors, network packets).
+  device::DeviceCounters device;
   std::vector<BodyImpulseTotal> impulses;
   std::vector<std::string> warnings;
 };
