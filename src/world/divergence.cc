@@ -19,9 +19,7 @@ constexpr char kLikelyCauses[] =
     "light for its contacts";
 
 std::string BodyName(const mjModel& m, int body) {
-  const char* name = mj_id2name(&m, mjOBJ_BODY, body);
-  return name != nullptr && name[0] != '\0' ? "body '" + std::string(name) + "'"
-                                           : "body #" + std::to_string(body);
+  return "body " + internal::Describe(m, mjOBJ_BODY, body);
 }
 
 // `value` with `digits` significant digits ("2.88", not "2.880000000000002").
@@ -72,16 +70,13 @@ std::string World::FindDivergence(double max_body_speed) {
     // A free joint's qvel is the body origin's world velocity and the angular velocity in body
     // axes: v_Cm = v + R (ω_B × p_BCm).
     const mjtNum* v = d.qvel + vadr;
-    mjtNum lever_B[3];
+    mjtNum lever_B[3], v_Cm[3], quat[4];
     mju_cross(lever_B, v + 3, m.body_ipos + 3 * body);
-    mjtNum lever_W[3];
-    mjtNum quat[4];
     mju_copy4(quat, d.qpos + qadr + 3);
     mju_normalize4(quat);
-    mju_rotVecQuat(lever_W, lever_B, quat);
-    const double speed = std::sqrt((v[0] + lever_W[0]) * (v[0] + lever_W[0]) +
-                                   (v[1] + lever_W[1]) * (v[1] + lever_W[1]) +
-                                   (v[2] + lever_W[2]) * (v[2] + lever_W[2]));
+    mju_rotVecQuat(v_Cm, lever_B, quat);
+    mju_addTo3(v_Cm, v);
+    const double speed = mju_norm3(v_Cm);
     if (speed > max_body_speed) {
       return impl_->origin + ": the simulation diverged" + At(d) + ": " + BodyName(m, body) +
              " moves at " + Rounded(speed, 4) + " m/s, over safety.max_body_speed = " +

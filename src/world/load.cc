@@ -75,9 +75,7 @@ constexpr double kMaxExtent = 1e4;    // m: positions, sizes, mesh vertices
 constexpr double kMaxMass = 1e6;      // kg
 
 std::string Name(const mjModel& m, mjtObj type, int id, const char* kind) {
-  const char* name = mj_id2name(&m, type, id);
-  return name != nullptr && name[0] != '\0' ? std::string(kind) + " '" + name + "'"
-                                           : std::string(kind) + " #" + std::to_string(id);
+  return std::string(kind) + " " + internal::Describe(m, type, id);
 }
 
 // Throws unless the `count` numbers at `v` are finite and within [-limit, limit].

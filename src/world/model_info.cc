@@ -22,11 +22,6 @@ std::string NameOf(const mjModel& m, mjtObj type, int id) {
   return name ? std::string(name) : std::string();
 }
 
-std::string Describe(const mjModel& m, mjtObj type, int id) {
-  const std::string name = NameOf(m, type, id);
-  return name.empty() ? "#" + std::to_string(id) : "'" + name + "'";
-}
-
 // MuJoCo keeps the convex hull it collides with in mesh_graph: [numvert, numface,
 // vert_edgeadr[numvert], vert_globalid[numvert], edge_localid[numvert + 3 numface],
 // face_globalid[3 numface]]. Vertices are in the mesh frame, which the compiler made the geom
@@ -147,6 +142,11 @@ void DescribeModel(const mjModel& m, const std::string& origin, std::vector<Body
     info.collides = (m.geom_contype[g] | m.geom_conaffinity[g]) != 0;
     geoms->push_back(std::move(info));
   }
+}
+
+std::string Describe(const mjModel& m, mjtObj type, int id) {
+  const std::string name = NameOf(m, type, id);
+  return name.empty() ? "#" + std::to_string(id) : "'" + name + "'";
 }
 
 }  // namespace mrh::world::internal

@@ -57,6 +57,9 @@ inline void RefreshBodyCollisionMasks(mjModel* m, int body) {
   m->body_conaffinity[body] = conaffinity;
 }
 
+/// An object of `m` for messages: "'name'", or "#id" when it has no name.
+std::string Describe(const mjModel& m, mjtObj type, int id);
+
 /// Bodies and geoms of `m` as engine-neutral descriptions. `origin` names the scene in errors.
 /// @throws mrh::SceneError for a geom type mrhaptics cannot represent (height field).
 void DescribeModel(const mjModel& m, const std::string& origin, std::vector<BodyInfo>* bodies,

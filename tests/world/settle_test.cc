@@ -34,12 +34,12 @@ struct Rest {
   double spin = 0.0;        // rad/s
   double drift = 0.0;       // m, horizontal COM displacement since the start
   double max_spin = 0.0;    // rad/s, over the whole run
+  double q_w = 1.0;         // w of the final orientation quaternion (1: as it started upright)
 };
 
-// Steps `seconds` and reports the object's motion at the end.
-Rest Settle(const std::string& xml, double seconds) {
-  World w = World::LoadString(xml, kNoPointer, "table.xml");
-  const int obj = w.FindBody("obj");
+// Steps `w` for `seconds` and reports the motion of `body` at the end.
+Rest Settle(World& w, const std::string& body, double seconds) {
+  const int obj = w.FindBody(body);
   const Vec3 start = w.body_state(obj).p_WCm;
   Rest rest;
   const int steps = static_cast<int>(std::lround(seconds / w.timestep()));
@@ -51,8 +51,15 @@ Rest Settle(const std::string& xml, double seconds) {
   rest.speed = s.V_WCm.v.norm();
   rest.spin = s.V_WCm.w.norm();
   rest.drift = (s.p_WCm - start).head<2>().norm();
+  rest.q_w = s.X_WB.q.w();
   EXPECT_TRUE(w.SimulatorWarnings().empty());
   return rest;
+}
+
+// The same for body "obj" of scene text `xml`.
+Rest Settle(const std::string& xml, double seconds) {
+  World w = World::LoadString(xml, kNoPointer, "table.xml");
+  return Settle(w, "obj", seconds);
 }
 
 const std::string kCylinder =
@@ -91,16 +98,11 @@ TEST_P(SettleTest, CompoundMugStandsAtRest) {
   World w = World::LoadFile(std::string(MRH_SOURCE_DIR) + "/scenes/compound_mug.xml", kNoPointer);
   EXPECT_TRUE(w.LoadWarnings().empty());
   w.set_timestep(GetParam());
-  const int mug = w.FindBody("mug");
-  const Vec3 start = w.body_state(mug).p_WCm;
-  const int steps = static_cast<int>(std::lround(1.0 / GetParam()));
-  for (int i = 0; i < steps; ++i) w.Step();
-  const BodyState s = w.body_state(mug);
-  EXPECT_LT(s.V_WCm.v.norm(), kRestSpeed);
-  EXPECT_LT(s.V_WCm.w.norm(), kRestSpin);
-  EXPECT_LT((s.p_WCm - start).head<2>().norm(), kRestDrift);
-  EXPECT_GT(s.X_WB.q.w(), 0.9999);  // upright
-  EXPECT_TRUE(w.SimulatorWarnings().empty());
+  const Rest r = Settle(w, "mug", 1.0);
+  EXPECT_LT(r.speed, kRestSpeed);
+  EXPECT_LT(r.spin, kRestSpin);
+  EXPECT_LT(r.drift, kRestDrift);
+  EXPECT_GT(r.q_w, 0.9999);  // upright
 }
 
 // The haptic rate and the physics thread's usual step.
