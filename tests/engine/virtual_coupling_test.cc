@@ -2,6 +2,7 @@
 // Virtual coupling (B3, SPEC §1.4): the tool's inertia is felt in free motion (−m_t ẍ_t against
 // the tool's linear steady state), and pressed into a floor the force settles at the spring's.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <complex>
@@ -38,12 +39,24 @@ constexpr char kScene[] = R"(<mujoco>
   </worldbody>
 </mujoco>)";
 
+// `xml` in a temporary file of this process, removed with the object (ctest runs the tests of
+// this file in parallel processes: a shared name let one truncate the scene another loaded).
+struct TempScene {
+  TempScene(const std::string& stem, const char* xml)
+      : path(std::filesystem::temp_directory_path() /
+             (stem + "_" + std::to_string(::getpid()) + ".xml")) {
+    std::ofstream(path) << xml;
+  }
+  ~TempScene() { std::filesystem::remove(path); }
+  TempScene(const TempScene&) = delete;
+  TempScene& operator=(const TempScene&) = delete;
+  std::filesystem::path path;
+};
+
 world::World ToolWorld() {
-  const std::filesystem::path file =
-      std::filesystem::temp_directory_path() / "mrh_virtual_coupling_test.xml";
-  std::ofstream(file) << kScene;
+  const TempScene file("mrh_virtual_coupling_test", kScene);
   return world::World::LoadFile(
-      file, world::LoadOptions{.pointer_body = "pointer", .dynamic_pointer = true});
+      file.path, world::LoadOptions{.pointer_body = "pointer", .dynamic_pointer = true});
 }
 
 EngineSettings CouplingSettings(double duration) {
@@ -133,10 +146,8 @@ TEST(VirtualCoupling, PressingIntoAFloorSettlesAtTheSpringForce) {
 TEST(VirtualCoupling, MocapPointerWorldIsRefusedWithTheFix) {
   EXPECT_THROW(
       {
-        const std::filesystem::path file =
-            std::filesystem::temp_directory_path() / "mrh_virtual_coupling_mocap.xml";
-        std::ofstream(file) << kScene;
-        Engine engine(world::World::LoadFile(file), device::MakeFixedDevice(Pose{}),
+        const TempScene file("mrh_virtual_coupling_mocap", kScene);
+        Engine engine(world::World::LoadFile(file.path), device::MakeFixedDevice(Pose{}),
                       device::Calibration{}, CouplingSettings(0.1));
       },
       mrh::Error);
@@ -156,14 +167,12 @@ constexpr char kLightScene[] = R"(<mujoco>
 </mujoco>)";
 
 RunStats RunLightTool(const RenderingSettings& rendering) {
-  const std::filesystem::path file =
-      std::filesystem::temp_directory_path() / "mrh_virtual_coupling_light.xml";
-  std::ofstream(file) << kLightScene;
+  const TempScene file("mrh_virtual_coupling_light", kLightScene);
   EngineSettings s = CouplingSettings(1.0);
   s.rendering = rendering;
   device::Specifications specs;
   specs.max_force = 1000.0;
-  Engine engine(world::World::LoadFile(file, world::LoadOptions{.pointer_body = "pointer",
+  Engine engine(world::World::LoadFile(file.path, world::LoadOptions{.pointer_body = "pointer",
                                                                 .dynamic_pointer = true}),
                 device::MakeScriptedDevice(
                     {{0.0, Pose{Vec3(0.0, 0.0, 0.1), Quat::Identity()}},
@@ -182,11 +191,9 @@ const double kLightInertia = 0.4 * kLightMass * kLightRadius * kLightRadius;
 // Unset rotational gains come from the tool: k_r = k I/m = k · 0.4 r², b_r = b · 0.4 r² (the
 // translational a = k h²/m and c = b h/m on the rotation), computed here from the sphere.
 TEST(VirtualCoupling, UnsetRotationalGainsFollowTheToolInertia) {
-  const std::filesystem::path file =
-      std::filesystem::temp_directory_path() / "mrh_virtual_coupling_gains.xml";
-  std::ofstream(file) << kLightScene;
+  const TempScene file("mrh_virtual_coupling_gains", kLightScene);
   world::World world = world::World::LoadFile(
-      file, world::LoadOptions{.pointer_body = "pointer", .dynamic_pointer = true});
+      file.path, world::LoadOptions{.pointer_body = "pointer", .dynamic_pointer = true});
   EngineSettings s = CouplingSettings(1.0);
   const physics::MethodContext context{.world = &world,
                                        .settings = &s,
