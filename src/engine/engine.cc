@@ -101,6 +101,10 @@ const physics::MethodPhysics& Engine::physics_method() const {
   return *impl_->state->method.physics;
 }
 
+void Engine::RequestStop() noexcept {
+  impl_->state->stop_requested.store(true, std::memory_order_relaxed);
+}
+
 RunStats Engine::Run(Recorder* recorder, const ProgressFn& progress) {
   internal::EngineState& s = *impl_->state;
   if (s.has_run) {

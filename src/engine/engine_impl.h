@@ -42,6 +42,9 @@ struct EngineState {
   double pointer_radius = 0.0;
   int ticks_per_step = 1;
   bool has_run = false;
+  /// Engine::RequestStop: read by the lockstep loop per period and the haptic thread per tick.
+  std::atomic<bool> stop_requested{false};
+  static_assert(std::atomic<bool>::is_always_lock_free, "RequestStop must be signal-safe");
 
   TripleBuffer<ir::PhysicsSnapshot> snapshots;
   SpscRing<ir::HapticReport> reports;

@@ -28,7 +28,8 @@ RunStats RunLockstep(EngineState& state, Recorder* recorder, const Engine::Progr
   physics.Start(state.haptic->InitialReport(0.0));
   auto last_progress = wall0;
   std::int64_t tick = 0;
-  for (std::int64_t k = 0; k < periods; ++k) {
+  for (std::int64_t k = 0; k < periods && !state.stop_requested.load(std::memory_order_relaxed);
+       ++k) {
     physics.Step(k);
     for (int j = 0; j < n; ++j, ++tick) state.haptic->Tick(static_cast<double>(tick) * dt);
     physics.TakeReports();  // S_{k+1}: period k's report for step k+1 ...

@@ -41,7 +41,10 @@ void HapticLoop(EngineState& s, HapticTiming* timing, std::atomic<bool>* done,
     if (timing->samples < timing->jitter_us.size()) {
       timing->jitter_us[timing->samples++] = wake.period_error_us;
     }
-    if (wake.deadline_ns - clock.start_ns() > duration_ns) break;
+    if (wake.deadline_ns - clock.start_ns() > duration_ns ||
+        s.stop_requested.load(std::memory_order_relaxed)) {
+      break;
+    }
     s.haptic->Tick(static_cast<double>(wake.deadline_ns - clock.start_ns()) / kNsPerS);
   }
   s.haptic->Stop();

@@ -51,5 +51,20 @@ TEST(RealtimeTest, ContactDeliversImpulseToCube) {
   EXPECT_LT(stats.impulses.front().linear.x(), 0.0);
 }
 
+TEST(RealtimeTest, RequestStopFromTheCallingThreadEndsTheRun) {
+  EngineSettings s = T41Settings("impulse");
+  s.mode = Mode::kRealtime;
+  s.duration = 60.0;
+  auto engine = T41Engine(s);
+  // The first progress call comes after ~100 ms of wall time; the haptic thread sees the request
+  // at its next tick, so the run ends far short of 60 s whatever the machine's load.
+  const RunStats stats = engine->Run(nullptr, [&](double) {
+    engine->RequestStop();
+  });
+  EXPECT_GT(stats.ticks, 0);
+  EXPECT_LT(stats.ticks, 30'000);
+  EXPECT_LT(stats.wall_time, 30.0);
+}
+
 }  // namespace
 }  // namespace mrh::engine::testing

@@ -73,5 +73,40 @@ TEST(ScheduleTest, PeriodKRendersStepKMinus1AndStepKConsumesPeriodKMinus1) {
   }
 }
 
+// Asks the engine to stop from inside the run, after the physics step numbered `at`.
+class StopAfterStep final : public Recorder {
+ public:
+  StopAfterStep(Engine* engine, std::int64_t at) : engine_(engine), at_(at) {}
+
+  void OnTick(const TickRecord&) override { ++ticks; }
+
+  void OnStep(const StepRecord& step, const world::World&) override {
+    if (step.step == at_) engine_->RequestStop();
+  }
+
+  std::int64_t ticks = 0;
+
+ private:
+  Engine* engine_;
+  std::int64_t at_;
+};
+
+TEST(ScheduleTest, RequestStopEndsALockstepRunBeforeItsNextPeriod) {
+  const EngineSettings s = T41Settings("impulse");  // 50 ticks per 50 ms step, 2.5 s
+  auto engine = T41Engine(s);
+  StopAfterStep recorder(engine.get(), 2);
+  const RunStats stats = engine->Run(&recorder);
+  EXPECT_EQ(stats.ticks, 150);  // periods 0, 1 and 2
+  EXPECT_EQ(recorder.ticks, 150);
+  EXPECT_DOUBLE_EQ(stats.sim_time, 0.15);
+}
+
+TEST(ScheduleTest, RequestStopBeforeRunEndsItAtOnce) {
+  auto engine = T41Engine(T41Settings("impulse"));
+  engine->RequestStop();
+  const RunStats stats = engine->Run(nullptr);
+  EXPECT_EQ(stats.ticks, 0);
+}
+
 }  // namespace
 }  // namespace mrh::engine::testing

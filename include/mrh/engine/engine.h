@@ -83,6 +83,13 @@ class Engine {
   /// an unrecoverable physics failure.
   RunStats Run(Recorder* recorder, const ProgressFn& progress = {});
 
+  /// Asks Run() to end early, from any thread or a signal handler: lockstep stops before its next
+  /// physics period, real time at its next haptic tick, and Run then returns the statistics of
+  /// what ran (sim_time says how far it got). A request made before Run() ends that run at once.
+  /// Embedded runs (Start/Tick/Stop) ignore it: their caller owns the loop. Thread-safe,
+  /// async-signal-safe and RT-safe (one lock-free atomic store).
+  void RequestStop() noexcept;
+
   /// Embedding in the caller's own servo loop: the calling thread becomes the haptic thread.
   /// Needs a device::ExternalDevice. Real-time mode starts the physics thread; lockstep runs
   /// each physics step inline in Tick() at period boundaries (deterministic, not RT-safe).
