@@ -148,12 +148,7 @@ CLI::App* AddRunCommand(CLI::App& app, RunOptions* o) {
 void PrintRunResults(const RunOptions& o, const engine::RunStats& stats, const fs::path& out,
                      const device::Device& device) {
   std::string why;
-  const std::string title = fmt::format("{}: {} ({})", o.session.filename().string(), stats.method,
-                                        engine::ModeName(stats.mode));
-  // The 3-DOF methods render a force only (their torque column is zero or noise).
-  const bool three_dof = stats.method == "single-rate" || stats.method == "impulse" ||
-                         stats.method == "local-dynamics";
-  const bool plotted = report::PlotReport(out, title, &why, !three_dof);
+  const bool plotted = report::PlotRunReport(out, o.session, stats, &why);
   if (!plotted) fmt::print(stderr, "mrh: warning: no report.png: {}\n", why);
   for (const std::string& warning : stats.warnings) {
     fmt::print(stderr, "mrh: warning: {}\n", warning);

@@ -4,10 +4,13 @@
 
 #include <cerrno>
 #include <cstdio>
+#include <span>
+#include <string>
 #include <string_view>
 #include <system_error>
 
 #include "mrh/core/error.h"
+#include "mrh/report/column_recorder.h"
 #include "mrh/report/report.h"
 #include "mrh/world/world.h"
 
@@ -18,11 +21,15 @@ namespace {
 // while bounding the memory a long run holds.
 constexpr std::size_t kFlushBytes = std::size_t{1} << 20;
 
-constexpr std::string_view kTicksHeader = "t,px,py,pz,qw,qx,qy,qz,fx,fy,fz,tx,ty,tz,contacts\n";
-constexpr std::string_view kBodiesHeader = "t,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n";
-constexpr std::string_view kStepsHeader =
-    "t,step,compute_ms,sim_contacts,neighbors,point_contacts,solver_iterations,"
-    "world_step_ms,ir_ms,model_ms,sync_ms\n";
+// A CSV header line: the column names (mrh/report/column_recorder.h) joined by commas.
+std::string Header(std::span<const std::string_view> columns) {
+  std::string header;
+  for (const std::string_view name : columns) {
+    if (!header.empty()) header += ',';
+    header += name;
+  }
+  return header + '\n';
+}
 
 // One output file with its write buffer. fmt's default `{}` for doubles prints the shortest text
 // that parses back to the same value, so the CSV is lossless.
@@ -120,9 +127,9 @@ std::filesystem::path CreateDir(const std::filesystem::path& dir) {
 
 struct CsvRecorder::Impl {
   explicit Impl(const std::filesystem::path& dir)
-      : ticks(CreateDir(dir) / "ticks.csv", kTicksHeader),
-        bodies(dir / "bodies.csv", kBodiesHeader),
-        steps(dir / "steps.csv", kStepsHeader) {}
+      : ticks(CreateDir(dir) / "ticks.csv", Header(kTickColumns)),
+        bodies(dir / "bodies.csv", Header(kBodyColumns)),
+        steps(dir / "steps.csv", Header(kStepColumns)) {}
 
   BufferedFile ticks;
   BufferedFile bodies;

@@ -235,4 +235,14 @@ bool PlotReport(const std::filesystem::path& dir, const std::string& title, std:
   return RunGnuplotScript(dir, "report.gp", "report.png", why);
 }
 
+bool PlotRunReport(const std::filesystem::path& dir, const std::filesystem::path& session_file,
+                   const engine::RunStats& stats, std::string* why) {
+  const std::string title = fmt::format("{}: {} ({})", session_file.filename().string(),
+                                        stats.method, engine::ModeName(stats.mode));
+  // The 3-DOF methods render a force only (their torque column is zero or noise).
+  const bool three_dof = stats.method == "single-rate" || stats.method == "impulse" ||
+                         stats.method == "local-dynamics";
+  return PlotReport(dir, title, why, !three_dof);
+}
+
 }  // namespace mrh::report

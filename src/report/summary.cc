@@ -94,6 +94,11 @@ json ToJson(const engine::RunStats& s, const std::string& session, const std::st
 
 }  // namespace
 
+std::string SummaryJson(const engine::RunStats& stats, const std::string& session_file,
+                        const std::string& scene_file) {
+  return ToJson(stats, session_file, scene_file).dump(2) + '\n';
+}
+
 void WriteSummary(const std::filesystem::path& dir, const engine::RunStats& stats,
                   const std::string& session_file, const std::string& scene_file) {
   const std::filesystem::path path = dir / "summary.json";
@@ -104,7 +109,7 @@ void WriteSummary(const std::filesystem::path& dir, const engine::RunStats& stat
     throw RuntimeError(fmt::format("cannot open {} for writing: {}; choose a writable --out",
                                    path.string(), std::generic_category().message(errno)));
   }
-  file << ToJson(stats, session_file, scene_file).dump(2) << '\n';
+  file << SummaryJson(stats, session_file, scene_file);
   file.close();
   if (!file) {
     throw RuntimeError(fmt::format("cannot write {}: {}; check free disk space", path.string(),

@@ -27,8 +27,14 @@ class CsvRecorder : public engine::Recorder {
   std::unique_ptr<Impl> impl_;
 };
 
-/// Writes summary.json (method, mode, rates, ticks, overruns, jitter, max force, per-body
-/// impulses, faults, warnings) into `dir`. `extra` names the session and scene.
+/// The text of summary.json (method, mode, rates, ticks, overruns, jitter, max force, per-body
+/// impulses, faults, warnings), pretty-printed, ending in a newline. `session_file` and
+/// `scene_file` name the run's inputs. Not RT-safe.
+std::string SummaryJson(const engine::RunStats& stats, const std::string& session_file,
+                        const std::string& scene_file);
+
+/// Writes SummaryJson into dir/summary.json, creating `dir` if needed.
+/// @throws mrh::RuntimeError if the file cannot be written.
 void WriteSummary(const std::filesystem::path& dir, const engine::RunStats& stats,
                   const std::string& session_file, const std::string& scene_file);
 
@@ -38,6 +44,12 @@ void WriteSummary(const std::filesystem::path& dir, const engine::RunStats& stat
 /// Returns false (and a reason in *why) if gnuplot is missing or fails; the run still counts.
 bool PlotReport(const std::filesystem::path& dir, const std::string& title, std::string* why,
                 bool renders_torque = true);
+
+/// report.png for a run of `session_file`, as `mrh run` draws it: PlotReport titled
+/// "<session file name>: <method> (<mode>)", the torque panel marked for the 3-DOF methods
+/// (single-rate, impulse, local-dynamics), which render a force only.
+bool PlotRunReport(const std::filesystem::path& dir, const std::filesystem::path& session_file,
+                   const engine::RunStats& stats, std::string* why);
 
 /// Runs gnuplot on dir/script (working directory `dir`) and checks that it wrote dir/png.
 /// Returns false with a one-line reason in *why if gnuplot is missing or fails.
