@@ -44,8 +44,12 @@ test-tsan: deps
 	  $$(grep -q '^MRH_BUILD_VIEWER:BOOL=ON' build-tsan/CMakeCache.txt && echo viewer_test)
 	ctest --preset tsan
 
+# The Python package goes into the site-packages of the python3 the build was configured for
+# (MRH_PYTHON_INSTALL_DIR), whatever PREFIX says: that is where `import mrhaptics` looks.
 install: build
 	cmake --install $(BUILD) --prefix $(PREFIX)
+	if grep -q '^MRH_BUILD_PYTHON:BOOL=ON' $(BUILD)/CMakeCache.txt; then \
+	  cmake --install $(BUILD) --component python; fi
 
 # Builds examples/ against an installed package (find_package(mrhaptics)) and runs it.
 example:

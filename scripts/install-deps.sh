@@ -6,6 +6,9 @@
 #   into build/deps (pip --target: the system's Python is not touched, so this also works where
 #   pip is externally managed). CMake takes its C headers and libmujoco.so from there
 #   (cmake/MrhMujoco.cmake); MRH_DEPS_DIR overrides the folder.
+# - The Python bindings' packages pinned in scripts/python-requirements.txt (pybind11, numpy,
+#   pytest), for the python3 on PATH, into build/deps/python the same way: the build takes
+#   pybind11 from there and the tests run with that folder on PYTHONPATH (cmake/MrhPython.cmake).
 # Usage: scripts/install-deps.sh [--no-viewer]   (run as root, or with sudo available)
 # The viewer's packages (GLFW, Dear ImGui, Xvfb for its headless tests and screenshots) are
 # installed by default; --no-viewer leaves them out (the build then has no `mrh view`).
@@ -63,4 +66,20 @@ else
   mkdir -p "$deps_dir"
   python3 -m pip install -q --no-deps --no-warn-script-location --disable-pip-version-check \
     --root-user-action=ignore --target "$deps_dir" "mujoco==$mujoco_version"
+fi
+
+# Reinstalled when the pins or the interpreter change: the stamp holds both.
+python_dir="$deps_dir/python"
+python_stamp="$python_dir/.mrh-requirements"
+python_want="$(python3 -c 'import sys; print(sys.implementation.cache_tag)'; \
+               grep -v '^#' "$root/scripts/python-requirements.txt")"
+if [[ -f "$python_stamp" && "$(cat "$python_stamp")" == "$python_want" ]]; then
+  echo "install-deps: Python packages present in $python_dir"
+else
+  echo "install-deps: installing the Python packages of scripts/python-requirements.txt into $python_dir"
+  rm -rf "$python_dir"
+  mkdir -p "$python_dir"
+  python3 -m pip install -q --no-deps --no-warn-script-location --disable-pip-version-check \
+    --root-user-action=ignore --target "$python_dir" -r "$root/scripts/python-requirements.txt"
+  printf '%s\n' "$python_want" > "$python_stamp"
 fi
