@@ -19,7 +19,11 @@ namespace {
 constexpr std::size_t kFlushBytes = std::size_t{1} << 20;
 
 constexpr std::string_view kTicksHeader = "t,px,py,pz,qw,qx,qy,qz,fx,fy,fz,tx,ty,tz,contacts\n";
-constexpr std::string_view kBodiesHeader = "t,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n";
+// bodies.csv: x..qz the body frame (MuJoCo's, as written in the scene), v and w the centre of
+// mass's velocity, cx..cz the centre of mass. The COM columns come last so that readers indexing
+// the first fifteen columns keep working.
+constexpr std::string_view kBodiesHeader =
+    "t,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,cx,cy,cz\n";
 constexpr std::string_view kStepsHeader =
     "t,step,compute_ms,sim_contacts,neighbors,point_contacts,solver_iterations,"
     "world_step_ms,ir_ms,model_ms,sync_ms\n";
@@ -158,10 +162,11 @@ void CsvRecorder::OnStep(const engine::StepRecord& step, const world::World& wor
     const world::BodyState state = world.body_state(id);
     fmt::format_to(std::back_inserter(out), "{},", step.t);
     AppendName(out, info.name, id);
-    AppendVec(out, state.p_WCm);
+    AppendVec(out, state.X_WB.p);
     AppendQuat(out, state.X_WB.q);
     AppendVec(out, state.V_WCm.v);
     AppendVec(out, state.V_WCm.w);
+    AppendVec(out, state.p_WCm);
     out.push_back('\n');
   }
   impl_->bodies.MaybeFlush();

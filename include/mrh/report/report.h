@@ -12,6 +12,12 @@ namespace mrh::report {
 
 /// Writes ticks.csv, bodies.csv and steps.csv into `dir` as records arrive (buffered). Not
 /// RT-safe: the engine calls it from its non-RT side.
+///
+/// bodies.csv has one row per moving body per physics step:
+/// `t,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,cx,cy,cz` — t (s), the body's name, its body
+/// frame's origin (m) and orientation (body → world) as in the scene's MJCF, its centre of mass's
+/// linear velocity (m/s) and its angular velocity (rad/s), both world frame, and the centre of
+/// mass's position (m, world frame).
 class CsvRecorder : public engine::Recorder {
  public:
   /// Creates `dir` if needed. @throws mrh::RuntimeError if a file cannot be opened.
