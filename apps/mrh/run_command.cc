@@ -27,7 +27,9 @@ constexpr const char* kRunFooter = R"(Output (in --out, default out/<session ste
                 (vx..wz) and COM position (cx,cy,cz)
   steps.csv     physics step timing, contacts, neighbors, solver iterations
   summary.json  rates, jitter, max force, impulses per body, faults, warnings
-  report.png    force, torque and pointer plots (gnuplot; report.gp re-draws it)
+  report.png    force (clamping and contact loss marked), torque and orientation (6-DOF
+                methods), pointer, and each body's travel, on one time axis (gnuplot;
+                report.gp re-draws it)
 
 Examples:
   mrh run session.json
@@ -154,7 +156,13 @@ void PrintRunResults(const RunOptions& o, const engine::RunStats& stats, const f
   // The 3-DOF methods render a force only (their torque column is zero or noise).
   const bool three_dof = stats.method == "single-rate" || stats.method == "impulse" ||
                          stats.method == "local-dynamics";
-  const bool plotted = report::PlotReport(out, title, &why, !three_dof);
+  report::ReportOptions plot{.six_dof = !three_dof};
+  for (const engine::BodyImpulseTotal& impulse : stats.impulses) {
+    if (impulse.linear.norm() > 0.0 || impulse.angular.norm() > 0.0) {
+      plot.touched_bodies.push_back(impulse.name);
+    }
+  }
+  const bool plotted = report::PlotReport(out, title, &why, plot);
   if (!plotted) fmt::print(stderr, "mrh: warning: no report.png: {}\n", why);
   for (const std::string& warning : stats.warnings) {
     fmt::print(stderr, "mrh: warning: {}\n", warning);

@@ -18,7 +18,10 @@ namespace {
 // while bounding the memory a long run holds.
 constexpr std::size_t kFlushBytes = std::size_t{1} << 20;
 
-constexpr std::string_view kTicksHeader = "t,px,py,pz,qw,qx,qy,qz,fx,fy,fz,tx,ty,tz,contacts\n";
+// ticks.csv: `safety` is the tick's device::SafetyBits (4 = force clamped, 8 = torque clamped),
+// last so that readers indexing the first fifteen columns keep working.
+constexpr std::string_view kTicksHeader =
+    "t,px,py,pz,qw,qx,qy,qz,fx,fy,fz,tx,ty,tz,contacts,safety\n";
 // bodies.csv: x..qz the body frame (MuJoCo's, as written in the scene), v and w the centre of
 // mass's velocity, cx..cz the centre of mass. The COM columns come last so that readers indexing
 // the first fifteen columns keep working.
@@ -144,7 +147,7 @@ void CsvRecorder::OnTick(const engine::TickRecord& tick) {
   AppendQuat(out, tick.X_WP.q);
   AppendVec(out, tick.displayed_W.f);
   AppendVec(out, tick.displayed_W.tau);
-  fmt::format_to(std::back_inserter(out), ",{}\n", tick.contacts);
+  fmt::format_to(std::back_inserter(out), ",{},{}\n", tick.contacts, tick.safety_bits);
   impl_->ticks.MaybeFlush();
 }
 

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "mrh/core/error.h"
+#include "mrh/device/safety.h"
 #include "mrh/report/report.h"
 #include "mrh/world/world.h"
 #include "report/report_test_util.h"
@@ -35,6 +36,7 @@ engine::TickRecord MakeTick(double t) {
   tick.displayed_W.tau = Vec3(0.01, 0.02, -0.03);
   tick.rendered_W.f = Vec3(100.0, 200.0, 300.0);  // must not appear: the CSV holds the displayed
   tick.contacts = 2;
+  tick.safety_bits = device::kSafetyForceClamped | device::kSafetyRamping;
   return tick;
 }
 
@@ -43,7 +45,7 @@ TEST(CsvRecorderTest, WritesExactHeadersInAllThreeFiles) {
   CsvRecorder recorder(dir.path());
   recorder.Close();
   EXPECT_EQ(ReadLines(dir.path() / "ticks.csv"),
-            std::vector<std::string>{"t,px,py,pz,qw,qx,qy,qz,fx,fy,fz,tx,ty,tz,contacts"});
+            std::vector<std::string>{"t,px,py,pz,qw,qx,qy,qz,fx,fy,fz,tx,ty,tz,contacts,safety"});
   EXPECT_EQ(ReadLines(dir.path() / "bodies.csv"),
             std::vector<std::string>{"t,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,cx,cy,cz"});
   EXPECT_EQ(ReadLines(dir.path() / "steps.csv"),
@@ -67,7 +69,7 @@ TEST(CsvRecorderTest, TickRowHoldsPointerPoseAndDisplayedWrench) {
   recorder.Close();
   const std::vector<std::string> lines = ReadLines(dir.path() / "ticks.csv");
   ASSERT_EQ(lines.size(), 2u);
-  EXPECT_EQ(lines[1], "0.001,0.1,-0.2,0.3,0.5,0.5,-0.5,0.5,1.5,-2.25,3,0.01,0.02,-0.03,2");
+  EXPECT_EQ(lines[1], "0.001,0.1,-0.2,0.3,0.5,0.5,-0.5,0.5,1.5,-2.25,3,0.01,0.02,-0.03,2,20");
 }
 
 TEST(CsvRecorderTest, StepRowHoldsEveryStepField) {
