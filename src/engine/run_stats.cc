@@ -9,8 +9,9 @@
 namespace mrh::engine::internal {
 
 PhysicsSide EngineState::MakePhysicsSide(Recorder* recorder) {
+  body_pose_tap.set_next(recorder);
   return PhysicsSide(method.physics.get(), &world,
-                     PhysicsSide::Exchange{&snapshots, &reports, &tick_records}, recorder,
+                     PhysicsSide::Exchange{&snapshots, &reports, &tick_records}, &body_pose_tap,
                      settings.safety.max_body_speed);
 }
 
