@@ -51,14 +51,14 @@ int FirstMovingBody(const mrh::engine::Engine& engine) {
 
 // Your renderer: draws the newest poses at its own rate (here 50 Hz, printing instead of
 // drawing). One BodyPoses, reused, so that reading never allocates after the first call.
-void RenderLoop(mrh::engine::Engine& engine, int body, const std::atomic<bool>& done) {
+void RenderLoop(mrh::engine::Engine& engine, int body, const std::string& name,
+                const std::atomic<bool>& done) {
   mrh::engine::BodyPoses poses;
   while (!done.load(std::memory_order_acquire)) {
     if (engine.ReadBodyPoses(&poses) && poses.step % 10 == 0) {
       const mrh::Vec3& p = poses.X_WB[static_cast<std::size_t>(body)].p;
       std::printf("render: step %lld t=%.2f s %s at (%.4f, %.4f, %.4f) m\n",
-                  static_cast<long long>(poses.step), poses.t,
-                  engine.world().body(body).name.c_str(), p.x(), p.y(), p.z());
+                  static_cast<long long>(poses.step), poses.t, name.c_str(), p.x(), p.y(), p.z());
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
@@ -75,10 +75,12 @@ int main(int argc, char** argv) {
     const mrh::session::Session session = mrh::session::LoadSession(
         argv[1], {"device={\"type\": \"external\"}", "mode=realtime", "duration=2"});
     auto engine = mrh::session::MakeEngine(session);
+    // What the renderer needs of the model, taken before the engine's threads run.
     const int body = FirstMovingBody(*engine);
+    const std::string name = engine->world().body(body).name;
     std::atomic<bool> done{false};
     std::thread renderer([&] {
-      RenderLoop(*engine, body, done);
+      RenderLoop(*engine, body, name, done);
     });
     engine->Start();
 

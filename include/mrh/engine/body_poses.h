@@ -11,7 +11,7 @@ namespace mrh::engine {
 
 /// Every body's pose at the end of one physics step: what a renderer of the scene draws. Filled
 /// by the engine (Engine::ReadBodyPoses); indexed by body id, as world::World numbers bodies
-/// (0 is the world body; names via Engine::world().body(id).name).
+/// (0 is the world body; take the names from Engine::world().body(id).name before the run).
 struct BodyPoses {
   std::int64_t step = -1;  ///< physics step index; -1: the scene's initial state, before any step
   double t = 0.0;          ///< simulated time at the end of that step (s)
