@@ -51,12 +51,13 @@ install: build
 	if grep -q '^MRH_BUILD_PYTHON:BOOL=ON' $(BUILD)/CMakeCache.txt; then \
 	  cmake --install $(BUILD) --component python; fi
 
-# Builds examples/ against an installed package (find_package(mrhaptics)) and runs it.
+# Builds examples/ against an installed package (find_package(mrhaptics)) and runs them.
 example:
 	cmake --install $(BUILD) --prefix $(CURDIR)/$(BUILD)/staging >/dev/null
 	cmake -S examples -B $(BUILD)/example -DCMAKE_PREFIX_PATH=$(CURDIR)/$(BUILD)/staging >/dev/null
 	cmake --build $(BUILD)/example -j $(JOBS)
 	$(BUILD)/example/servo_loop scenes/t4_1_impulse.json
+	$(BUILD)/example/realtime_embedding scenes/t4_1_impulse.json
 
 clean:
 	rm -rf $(BUILD) out

@@ -54,7 +54,8 @@ struct ViewOptions {
   std::filesystem::path session;
   std::vector<std::string> sets;
   int frames = 0;                    ///< > 0: render this many frames headless, then exit
-  std::filesystem::path screenshot;  ///< with frames: write the last frame as PNG here
+  double at = -1.0;                  ///< >= 0: run headless to this simulated time (s), then exit
+  std::filesystem::path screenshot;  ///< with frames or at: write the last frame as PNG here
   std::string method;                ///< empty: the session's
   bool hide_panel = false;           ///< do not draw the ImGui panel
 };

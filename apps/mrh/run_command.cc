@@ -23,10 +23,13 @@ namespace fs = std::filesystem;
 
 constexpr const char* kRunFooter = R"(Output (in --out, default out/<session stem>-<method>):
   ticks.csv     pointer pose and displayed wrench, one row per haptic tick
-  bodies.csv    pose and velocity of each moving body, one row per body per physics step
+  bodies.csv    each moving body per physics step: body frame pose (x..qz), COM velocity
+                (vx..wz) and COM position (cx,cy,cz)
   steps.csv     physics step timing, contacts, neighbors, solver iterations
   summary.json  rates, jitter, max force, impulses per body, faults, warnings
-  report.png    force, torque and pointer plots (gnuplot; report.gp re-draws it)
+  report.png    force (clamping and contact loss marked), torque and orientation (6-DOF
+                methods), pointer, and each body's travel, on one time axis (gnuplot;
+                report.gp re-draws it)
 
 Examples:
   mrh run session.json

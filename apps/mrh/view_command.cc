@@ -2,6 +2,9 @@
 // `mrh view`: the interactive viewer, or N headless frames and a screenshot.
 #include <fmt/format.h>
 
+#include <cmath>
+#include <cstdlib>
+
 #include "commands.h"
 #include "mrh/core/error.h"
 #include "mrh/session/session.h"
@@ -23,8 +26,18 @@ constexpr const char* kViewFooter = R"(Mouse and keys (also under Help in the pa
 Examples:
   mrh view scenes/demo.json
   mrh view scenes/demo.json --method single-rate --set rendering.stiffness=2000
-  xvfb-run -a mrh view scenes/demo.json --frames 120 --screenshot view.png
+  xvfb-run -a mrh view scenes/demo.json --at 2.5 --screenshot view.png
 )";
+
+// CLI11's NonNegativeNumber would print DBL_MAX in full in its message; this one says what to give.
+std::string CheckSimulatedTime(std::string& text) {
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (end == text.c_str() || *end != '\0' || !std::isfinite(value) || value < 0.0) {
+    return fmt::format("expected a simulated time in seconds >= 0, got '{}'", text);
+  }
+  return {};
+}
 
 std::vector<std::string> Overrides(const ViewOptions& o) {
   std::vector<std::string> overrides = o.sets;
@@ -47,27 +60,44 @@ CLI::App* AddViewCommand(CLI::App& app, ViewOptions* o) {
   AddSetOption(*view, &o->sets);
   CLI::Option* frames =
       view->add_option("--frames", o->frames,
-                       "Headless: render N frames (at 60 fps) with the session's own device, "
-                       "then exit")
+                       "Headless: render N frames with the session's own device, then exit. "
+                       "The session runs in real time and frames are drawn at up to 60 fps, so "
+                       "the last one shows roughly N/60 s or later (slow drawing); use --at to "
+                       "aim at a simulated time")
           ->type_name("N")
           ->check(CLI::PositiveNumber);
-  view->add_option("--screenshot", o->screenshot, "With --frames: write the last frame as PNG")
-      ->type_name("PNG")
-      ->needs(frames);
+  CLI::Option* at =
+      view->add_option("--at", o->at,
+                       "Headless: run the session with its own device to simulated time T (s), "
+                       "hold it there and draw that moment, then exit")
+          ->type_name("T")
+          ->check(CLI::Validator(CheckSimulatedTime, ""))
+          ->excludes(frames);
+  view->add_option("--screenshot", o->screenshot,
+                   "With --frames or --at: write the last frame as PNG")
+      ->type_name("PNG");
   view->add_flag("--hide-panel", o->hide_panel, "Draw the scene only, without the panel");
   view->footer(kViewFooter);
+  view->callback([view, frames, at] {
+    if (view->count("--screenshot") > 0 && frames->count() == 0 && at->count() == 0) {
+      throw CLI::ValidationError("--screenshot requires --frames or --at");
+    }
+  });
   return view;
 }
 
 int ViewCommand(const ViewOptions& o) {
   const session::Session session = session::LoadSession(o.session, Overrides(o));
 #ifdef MRH_HAVE_VIEWER
-  viewer::RunViewer(session, viewer::ViewerSettings{
-                                 .frames = o.frames,
-                                 .screenshot = o.screenshot,
-                                 .panel = !o.hide_panel,
-                             });
-  if (!o.screenshot.empty()) fmt::print("screenshot: {}\n", o.screenshot.string());
+  const double t = viewer::RunViewer(session, viewer::ViewerSettings{
+                                                  .frames = o.frames,
+                                                  .at = o.at,
+                                                  .screenshot = o.screenshot,
+                                                  .panel = !o.hide_panel,
+                                              });
+  if (!o.screenshot.empty()) {
+    fmt::print("screenshot: {} (t = {:.3f} s)\n", o.screenshot.string(), t);
+  }
   return kExitOk;
 #else
   (void)session;

@@ -40,7 +40,8 @@ EngineState::EngineState(world::World w, std::unique_ptr<device::Device> d,
       device(std::move(d)),
       calibration(c),
       reports(kReportRingPeriods),
-      tick_records(kTickRecordCapacity) {
+      tick_records(kTickRecordCapacity),
+      body_poses(InitialBodyPoses(world)) {
   settings.Validate();
   pointer_body = world.FindBody(settings.pointer.body);
   // virtual-coupling's tool is the pointer made a free body (world::LoadOptions::dynamic_pointer).
@@ -104,6 +105,26 @@ const physics::MethodPhysics& Engine::physics_method() const {
 void Engine::RequestStop() noexcept {
   impl_->state->stop_requested.store(true, std::memory_order_relaxed);
 }
+
+bool Engine::ReadBodyPoses(BodyPoses* out) {
+  TripleBuffer<BodyPoses>& poses = impl_->state->body_poses;
+  const bool fresh = poses.Update();
+  // Same-sized vectors: the copy reuses out's storage after the first call.
+  *out = poses.read_slot();
+  return fresh;
+}
+
+void Engine::SetDisplayGain(double gain) {
+  if (!std::isfinite(gain) || gain < 0.0) {
+    throw InvalidArgument(fmt::format(
+        "Engine::SetDisplayGain: gain = {}; expected a finite value >= 0 (1 displays the "
+        "rendered wrench unchanged)",
+        gain));
+  }
+  impl_->state->haptic->SetDisplayGain(gain);
+}
+
+double Engine::display_gain() const { return impl_->state->haptic->display_gain(); }
 
 RunStats Engine::Run(Recorder* recorder, const ProgressFn& progress) {
   internal::EngineState& s = *impl_->state;

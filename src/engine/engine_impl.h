@@ -15,6 +15,7 @@
 #include "mrh/haptic/haptic_side.h"
 #include "mrh/physics/physics_side.h"
 #include "mrh/world/world.h"
+#include "pose_tap.h"
 
 namespace mrh::engine::internal {
 
@@ -50,6 +51,10 @@ struct EngineState {
   SpscRing<ir::HapticReport> reports;
   SpscRing<TickRecord> tick_records;
   std::optional<HapticSide> haptic;
+  /// physics side → Engine::ReadBodyPoses (one reader thread), written by body_pose_tap, which
+  /// every physics side records through first.
+  TripleBuffer<BodyPoses> body_poses;
+  PoseTap body_pose_tap{&body_poses};
 };
 
 /// The real-time physics thread's loop: step k, wait (polling, never blocking the haptic

@@ -9,8 +9,9 @@
 namespace mrh::engine::internal {
 
 PhysicsSide EngineState::MakePhysicsSide(Recorder* recorder) {
+  body_pose_tap.set_next(recorder);
   return PhysicsSide(method.physics.get(), &world,
-                     PhysicsSide::Exchange{&snapshots, &reports, &tick_records}, recorder,
+                     PhysicsSide::Exchange{&snapshots, &reports, &tick_records}, &body_pose_tap,
                      settings.safety.max_body_speed);
 }
 
@@ -21,6 +22,10 @@ void RunPhysicsThread(PhysicsSide& physics, const std::atomic<bool>& done) {
     physics.Step(k);
     while (physics.TakeReports() == 0) {
       if (done.load(std::memory_order_acquire)) return;
+      // The period's ticks reach the recorder as they come (still before OnStep of step k):
+      // a live view then lags the haptic thread by a poll, not a period, and shows the ticks
+      // of a haptic loop that holds mid-period (`mrh view --at`).
+      physics.DrainTickRecords();
       SleepUntilNs(NowNs() + kPollNs, 0);
     }
     physics.Publish();

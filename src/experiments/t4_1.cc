@@ -126,7 +126,10 @@ MethodResult RunCase(const session::Session& session, const Case& c,
   if (csv) {
     csv->Close();
     report::WriteSummary(dir, stats, session.file.string(), session.scene.string());
-    if (!report::PlotReport(dir, "T4.1 " + session.engine.method, &why) && !quiet) {
+    // Every T4.1 method renders a 3-DOF point force: no torque or orientation panels.
+    if (!report::PlotReport(dir, "T4.1 " + session.engine.method, &why,
+                            report::ReportOptions{.six_dof = false}) &&
+        !quiet) {
       std::cerr << "mrh: warning: no plot for " << session.engine.method << ": " << why << "\n";
     }
   }

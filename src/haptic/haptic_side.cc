@@ -43,6 +43,7 @@ void HapticSide::ReadDevice(double t) noexcept {
 }
 
 void HapticSide::Tick(double t) noexcept {
+  const double gain = display_gain_.load(std::memory_order_relaxed);
   ReadDevice(t);
   if (exchange_.snapshots->Update()) {
     method_->Adopt(exchange_.snapshots->read_slot());
@@ -64,7 +65,10 @@ void HapticSide::Tick(double t) noexcept {
   if (!IsFinite(out.X_WQ)) out.X_WQ = X_WP_;
 
   std::uint32_t bits = 0;
-  const Wrench displayed = safety_.Apply(out.w_W, t, t - last_adopt_t_, device_ok_, &bits);
+  // The gain scales what the user feels only: the method's reaction on the objects and the
+  // recorded rendered wrench stay as rendered; the safety layer still clamps the scaled wrench.
+  const Wrench scaled{out.w_W.f * gain, out.w_W.tau * gain};
+  const Wrench displayed = safety_.Apply(scaled, t, t - last_adopt_t_, device_ok_, &bits);
   device_->SetSafetyBits(bits);
   device_->SetWrench(calibration_.ToDevice(displayed));
   Count(displayed, bits);

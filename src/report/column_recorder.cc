@@ -23,7 +23,7 @@ std::vector<Column> MakeColumns(std::span<const std::string_view> names,
   return columns;
 }
 
-constexpr std::array<std::string_view, 1> kTickIntegers = {"contacts"};
+constexpr std::array<std::string_view, 2> kTickIntegers = {"contacts", "safety"};
 constexpr std::array<std::string_view, 1> kBodyIntegers = {"body"};
 constexpr std::array<std::string_view, 5> kStepIntegers = {"step", "sim_contacts", "neighbors",
                                                            "point_contacts", "solver_iterations"};
@@ -63,7 +63,7 @@ void ColumnRecorder::OnTick(const engine::TickRecord& tick) {
   const Pose& X = tick.X_WP;
   const Wrench& w = tick.displayed_W;
   AppendRow(ticks_, tick.t, X.p.x(), X.p.y(), X.p.z(), X.q.w(), X.q.x(), X.q.y(), X.q.z(), w.f.x(),
-            w.f.y(), w.f.z(), w.tau.x(), w.tau.y(), w.tau.z(), tick.contacts);
+            w.f.y(), w.f.z(), w.tau.x(), w.tau.y(), w.tau.z(), tick.contacts, tick.safety_bits);
 }
 
 void ColumnRecorder::OnStep(const engine::StepRecord& step, const world::World& world) {
@@ -79,9 +79,9 @@ void ColumnRecorder::OnStep(const engine::StepRecord& step, const world::World& 
   for (int id = 0; id < world.num_bodies(); ++id) {
     if (world.body(id).is_static) continue;
     const world::BodyState s = world.body_state(id);
-    AppendRow(bodies_, step.t, id, s.p_WCm.x(), s.p_WCm.y(), s.p_WCm.z(), s.X_WB.q.w(),
+    AppendRow(bodies_, step.t, id, s.X_WB.p.x(), s.X_WB.p.y(), s.X_WB.p.z(), s.X_WB.q.w(),
               s.X_WB.q.x(), s.X_WB.q.y(), s.X_WB.q.z(), s.V_WCm.v.x(), s.V_WCm.v.y(), s.V_WCm.v.z(),
-              s.V_WCm.w.x(), s.V_WCm.w.y(), s.V_WCm.w.z());
+              s.V_WCm.w.x(), s.V_WCm.w.y(), s.V_WCm.w.z(), s.p_WCm.x(), s.p_WCm.y(), s.p_WCm.z());
   }
 }
 

@@ -147,7 +147,7 @@ void CsvRecorder::OnTick(const engine::TickRecord& tick) {
   AppendQuat(out, tick.X_WP.q);
   AppendVec(out, tick.displayed_W.f);
   AppendVec(out, tick.displayed_W.tau);
-  fmt::format_to(std::back_inserter(out), ",{}\n", tick.contacts);
+  fmt::format_to(std::back_inserter(out), ",{},{}\n", tick.contacts, tick.safety_bits);
   impl_->ticks.MaybeFlush();
 }
 
@@ -165,10 +165,11 @@ void CsvRecorder::OnStep(const engine::StepRecord& step, const world::World& wor
     const world::BodyState state = world.body_state(id);
     fmt::format_to(std::back_inserter(out), "{},", step.t);
     AppendName(out, info.name, id);
-    AppendVec(out, state.p_WCm);
+    AppendVec(out, state.X_WB.p);
     AppendQuat(out, state.X_WB.q);
     AppendVec(out, state.V_WCm.v);
     AppendVec(out, state.V_WCm.w);
+    AppendVec(out, state.p_WCm);
     out.push_back('\n');
   }
   impl_->bodies.MaybeFlush();

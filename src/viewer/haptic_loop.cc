@@ -55,7 +55,8 @@ void HapticLoop::Run(engine::Engine* engine, device::Device* source, double dt) 
   while (!quit_.load(std::memory_order_relaxed)) {
     const engine::PeriodicDeadline::Wake wake = clock.Next();
     if (wake.overrun) overruns_.fetch_add(1, std::memory_order_relaxed);
-    if (paused_.load() && !TakeStep()) {
+    const bool hold = paused_.load() || ticks >= hold_at_.load(std::memory_order_relaxed);
+    if (hold && !TakeStep()) {
       window_start_ns_ = wake.now_ns;  // a pause is not slowness: restart the rate window
       samples_ = 0;
       held_.fetch_add(1, std::memory_order_release);  // orders the ticks_ store before it

@@ -5,6 +5,7 @@
 #include <array>
 #include <atomic>
 #include <cstdint>
+#include <limits>
 #include <thread>
 
 #include "mrh/core/triple_buffer.h"
@@ -71,6 +72,15 @@ class HapticLoop {
     if (paused_.load() && ticks > 0) step_budget_.fetch_add(ticks);
   }
 
+  /// Holds the loop, as a pause does, once `ticks` ticks have run since Start: the session then
+  /// stands at virtual time ticks · dt, its last reading at (ticks − 1) · dt. Set it before
+  /// Start to hold at an exact tick; it carries over restarts. A negative value never holds (the
+  /// default). Step requests made while paused still run past it. Any thread.
+  void HoldAtTick(std::int64_t ticks) { hold_at_.store(ticks < 0 ? kNever : ticks); }
+
+  /// True once the loop has reached its HoldAtTick tick (any thread).
+  bool holding() const { return ticks() >= hold_at_.load(); }
+
   /// Ticks run since Start (any thread).
   std::int64_t ticks() const { return ticks_.load(std::memory_order_relaxed); }
 
@@ -95,7 +105,9 @@ class HapticLoop {
 
   std::thread thread_;
   std::atomic<bool> quit_{false};
+  static constexpr std::int64_t kNever = std::numeric_limits<std::int64_t>::max();
   std::atomic<bool> paused_{false};
+  std::atomic<std::int64_t> hold_at_{kNever};
   std::atomic<int> step_budget_{0};
   std::atomic<std::int64_t> ticks_{0};
   std::atomic<std::int64_t> overruns_{0};

@@ -6,12 +6,15 @@
 #include <imgui.h>
 
 #include "mrh/engine/method.h"
+#include "viewer/method_fields.h"
 
 namespace mrh::viewer::internal {
 namespace {
 
-constexpr float kPanelWidth = 360.0f;  // at scale 1 (pixels)
-constexpr float kPlotHeight = 90.0f;
+// At scale 1 (pixels). The panel keeps to under a quarter of the default 1280-pixel window and,
+// with its less used sections closed, to about half its height.
+constexpr float kPanelWidth = 300.0f;
+constexpr float kPlotHeight = 60.0f;
 const ImVec4 kErrorColor(1.0f, 0.45f, 0.4f, 1.0f);
 
 // ImGui::Text with fmt formatting (ImGui's own printf would need -Wformat exemptions).
@@ -32,7 +35,13 @@ void DrawRates(const PanelInfo& info) {
   Text("overruns {}  dropped ticks {}", info.loop.overruns, info.dropped_ticks);
 }
 
-// Method and gains; an edit that is finished (Enter or focus lost) asks for a restart.
+// One gain field; true when an edit is finished (Enter or focus lost).
+bool Gain(const char* label, double* value, double step, const char* format) {
+  ImGui::InputDouble(label, value, step, 10.0 * step, format);
+  return ImGui::IsItemDeactivatedAfterEdit();
+}
+
+// Method and the gains it reads (FieldsFor); a finished edit asks for a restart.
 bool DrawGains(engine::EngineSettings* edit) {
   bool apply = false;
   if (ImGui::BeginCombo("method", edit->method.c_str())) {
@@ -45,15 +54,18 @@ bool DrawGains(engine::EngineSettings* edit) {
     }
     ImGui::EndCombo();
   }
+  const MethodFields fields = FieldsFor(edit->method);
   engine::RenderingSettings& r = edit->rendering;
-  ImGui::InputDouble("stiffness N/m", &r.stiffness, 100.0, 1000.0, "%.1f");
-  apply |= ImGui::IsItemDeactivatedAfterEdit();
-  ImGui::InputDouble("damping N s/m", &r.damping, 0.5, 5.0, "%.2f");
-  apply |= ImGui::IsItemDeactivatedAfterEdit();
-  ImGui::InputDouble("friction mu", &r.friction, 0.05, 0.5, "%.2f");
-  apply |= ImGui::IsItemDeactivatedAfterEdit();
-  ImGui::InputDouble("rot. stiffness N m/rad", &r.rot_stiffness, 1.0, 10.0, "%.2f");
-  apply |= ImGui::IsItemDeactivatedAfterEdit();
+  if (fields.stiffness) {
+    apply |= Gain("stiffness N/m", &r.stiffness, 100.0, "%.1f");
+    apply |= Gain("damping N s/m", &r.damping, 0.5, "%.2f");
+  }
+  if (fields.friction) apply |= Gain("friction mu", &r.friction, 0.05, "%.2f");
+  if (fields.rot_stiffness) apply |= Gain("rot. stiffness N m/rad", &r.rot_stiffness, 1.0, "%.2f");
+  if (fields.coupling) {
+    apply |= Gain("coupling k N/m", &r.coupling_stiffness, 100.0, "%.1f");
+    apply |= Gain("coupling b N s/m", &r.coupling_damping, 1.0, "%.2f");
+  }
   return apply;
 }
 
@@ -119,11 +131,17 @@ PanelActions DrawPanel(const PanelInfo& info, PanelState* state, DisplayOptions*
   ImGui::Begin("mrh view", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
   Text("{}", info.session->file.filename().string());
   const engine::EngineSettings& running = *info.settings;
-  Text("{}  realtime  physics {} ms / haptic {} ms", running.method, running.physics_dt * 1e3,
+  Text("{}  physics {} ms / haptic {} ms", running.method, running.physics_dt * 1e3,
        running.haptic_dt * 1e3);
-  Text("t {:.2f} s  contacts {}  |f| {:.2f} N  |tau| {:.3f} N m", info.t, info.contacts,
-       info.displayed_W.f.norm(), info.displayed_W.tau.norm());
-  if (ImGui::CollapsingHeader("Rates", ImGuiTreeNodeFlags_DefaultOpen)) DrawRates(info);
+  const bool torque = FieldsFor(running.method).torque;
+  if (torque) {
+    Text("t {:.3f} s  contacts {}  |f| {:.2f} N  |tau| {:.3f} N m", info.t, info.contacts,
+         info.displayed_W.f.norm(), info.displayed_W.tau.norm());
+  } else {
+    Text("t {:.3f} s  contacts {}  |f| {:.2f} N", info.t, info.contacts,
+         info.displayed_W.f.norm());
+  }
+  if (ImGui::CollapsingHeader("Rates")) DrawRates(info);
   actions.toggle_pause = ImGui::Button(info.paused ? "Resume" : "Pause");
   ImGui::SameLine();
   ImGui::BeginDisabled(!info.paused);
@@ -134,7 +152,7 @@ PanelActions DrawPanel(const PanelInfo& info, PanelState* state, DisplayOptions*
   if (ImGui::CollapsingHeader("Method and gains", ImGuiTreeNodeFlags_DefaultOpen)) {
     actions.apply = DrawGains(&state->edit);
   }
-  if (ImGui::CollapsingHeader("Input and recording", ImGuiTreeNodeFlags_DefaultOpen)) {
+  if (ImGui::CollapsingHeader("Input and recording")) {
     DrawInput(info, state, &actions);
   }
   if (ImGui::CollapsingHeader("Show")) DrawDisplay(display);
@@ -142,9 +160,11 @@ PanelActions DrawPanel(const PanelInfo& info, PanelState* state, DisplayOptions*
   ImGui::TextUnformatted("displayed force");
   DrawPlot("##force", history, PlotQuantity::kForce, display->plot_seconds, plot_width,
            kPlotHeight * scale);
-  ImGui::TextUnformatted("displayed torque");
-  DrawPlot("##torque", history, PlotQuantity::kTorque, display->plot_seconds, plot_width,
-           kPlotHeight * scale);
+  if (torque) {
+    ImGui::TextUnformatted("displayed torque");
+    DrawPlot("##torque", history, PlotQuantity::kTorque, display->plot_seconds, plot_width,
+             kPlotHeight * scale);
+  }
   if (ImGui::CollapsingHeader("Help")) DrawHelp();
   if (!state->message.empty()) {
     ImGui::PushTextWrapPos(kPanelWidth * scale);

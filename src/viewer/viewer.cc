@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstring>
 #include <optional>
 #include <thread>
@@ -97,28 +98,48 @@ class ViewerApp {
     std::strncpy(panel_.record_path.data(), path.c_str(), panel_.record_path.size() - 1);
     last_.X_WP = target_W_;
     last_.X_WQ = target_W_;  // no proxy (and no ghost) before the first tick
+    // Ticks 0 .. N run (t = 0 .. at), then the loop holds: set before the loop starts.
+    if (settings.at >= 0.0) {
+      live_.loop().HoldAtTick(std::llround(settings.at / session.engine.haptic_dt) + 1);
+    }
     live_.Start(headless() ? InputSource::kSession : InputSource::kMouse);
     rate_start_ = Clock::now();
   }
 
-  void Run() {
+  double Run() {
     const auto period = std::chrono::duration_cast<Clock::duration>(
         std::chrono::duration<double>(1.0 / settings_.frame_rate_hz));
     Clock::time_point due = Clock::now();
     for (int frame = 0; !window_.ShouldClose(); ++frame) {
-      const bool last = headless() && frame + 1 == settings_.frames;
+      const bool last =
+          settings_.at >= 0.0 ? Settled() : headless() && frame + 1 == settings_.frames;
       Frame(last);
       if (last) break;
       // At most frame_rate_hz even without vsync (Xvfb has none); a slow frame is not made up.
       due = std::max(due + period, Clock::now());
       std::this_thread::sleep_until(due);
     }
+    return last_.t;
   }
 
  private:
   using Clock = std::chrono::steady_clock;
 
-  bool headless() const { return settings_.frames > 0; }
+  bool headless() const { return settings_.frames > 0 || settings_.at >= 0.0; }
+
+  // With `at`: true once the haptic loop holds, its last tick is drawn and the physics side has
+  // delivered no new step for kSettleFrames frames (it finishes the step in progress, which
+  // takes milliseconds; a frame is ~17 ms).
+  bool Settled() {
+    constexpr int kSettleFrames = 3;
+    if (!live_.loop().holding() || feed_.steps() != settle_steps_ ||
+        last_.t < settings_.at - 0.5 * session_.engine.haptic_dt) {
+      settle_steps_ = feed_.steps();
+      settle_frames_ = 0;
+      return false;
+    }
+    return ++settle_frames_ > kSettleFrames;
+  }
 
   void Frame(bool last) {
     window_.BeginFrame();
@@ -281,6 +302,8 @@ class ViewerApp {
   std::optional<TickFile> recording_;
   double record_from_ = 0.0;
   Clock::time_point rate_start_;
+  std::int64_t settle_steps_ = -1;
+  int settle_frames_ = 0;
   std::int64_t rate_steps_ = 0;
   double physics_hz_ = 0.0;
 };
@@ -288,9 +311,9 @@ class ViewerApp {
 }  // namespace
 }  // namespace internal
 
-void RunViewer(const session::Session& session, const ViewerSettings& settings) {
+double RunViewer(const session::Session& session, const ViewerSettings& settings) {
   internal::ViewerApp app(session, settings);
-  app.Run();
+  return app.Run();
 }
 
 }  // namespace mrh::viewer

@@ -18,3 +18,15 @@ if(TARGET mrh_fake_hd)
                        ENVIRONMENT FAKEHD_THREAD=1)
 endif()
 
+
+# A `udp` session in real time against a Python test client (docs/devices.md's packets): the
+# device's counters (poses received, malformed packets dropped, pose timeouts, wrenches sent)
+# must reach summary.json's "device" block and agree with what the client sent.
+find_package(Python3 COMPONENTS Interpreter)
+if(Python3_Interpreter_FOUND)
+  add_test(NAME cli.RunUdpSessionCountsLandInSummary
+           COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_LIST_DIR}/udp_session_test.py ${mrh_bin}
+                   ${fixtures}/tiny.json ${CMAKE_CURRENT_BINARY_DIR}/run_udp
+           WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+  set_tests_properties(cli.RunUdpSessionCountsLandInSummary PROPERTIES LABELS apps TIMEOUT 120)
+endif()

@@ -33,6 +33,8 @@ constexpr double kMinFloorFraction = 0.2;
 constexpr double kMinArrowFraction = 0.0001;
 // The panel region is mostly background, with text, buttons and plots on it.
 constexpr double kMinPanelFraction = 0.5;
+// Under the panel the view shows floor; a few dark pixels are shadows.
+constexpr double kMaxDarkBelowPanel = 0.1;
 // A blank (single-colour) frame has zero spread; a rendered scene has shading everywhere.
 constexpr double kMinLumaStdDev = 10.0;
 
@@ -42,11 +44,11 @@ struct Check {
   double min_fraction;
 };
 
-// Fraction of near-black neutral pixels (ImGui's dark window background) in the region
-// x < 20 % of the width, 30 % < y < 70 % of the height, where the panel sits.
-double PanelRegionFraction(const std::vector<Pixel>& pixels, int width, int height) {
+// Fraction of near-black neutral pixels (ImGui's dark window background) in the band
+// x < 20 % of the width, y0 < y < y1 (fractions of the height).
+double DarkFraction(const std::vector<Pixel>& pixels, int width, int height, double y0, double y1) {
   std::size_t dark = 0, total = 0;
-  for (int y = 3 * height / 10; y < 7 * height / 10; ++y) {
+  for (int y = static_cast<int>(y0 * height); y < static_cast<int>(y1 * height); ++y) {
     for (int x = 0; x < width / 5; ++x) {
       const Pixel& p = pixels[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
                               static_cast<std::size_t>(x)];
@@ -153,13 +155,23 @@ int main(int argc, char** argv) {
     }
   }
   if (panel) {
-    // The panel is docked at the top left, over what is otherwise floor: most of that region
-    // must be the panel's near-black, neutral background.
-    const double fraction = PanelRegionFraction(pixels, width, height);
+    // The panel is docked at the top left, over what is otherwise floor (below the dark sky):
+    // most of the band 20-40 % down must be the panel's near-black, neutral background.
+    const double fraction = DarkFraction(pixels, width, height, 0.2, 0.4);
     std::printf("%-24s %.2f %% of its region\n", "ImGui panel", 100.0 * fraction);
     if (fraction < kMinPanelFraction) {
       std::fprintf(stderr, "FAIL: the panel region is %.1f %% panel-dark; expected >= %.1f %%\n",
                    100.0 * fraction, 100.0 * kMinPanelFraction);
+      ++failures;
+    }
+    // It stays compact: the band 60-90 % down, under it, is floor.
+    const double below = DarkFraction(pixels, width, height, 0.6, 0.9);
+    std::printf("%-24s %.2f %% panel-dark\n", "below the panel", 100.0 * below);
+    if (below > kMaxDarkBelowPanel) {
+      std::fprintf(stderr,
+                   "FAIL: %.1f %% of the band below the panel is panel-dark; expected <= %.1f %% "
+                   "(the panel covers too much of the view)\n",
+                   100.0 * below, 100.0 * kMaxDarkBelowPanel);
       ++failures;
     }
   }

@@ -1,7 +1,8 @@
 #!/bin/sh
 # SPDX-License-Identifier: Apache-2.0
-# Renders a session headless under Xvfb with `mrh view --frames` and checks the screenshot.
-# Usage: view_screenshot_test.sh MRH CHECKER SESSION OUT.png FRAMES [CHECKS...]
+# Renders a session headless under Xvfb with `mrh view --frames` (or --at) and checks the
+# screenshot.
+# Usage: view_screenshot_test.sh MRH CHECKER SESSION OUT.png FRAMES|--at=T [CHECKS...]
 # CHECKS are the checker's options (--panel, --force); --panel also shows the panel.
 # Exits 77 (CTest: skipped) when xvfb-run is not installed.
 set -u
@@ -16,7 +17,11 @@ hide=--hide-panel
 for check in "$@"; do
   [ "$check" = "--panel" ] && hide=
 done
+case $frames in
+  --*) when=$frames ;;
+  *) when="--frames=$frames" ;;
+esac
 # 24-bit colour: xvfb-run's default screen depth is too shallow for the GL visual on some setups.
 xvfb-run -a -s "-screen 0 1600x1000x24" \
-  "$mrh" view "$session" --frames "$frames" --screenshot "$out" $hide || exit 1
+  "$mrh" view "$session" "$when" --screenshot "$out" $hide || exit 1
 "$checker" "$out" "$@"

@@ -7,6 +7,13 @@ mrh_cli_test(ViewScreenshotNeedsFrames 2 stderr "^mrh: error: .*--screenshot req
              view ${fixtures}/tiny.json --screenshot never.png)
 mrh_cli_test(ViewBadSessionKeyExits2NamingTheKey 2 stderr "^mrh: error: .*bogus_key"
              view ${fixtures}/unknown_key.json)
+mrh_cli_test(ViewAtExcludesFrames 2 stderr "^mrh: error: --(at excludes --frames|frames excludes --at)$"
+             view ${fixtures}/tiny.json --at 1 --frames 3)
+mrh_cli_test(ViewAtMustNotBeNegative 2 stderr
+             "^mrh: error: --at: expected a simulated time in seconds >= 0, got '-0\\.5'$"
+             view ${fixtures}/tiny.json --at -0.5)
+mrh_cli_test(ViewHelpSaysFramesLandAtNoFixedTime 0 stdout "use --at to aim at a simulated time"
+             view --help)
 
 if(TARGET mrh_viewer)
   # No display: one line saying so, suggesting xvfb-run and `mrh run`; a runtime error (exit 1),
@@ -42,10 +49,18 @@ if(TARGET mrh_viewer)
            COMMAND ${view_test} ${mrh_bin} ${check} ${fixtures}/view_press.json
                    ${CMAKE_CURRENT_BINARY_DIR}/view_force.png 30 --force
            WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+  # --at: the session held at exactly 0.75 s (past the 0.5 s engage ramp; the printed time is
+  # the newest tick's, drawn in the shot), whatever the frame rate; the shot shows the floor and
+  # the force arrow.
+  add_test(NAME viewer.AtHoldsTheSessionAtTheRequestedTime
+           COMMAND ${expect} 0 stdout "^screenshot: .*view_at\\.png \\(t = 0\\.750 s\\)$"
+                   -- ${view_test} ${mrh_bin} ${check} ${fixtures}/view_press.json
+                   ${CMAKE_CURRENT_BINARY_DIR}/view_at.png --at=0.75 --force
+           WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
   # Under ASan, LeakSanitizer would report what the X, GLX and Mesa libraries keep until exit
   # (not ours): leaks are checked by the GL-free viewer_test instead.
   set_tests_properties(viewer.ScreenshotShowsFloorAndCubes viewer.ScreenshotShowsThePanel
-                       viewer.ScreenshotShowsTheForceArrow
+                       viewer.ScreenshotShowsTheForceArrow viewer.AtHoldsTheSessionAtTheRequestedTime
                        PROPERTIES LABELS viewer TIMEOUT 120 SKIP_RETURN_CODE 77
                                   ENVIRONMENT "ASAN_OPTIONS=detect_leaks=0")
 else()

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "mrh/core/error.h"
+#include "mrh/device/safety.h"
 #include "mrh/report/report.h"
 #include "mrh/world/world.h"
 #include "report/report_test_util.h"
@@ -35,6 +36,7 @@ engine::TickRecord MakeTick(double t) {
   tick.displayed_W.tau = Vec3(0.01, 0.02, -0.03);
   tick.rendered_W.f = Vec3(100.0, 200.0, 300.0);  // must not appear: the CSV holds the displayed
   tick.contacts = 2;
+  tick.safety_bits = device::kSafetyForceClamped | device::kSafetyRamping;
   return tick;
 }
 
@@ -43,9 +45,9 @@ TEST(CsvRecorderTest, WritesExactHeadersInAllThreeFiles) {
   CsvRecorder recorder(dir.path());
   recorder.Close();
   EXPECT_EQ(ReadLines(dir.path() / "ticks.csv"),
-            std::vector<std::string>{"t,px,py,pz,qw,qx,qy,qz,fx,fy,fz,tx,ty,tz,contacts"});
+            std::vector<std::string>{"t,px,py,pz,qw,qx,qy,qz,fx,fy,fz,tx,ty,tz,contacts,safety"});
   EXPECT_EQ(ReadLines(dir.path() / "bodies.csv"),
-            std::vector<std::string>{"t,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz"});
+            std::vector<std::string>{"t,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,cx,cy,cz"});
   EXPECT_EQ(ReadLines(dir.path() / "steps.csv"),
             std::vector<std::string>{
                 "t,step,compute_ms,sim_contacts,neighbors,point_contacts,solver_iterations,"
@@ -67,7 +69,7 @@ TEST(CsvRecorderTest, TickRowHoldsPointerPoseAndDisplayedWrench) {
   recorder.Close();
   const std::vector<std::string> lines = ReadLines(dir.path() / "ticks.csv");
   ASSERT_EQ(lines.size(), 2u);
-  EXPECT_EQ(lines[1], "0.001,0.1,-0.2,0.3,0.5,0.5,-0.5,0.5,1.5,-2.25,3,0.01,0.02,-0.03,2");
+  EXPECT_EQ(lines[1], "0.001,0.1,-0.2,0.3,0.5,0.5,-0.5,0.5,1.5,-2.25,3,0.01,0.02,-0.03,2,20");
 }
 
 TEST(CsvRecorderTest, StepRowHoldsEveryStepField) {
@@ -124,30 +126,45 @@ TEST(CsvRecorderTest, BodyRowsMatchWorldStateForEachMovingBody) {
   const std::vector<std::string> expected_names{"box", "body2"};
   for (int id = 1; id <= 2; ++id) {
     const std::vector<std::string> f = SplitCsv(lines[static_cast<std::size_t>(id)]);
-    ASSERT_EQ(f.size(), 15u);
+    ASSERT_EQ(f.size(), 18u);
     const world::BodyState s = world.body_state(id);
     // Exact comparisons: the CSV must be a lossless copy of the state.
     EXPECT_EQ(Parse(f[0]), world.time());
     EXPECT_EQ(f[1], expected_names[static_cast<std::size_t>(id - 1)]);
-    EXPECT_EQ(Vec3(Parse(f[2]), Parse(f[3]), Parse(f[4])), s.p_WCm);
+    EXPECT_EQ(Vec3(Parse(f[2]), Parse(f[3]), Parse(f[4])), s.X_WB.p);
     EXPECT_EQ(Parse(f[5]), s.X_WB.q.w());
     EXPECT_EQ(Vec3(Parse(f[6]), Parse(f[7]), Parse(f[8])), s.X_WB.q.vec());
     EXPECT_EQ(Vec3(Parse(f[9]), Parse(f[10]), Parse(f[11])), s.V_WCm.v);
     EXPECT_EQ(Vec3(Parse(f[12]), Parse(f[13]), Parse(f[14])), s.V_WCm.w);
+    EXPECT_EQ(Vec3(Parse(f[15]), Parse(f[16]), Parse(f[17])), s.p_WCm);
   }
 }
 
-TEST(CsvRecorderTest, BodyPositionIsCentreOfMassNotBodyOrigin) {
+// The shipped compound mug: its body frame sits at the scene origin (pos="0 0 0"), but the handle
+// (three boxes at x = 4-6.4 cm) pulls the centre of mass off it along x, so the two columns
+// groups differ exactly where a user would be misled.
+TEST(CsvRecorderTest, BodyColumnsAreTheSceneBodyFrameAndCentreOfMassIsSeparate) {
   const TempDir dir;
-  world::World world = world::World::LoadString(kTwoBodies, world::LoadOptions{.pointer_body = ""});
+  world::World world = world::World::LoadFile(std::filesystem::path(MRH_SOURCE_DIR) / "scenes" /
+                                          "compound_mug.xml");
   CsvRecorder recorder(dir.path());
   recorder.OnStep(engine::StepRecord{}, world);
   recorder.Close();
-  const std::vector<std::string> f = SplitCsv(ReadLines(dir.path() / "bodies.csv").at(1));
-  // The box's geom (its only mass) sits 2 cm off the body origin along the body's x axis.
-  const Vec3 p_WCm(Parse(f[2]), Parse(f[3]), Parse(f[4]));
-  const world::BodyState s = world.body_state(1);
-  EXPECT_GT((p_WCm - s.X_WB.p).norm(), 0.01);
+  const std::vector<std::string> lines = ReadLines(dir.path() / "bodies.csv");
+  ASSERT_EQ(lines.size(), 2u);  // the mug; the pointer is mocap, the floor static
+  const std::vector<std::string> f = SplitCsv(lines[1]);
+  ASSERT_EQ(f.size(), 18u);
+  EXPECT_EQ(f[1], "mug");
+  // The body origin as written in compound_mug.xml, and the identity orientation.
+  EXPECT_EQ(Vec3(Parse(f[2]), Parse(f[3]), Parse(f[4])), Vec3::Zero());
+  EXPECT_EQ(Parse(f[5]), 1.0);
+  // The handle (about 4 % of the mug's volume, 5.5 cm out) puts the COM about 2 mm towards +x,
+  // on the mug's axis in y.
+  constexpr double kMm = 1e-3;
+  EXPECT_GT(Parse(f[15]), 1 * kMm);
+  EXPECT_LT(Parse(f[15]), 3 * kMm);
+  EXPECT_NEAR(Parse(f[16]), 0.0, 1e-9);
+  EXPECT_GT(Parse(f[17]), 10 * kMm);  // above the base: the wall is 9 cm tall
 }
 
 TEST(CsvRecorderTest, DoublesRoundTripExactly) {

@@ -1,13 +1,17 @@
 // SPDX-License-Identifier: Apache-2.0
 // Tests of PlotReport: a PNG from a tiny ticks.csv, and the reasons it gives when it cannot plot.
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <optional>
+#include <sstream>
 
+#include "mrh/device/safety.h"
 #include "mrh/report/report.h"
 #include "report/report_test_util.h"
 
@@ -15,6 +19,7 @@ namespace mrh::report {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 using testing::ReadText;
 using ::testing::StartsWith;
 using testing::TempDir;
@@ -101,21 +106,148 @@ TEST(PlotReportTest, MissingTicksCsvFailsWithGnuplotMessage) {
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "report.png"));
 }
 
-// A 3-DOF method's torque panel says so (its torque column is zero or rounding noise), and a
-// run without body rows gets no objects panel (gnuplot refuses an empty data file).
-TEST(PlotReportTest, ThreeDofTorquePanelIsLabelledAndNoObjectsPanelWithoutBodies) {
+// The lines of `text` that start with `prefix`.
+std::vector<std::string> LinesStartingWith(const std::string& text, const std::string& prefix) {
+  std::vector<std::string> out;
+  std::stringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind(prefix, 0) == 0) out.push_back(line);
+  }
+  return out;
+}
+
+std::size_t Count(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) {
+    ++n;
+  }
+  return n;
+}
+
+// Plots and returns report.gp; fails the test if gnuplot rejects the script.
+std::string PlotAndReadScript(const TempDir& dir, const ReportOptions& options) {
+  std::string why;
+  EXPECT_TRUE(PlotReport(dir.path(), "run", &why, options)) << why;
+  return ReadText(dir.path() / "report.gp");
+}
+
+// bodies.csv by hand: `n` bodies named b0.. at 20 ms steps to t_end; body k moves k cm along x
+// per second, so the most moved is the last.
+void WriteBodies(const std::filesystem::path& dir, int n, double t_end) {
+  std::ofstream file(dir / "bodies.csv");
+  file << "t,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,cx,cy,cz\n";
+  for (int step = 0; step * 0.02 <= t_end + 1e-9; ++step) {
+    const double t = step * 0.02;
+    for (int k = 0; k < n; ++k) {
+      const double x = 0.01 * k * t;
+      file << t << ",b" << k << "," << x << ",0,0.05,1,0,0,0,0,0,0,0,0,0," << x << ",0,0.05\n";
+    }
+  }
+}
+
+TEST(PlotReportTest, ThreeDofRunDrawsNoTorqueOrOrientationPanel) {
   if (!HaveGnuplot()) GTEST_SKIP() << "gnuplot not installed";
   const TempDir dir;
   WriteTicks(dir.path());
-  std::string why;
-  ASSERT_TRUE(PlotReport(dir.path(), "impulse", &why, /*renders_torque=*/false)) << why;
-  const std::string script = ReadText(dir.path() / "report.gp");
-  EXPECT_THAT(script, HasSubstr("3-DOF method: no torque rendered"));
-  EXPECT_THAT(script, ::testing::Not(HasSubstr("bodies.csv")));
-  ASSERT_TRUE(PlotReport(dir.path(), "proxy-6dof", &why, /*renders_torque=*/true)) << why;
-  EXPECT_THAT(ReadText(dir.path() / "report.gp"), ::testing::Not(HasSubstr("3-DOF")));
+  const std::string script = PlotAndReadScript(dir, ReportOptions{.six_dof = false});
+  EXPECT_THAT(script, HasSubstr("set multiplot layout 2,1"));
+  EXPECT_THAT(script, HasSubstr("'force (N)'"));
+  EXPECT_THAT(script, HasSubstr("'pointer position (m)'"));
+  EXPECT_THAT(script, Not(HasSubstr("torque")));
+  EXPECT_THAT(script, Not(HasSubstr("rotation")));
+  EXPECT_THAT(script, Not(HasSubstr("bodies.csv' every")));  // no bodies: no objects panel
 }
 
+TEST(PlotReportTest, SixDofRunAddsTorqueAndOrientationPanels) {
+  if (!HaveGnuplot()) GTEST_SKIP() << "gnuplot not installed";
+  const TempDir dir;
+  WriteTicks(dir.path());
+  const std::string script = PlotAndReadScript(dir, ReportOptions{.six_dof = true});
+  EXPECT_THAT(script, HasSubstr("set multiplot layout 4,1"));
+  EXPECT_THAT(script, HasSubstr("'torque (N m)'"));
+  EXPECT_THAT(script, HasSubstr("'pointer rotation (deg)'"));
+  EXPECT_EQ(LinesStartingWith(script, "plot ").size(), 4u);
+}
+
+TEST(PlotReportTest, ObjectsPanelHasOneLegendEntryPerBody) {
+  if (!HaveGnuplot()) GTEST_SKIP() << "gnuplot not installed";
+  const TempDir dir;
+  WriteTicks(dir.path());
+  WriteBodies(dir.path(), 3, 0.4);
+  const std::string script = PlotAndReadScript(dir, ReportOptions{.six_dof = false});
+  EXPECT_THAT(script, HasSubstr("set multiplot layout 3,1"));
+  for (const char* name : {"b0", "b1", "b2"}) {
+    EXPECT_EQ(Count(script, fmt::format("title '{}'", name)), 1u) << name;
+  }
+  // Rows come three per step: body k is every third row from row k.
+  EXPECT_THAT(script, HasSubstr("'bodies.csv' every 3::0 "));
+  EXPECT_THAT(script, HasSubstr("every 3::2 "));
+  EXPECT_THAT(script, Not(HasSubstr("objects shown")));
+}
+
+TEST(PlotReportTest, ManyBodiesShowTouchedThenMostMovedAndSaySo) {
+  if (!HaveGnuplot()) GTEST_SKIP() << "gnuplot not installed";
+  const TempDir dir;
+  WriteTicks(dir.path());
+  WriteBodies(dir.path(), 5, 0.4);
+  const std::string script = PlotAndReadScript(
+      dir, ReportOptions{.six_dof = false, .touched_bodies = {"b1"}, .max_legend_bodies = 2});
+  EXPECT_THAT(script, HasSubstr("2 of 5 objects shown"));
+  EXPECT_THAT(script, HasSubstr("title 'b1'"));  // touched
+  EXPECT_THAT(script, HasSubstr("title 'b4'"));  // moved most
+  for (const char* name : {"b0", "b2", "b3"}) {
+    EXPECT_THAT(script, Not(HasSubstr(fmt::format("title '{}'", name))));
+  }
+}
+
+TEST(PlotReportTest, ClampedTicksAndContactLossesAreMarkedWithTheirCounts) {
+  if (!HaveGnuplot()) GTEST_SKIP() << "gnuplot not installed";
+  const TempDir dir;
+  {
+    CsvRecorder recorder(dir.path());
+    for (int i = 0; i < 100; ++i) {
+      engine::TickRecord tick;
+      tick.t = i * 0.001;
+      // In contact on ticks 10-29 and 50-59: two losses, at ticks 30 and 60.
+      tick.contacts = (i >= 10 && i < 30) || (i >= 50 && i < 60) ? 1 : 0;
+      tick.displayed_W.f = Vec3(0.0, 0.0, tick.contacts * 3.0);
+      // Clamped on ticks 20, 21 and 22 (force) and 55 (torque); ramping alone is no clamp.
+      if (i >= 20 && i <= 22) tick.safety_bits = device::kSafetyForceClamped;
+      if (i == 55) tick.safety_bits = device::kSafetyTorqueClamped;
+      if (i < 5) tick.safety_bits = device::kSafetyRamping;
+      recorder.OnTick(tick);
+    }
+    recorder.Close();
+  }
+  const std::string script = PlotAndReadScript(dir, ReportOptions{.six_dof = false});
+  EXPECT_THAT(script, HasSubstr("title 'clamped (4 ticks)'"));
+  EXPECT_THAT(script, HasSubstr("title 'contact lost (2)'"));
+}
+
+TEST(PlotReportTest, RunWithoutClampingOrContactLossHasNoMarks) {
+  if (!HaveGnuplot()) GTEST_SKIP() << "gnuplot not installed";
+  const TempDir dir;
+  WriteTicks(dir.path());  // no safety bits, no contacts
+  const std::string script = PlotAndReadScript(dir, ReportOptions{});
+  EXPECT_THAT(script, Not(HasSubstr("clamped")));
+  EXPECT_THAT(script, Not(HasSubstr("contact lost")));
+}
+
+// Bodies recorded past the last tick: every panel still spans the same interval, the later one.
+TEST(PlotReportTest, AllPanelsShareOneTimeAxis) {
+  if (!HaveGnuplot()) GTEST_SKIP() << "gnuplot not installed";
+  const TempDir dir;
+  WriteTicks(dir.path());           // t = 0 .. 0.499
+  WriteBodies(dir.path(), 2, 0.6);  // t = 0 .. 0.6
+  const std::string script = PlotAndReadScript(dir, ReportOptions{});
+  const std::vector<std::string> ranges = LinesStartingWith(script, "set xrange");
+  ASSERT_EQ(ranges.size(), 1u);
+  EXPECT_EQ(ranges[0], "set xrange [0:0.6]");
+  EXPECT_LT(script.find("set xrange"), script.find("set multiplot"));
+  // Only the bottom panel is labelled with time.
+  EXPECT_EQ(Count(script, "set xlabel"), 1u);
+  EXPECT_GT(script.find("set xlabel"), script.rfind("set ylabel"));
+}
 
 }  // namespace
 }  // namespace mrh::report

@@ -156,6 +156,19 @@ TEST_F(HapticLoopTest, StepRequestsWhileRunningAreIgnored) {
   EXPECT_EQ(TicksWhileWatching(), 0);
 }
 
+// `mrh view --at T` holds the loop at tick T / dt + 1: it must stop exactly there, with the
+// device last read at virtual time T, and stay held.
+TEST_F(HapticLoopTest, HoldAtTickStopsExactlyAtThatTickAndStays) {
+  ASSERT_TRUE(WaitFor([&] { return loop_.ticks() >= 5; }));
+  const std::int64_t hold = loop_.ticks() + 200;
+  loop_.HoldAtTick(hold);
+  ASSERT_TRUE(WaitFor([&] { return loop_.holding(); }));
+  EXPECT_EQ(TicksWhileWatching(), 0);
+  EXPECT_EQ(loop_.ticks(), hold);
+  EXPECT_NEAR(source_.last_t(), static_cast<double>(hold - 1) * kDt, 1e-9);
+  EXPECT_FALSE(loop_.paused());
+}
+
 TEST_F(HapticLoopTest, StatsCountTicksAndReportTheWindowRate) {
   // One full window (kWindow ticks) gives a rate; under load it may be below 1 kHz, never 0.
   ASSERT_TRUE(WaitFor([&] { return loop_.ReadStats().rate_hz > 0.0; }));

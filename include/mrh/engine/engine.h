@@ -12,6 +12,7 @@
 #include "mrh/core/spatial.h"
 #include "mrh/device/calibration.h"
 #include "mrh/device/device.h"
+#include "mrh/engine/body_poses.h"
 #include "mrh/engine/settings.h"
 #include "mrh/haptic/method_haptic.h"
 #include "mrh/haptic/tick_record.h"
@@ -104,6 +105,29 @@ class Engine {
 
   /// Ends an embedded run (zero output, physics thread joined) and returns its statistics.
   RunStats Stop();
+
+  /// The newest body poses, for a renderer running beside the engine: copies the poses the
+  /// physics side published after its latest step into *out and returns true if they are newer
+  /// than those of the previous call. Before the first step (or without a run) it gives the
+  /// scene's initial poses (step -1). Works in every mode (Run, and Start/Tick/Stop); poses
+  /// change once per physics step (physics_dt), not per haptic tick.
+  /// Thread safety: lock-free and wait-free through a triple buffer: it never blocks, and is
+  /// never blocked by, the haptic or physics thread. Call it from one thread at a time (a single
+  /// reader, e.g. your render thread; hand copies to others). It allocates only when *out has
+  /// less capacity than the scene's body count (the first call): keep one BodyPoses and reuse it.
+  bool ReadBodyPoses(BodyPoses* out);
+
+  /// Scales the wrench displayed on the device from now on: the haptic thread reads the gain at
+  /// the start of every tick and multiplies the method's rendered force and torque by it before
+  /// the safety layer (which still clamps to the device's limits and ramps the start). 1 (the
+  /// default) displays the rendered wrench; 0.5 halves it; 0 displays none. The objects still
+  /// receive the full rendered reaction, and ticks.csv's displayed wrench is the scaled one.
+  /// Thread safety: any thread, any time (before, during or after a run); one atomic store, so
+  /// it never blocks the haptic thread, and the haptic thread never blocks on it.
+  /// @throws mrh::InvalidArgument if gain is negative or not finite (the gain is unchanged).
+  void SetDisplayGain(double gain);
+  /// The gain set by SetDisplayGain (1 until set). Any thread.
+  double display_gain() const;
 
   const world::World& world() const;
   const EngineSettings& settings() const;

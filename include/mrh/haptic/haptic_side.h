@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <vector>
 
@@ -57,6 +58,14 @@ class HapticSide {
 
   const HapticCounters& counters() const { return counters_; }
 
+  /// Scales the wrench the method renders before the safety layer and the device (1: unchanged,
+  /// 0: no force). Any thread, any time; Tick() picks it up at its start. Lock-free and RT-safe.
+  /// @pre gain is finite and >= 0 (Engine::SetDisplayGain checks it).
+  void SetDisplayGain(double gain) noexcept {
+    display_gain_.store(gain, std::memory_order_relaxed);
+  }
+  double display_gain() const noexcept { return display_gain_.load(std::memory_order_relaxed); }
+
  private:
   void ReadDevice(double t) noexcept;
   void Record(double t, const TickOutput& out, const Wrench& displayed,
@@ -80,6 +89,9 @@ class HapticSide {
   double last_adopt_t_ = 0.0;
   ir::HapticReport report_;
   HapticCounters counters_;
+  // A single value: relaxed order suffices, as no other data is published with it.
+  std::atomic<double> display_gain_{1.0};
+  static_assert(std::atomic<double>::is_always_lock_free);
 };
 
 }  // namespace mrh::haptic

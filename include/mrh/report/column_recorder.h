@@ -14,15 +14,20 @@ namespace mrh::report {
 
 /// The columns of ticks.csv, in file order: time (s), pointer position (m) and orientation
 /// (quaternion w, x, y, z) and the displayed force (N) and torque (N·m), all in the world
-/// frame, and the contact count.
-inline constexpr std::array<std::string_view, 15> kTickColumns = {
-    "t", "px", "py", "pz", "qw", "qx", "qy", "qz", "fx", "fy", "fz", "tx", "ty", "tz", "contacts"};
+/// frame, the contact count and the tick's device::SafetyBits (4 = force clamped, 8 = torque
+/// clamped). `safety` is last so that readers indexing the first fifteen columns keep working.
+inline constexpr std::array<std::string_view, 16> kTickColumns = {
+    "t",  "px", "py", "pz", "qw", "qx",       "qy",    "qz",
+    "fx", "fy", "fz", "tx", "ty", "tz", "contacts", "safety"};
 
-/// The columns of bodies.csv, in file order: time at the end of the step (s), body name, centre
-/// of mass (m), orientation (w, x, y, z), linear (m/s) and angular (rad/s) velocity of the centre
-/// of mass, world frame. One row per moving body per physics step.
-inline constexpr std::array<std::string_view, 15> kBodyColumns = {
-    "t", "body", "x", "y", "z", "qw", "qx", "qy", "qz", "vx", "vy", "vz", "wx", "wy", "wz"};
+/// The columns of bodies.csv, in file order: time at the end of the step (s), body name, body
+/// frame origin (m) and orientation (w, x, y, z) as MuJoCo defines the body in the scene, linear
+/// (m/s) and angular (rad/s) velocity of the centre of mass, and the centre of mass (m); world
+/// frame. One row per moving body per physics step. The centre-of-mass columns come last so that
+/// readers indexing the first fifteen columns keep working.
+inline constexpr std::array<std::string_view, 18> kBodyColumns = {
+    "t",  "body", "x",  "y",  "z",  "qw", "qx", "qy", "qz",
+    "vx", "vy",   "vz", "wx", "wy", "wz", "cx", "cy", "cz"};
 
 /// The columns of steps.csv, in file order (physics::StepRecord; times in ms of wall clock).
 inline constexpr std::array<std::string_view, 11> kStepColumns = {"t",

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "mrh/engine/engine.h"
 
@@ -12,6 +13,12 @@ namespace mrh::report {
 
 /// Writes ticks.csv, bodies.csv and steps.csv into `dir` as records arrive (buffered). Not
 /// RT-safe: the engine calls it from its non-RT side.
+///
+/// bodies.csv has one row per moving body per physics step:
+/// `t,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,cx,cy,cz` — t (s), the body's name, its body
+/// frame's origin (m) and orientation (body → world) as in the scene's MJCF, its centre of mass's
+/// linear velocity (m/s) and its angular velocity (rad/s), both world frame, and the centre of
+/// mass's position (m, world frame).
 class CsvRecorder : public engine::Recorder {
  public:
   /// Creates `dir` if needed. @throws mrh::RuntimeError if a file cannot be opened.
@@ -38,16 +45,41 @@ std::string SummaryJson(const engine::RunStats& stats, const std::string& sessio
 void WriteSummary(const std::filesystem::path& dir, const engine::RunStats& stats,
                   const std::string& session_file, const std::string& scene_file);
 
-/// Plots force/torque and pointer traces from dir/ticks.csv into dir/report.png with gnuplot.
-/// A fourth panel plots the objects' x and z from dir/bodies.csv. `renders_torque` false (a
-/// 3-DOF method) labels the torque panel "(3-DOF method: no torque rendered)".
-/// Returns false (and a reason in *why) if gnuplot is missing or fails; the run still counts.
+/// What report.png draws beyond the force and pointer panels.
+struct ReportOptions {
+  /// A 6-DOF method: adds the torque panel and the pointer orientation panel. A 3-DOF method
+  /// (false) renders no torque, so neither panel is drawn.
+  bool six_dof = true;
+  /// Names of the bodies the pointer touched (e.g. RunStats::impulses with a non-zero impulse):
+  /// when the scene has more moving bodies than max_legend_bodies, these are drawn first.
+  std::vector<std::string> touched_bodies = {};
+  /// At most this many bodies get a line and a legend entry in the objects panel; beyond it the
+  /// panel's title says how many are left out. >= 1.
+  int max_legend_bodies = 8;
+};
+
+/// Writes dir/report.gp and runs gnuplot on it to draw dir/report.png from dir/ticks.csv and
+/// dir/bodies.csv. Panels, top to bottom, all on one time axis (the run's first to last record):
+///  - force: f_x, f_y, f_z and |f|, with a mark on every tick whose force or torque the safety
+///    layer clamped (ticks.csv `safety`) and on every tick where the contact count fell to 0;
+///  - torque (6-DOF methods only);
+///  - pointer position;
+///  - pointer orientation as a rotation vector in degrees (6-DOF methods only);
+///  - objects (when bodies.csv has rows): each body's distance from its start, |p - p0| of its
+///    body origin, one line and legend entry per body (see ReportOptions::max_legend_bodies).
+/// Returns false (and a one-line reason in *why) if gnuplot is missing or fails; the run still
+/// counts. Not RT-safe.
+bool PlotReport(const std::filesystem::path& dir, const std::string& title, std::string* why,
+                const ReportOptions& options);
+
+/// PlotReport with ReportOptions{.six_dof = renders_torque}.
 bool PlotReport(const std::filesystem::path& dir, const std::string& title, std::string* why,
                 bool renders_torque = true);
 
 /// report.png for a run of `session_file`, as `mrh run` draws it: PlotReport titled
-/// "<session file name>: <method> (<mode>)", the torque panel marked for the 3-DOF methods
-/// (single-rate, impulse, local-dynamics), which render a force only.
+/// "<session file name>: <method> (<mode>)", without the torque and orientation panels for the
+/// 3-DOF methods (single-rate, impulse, local-dynamics), which render a force only, and with the
+/// bodies the pointer pushed (non-zero RunStats::impulses) in the objects legend.
 bool PlotRunReport(const std::filesystem::path& dir, const std::filesystem::path& session_file,
                    const engine::RunStats& stats, std::string* why);
 
