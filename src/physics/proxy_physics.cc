@@ -48,7 +48,16 @@ render::ProxyRendererSettings ProxySettingsFor(const world::World& world, int po
   s.d_t = rendering.damping;
   s.k_r = rendering.rot_stiffness;
   s.d_r = rendering.rot_damping;
-  s.rotation_weight = PointerRotationWeight(world, pointer_body, rendering);
+  s.torque_model = rendering.torque_model == "thesis" ? render::ProxyTorqueModel::kThesis
+                                                      : render::ProxyTorqueModel::kContact;
+  if (s.torque_model == render::ProxyTorqueModel::kThesis) {
+    s.rotation_weight = PointerRotationWeight(world, pointer_body, rendering);
+  } else if (!(s.k_t > 0.0 && s.k_r > 0.0)) {
+    throw InvalidArgument(fmt::format(
+        "rendering.stiffness = {} N/m, rendering.rot_stiffness = {} N*m/rad; the 6-DOF proxy's "
+        "contact torque model needs both > 0 (its rotation weight is their ratio)",
+        rendering.stiffness, rendering.rot_stiffness));
+  }
   s.mu = rendering.friction;
   s.solver = rendering.proxy_solver == "pgs" ? render::ProxySolverKind::kPgs
                                              : render::ProxySolverKind::kActiveSet;

@@ -23,7 +23,10 @@ ProxyRenderer::ProxyRenderer(const ProxyRendererSettings& settings)
       active_set_(settings.solver == ProxySolverKind::kActiveSet ? settings.max_rows : 1),
       split_(settings.max_rows, ir::kMaxGeometricPairs) {
   // Symmetrize both ways so the row weights g_k see an exactly symmetric R_w⁻¹.
-  const Mat3 weight = 0.5 * (settings_.rotation_weight + settings_.rotation_weight.transpose());
+  const Mat3 given = settings_.torque_model == ProxyTorqueModel::kContact
+                         ? Mat3((settings_.k_r / settings_.k_t) * Mat3::Identity())
+                         : settings_.rotation_weight;
+  const Mat3 weight = 0.5 * (given + given.transpose());
   const Mat3 inverse = weight.inverse();
   rotation_weight_inverse_ = 0.5 * (inverse + inverse.transpose());
   rows_.resize(settings_.max_rows);
@@ -61,23 +64,27 @@ void ProxyRenderer::Tick(const TickIr& ir, const Pose& X_WP, double dt, ProxyOut
   // The points are checked for finite data while the rows are built (one pass over them).
   if (!BuildRows(ir, X_WP, &out->diagnostics)) return Fault(X_WP, out);
   Solve(out);
-
-  // eq. 3.7–3.8: springs on the proxy offset, dampers on its finite difference. The first tick
-  // after a start or reset has no previous offset: its difference would be the whole offset
-  // (a pointer that starts inside an object would feel d·dr/dt on top of k·dr), so the dampers
-  // start at rest.
-  const Vec3& dr_before = has_previous_ ? previous_dr_ : out->dr;
-  const Vec3& dtheta_before = has_previous_ ? previous_dtheta_ : out->dtheta;
-  out->w_W.f = settings_.k_t * out->dr + settings_.d_t * (out->dr - dr_before) / dt;
-  out->w_W.tau = settings_.k_r * out->dtheta + settings_.d_r * (out->dtheta - dtheta_before) / dt;
-  const Quat q_WP = X_WP.q.normalized();
-  out->X_WQ = Pose{X_WP.p + out->dr, (QuatFromRotationVector(out->dtheta) * q_WP).normalized()};
-  if (!IsFinite(out->w_W) || !IsFinite(out->X_WQ)) return Fault(X_WP, out);
-
   out->rows = std::span<const ProxyRow>(rows_.data(), row_count_);
   out->row_info = std::span<const ProxyRowInfo>(info_.data(), row_count_);
   out->f = std::span<const double>(f_.data(), row_count_);
-  ComputeReactions(ir, X_WP, dt, out);
+  const bool thesis = settings_.torque_model == ProxyTorqueModel::kThesis;
+  if (thesis) {
+    // eq. 3.7–3.8: springs on the proxy offset, dampers on its finite difference. The first
+    // tick after a start or reset has no previous offset: its difference would be the whole
+    // offset (a pointer that starts inside an object would feel d·dr/dt on top of k·dr), so the
+    // dampers start at rest.
+    const Vec3& dr_before = has_previous_ ? previous_dr_ : out->dr;
+    const Vec3& dtheta_before = has_previous_ ? previous_dtheta_ : out->dtheta;
+    out->w_W.f = settings_.k_t * out->dr + settings_.d_t * (out->dr - dr_before) / dt;
+    out->w_W.tau =
+        settings_.k_r * out->dtheta + settings_.d_r * (out->dtheta - dtheta_before) / dt;
+  } else {
+    ComputeContactForces(ir, X_WP, dt, out);
+  }
+  const Quat q_WP = X_WP.q.normalized();
+  out->X_WQ = Pose{X_WP.p + out->dr, (QuatFromRotationVector(out->dtheta) * q_WP).normalized()};
+  if (!IsFinite(out->w_W) || !IsFinite(out->X_WQ)) return Fault(X_WP, out);
+  if (thesis) ComputeReactions(ir, X_WP, dt, out);
   Remember(ir, *out);
 }
 
@@ -134,6 +141,7 @@ void ProxyRenderer::CarryPreviousProxy(const TickIr& ir, const Pose& X_WP) noexc
     }
     previous_dr_pair_[i] = memory != nullptr ? memory->dr_pair : Vec3::Zero();
     previous_dtheta_pair_[i] = memory != nullptr ? memory->dtheta_pair : Vec3::Zero();
+    previous_load_[i] = memory != nullptr && memory->in_contact ? memory->normal_load : 0.0;
     first_tick_[i] = !(has_previous_ && memory != nullptr && memory->in_contact);
     const Pose carried =
         first_tick_[i] ? X_WP : pair.X_WB * (memory->X_WB.Inverse() * previous_X_WQ_);
@@ -192,6 +200,13 @@ void ProxyRenderer::DistributeReactions(const TickIr& ir, const Pose& X_WP, doub
                         settings_.d_r * (dtheta_pair_[i] - previous_dtheta_pair_[i]) / dt;
     }
   }
+  PushReactions(ir, X_WP, out);
+}
+
+// Pair i pushes the pointer with F_i and M_i (about the pointer origin): its object, unless
+// static, receives −F_i and the moment −(M_i + (x_p − p_Cm) × F_i) about its COM.
+void ProxyRenderer::PushReactions(const TickIr& ir, const Pose& X_WP,
+                                  ProxyOutput* out) const noexcept {
   for (std::size_t i = 0; i < ir.pairs.size(); ++i) {
     const TickPair& pair = ir.pairs[i];
     Wrench w_W;  // on the object, torque about its COM
@@ -207,7 +222,8 @@ void ProxyRenderer::Remember(const TickIr& ir, const ProxyOutput& out) noexcept 
   memory_count_ = ir.pairs.size();
   for (std::size_t i = 0; i < memory_count_; ++i) {
     const TickPair& pair = ir.pairs[i];
-    memory_[i] = PairMemory{pair.key, pair.X_WB, pair_rows_[i] > 0, dr_pair_[i], dtheta_pair_[i]};
+    memory_[i] = PairMemory{pair.key,        pair.X_WB,          pair_rows_[i] > 0,
+                            dr_pair_[i],     dtheta_pair_[i],    normal_load_[i]};
   }
   has_previous_ = true;
   previous_X_WQ_ = out.X_WQ;

@@ -44,7 +44,7 @@ inline constexpr std::array<Field<engine::PointerSettings>, 2> kPointerFields{{
 }};
 
 /// `rendering` block.
-inline constexpr std::array<Field<engine::RenderingSettings>, 21> kRenderingFields{{
+inline constexpr std::array<Field<engine::RenderingSettings>, 22> kRenderingFields{{
     {"stiffness", &engine::RenderingSettings::stiffness, "N/m", "penalty spring k (eq. 4.11)"},
     {"damping", &engine::RenderingSettings::damping, "N*s/m", "penalty damper d (eq. 4.11)"},
     {"neighbor_distance", &engine::RenderingSettings::neighbor_distance, "m",
@@ -60,6 +60,8 @@ inline constexpr std::array<Field<engine::RenderingSettings>, 21> kRenderingFiel
     {"rotation_weight_scale", &engine::RenderingSettings::rotation_weight_scale, "",
      "multiplier on the pointer's unit-mass inertia for R_w"},
     {"friction", &engine::RenderingSettings::friction, "", "friction coefficient mu"},
+    {"torque_model", &engine::RenderingSettings::torque_model, "",
+     "6-DOF: \"thesis\" (eq. 3.8, default) or \"contact\" (every force a contact force)"},
     {"proxy_solver", &engine::RenderingSettings::proxy_solver, "",
      "\"active-set\" (exact) or \"pgs\" (thesis eq. 3.6)"},
     {"max_iterations", &engine::RenderingSettings::max_iterations, "",

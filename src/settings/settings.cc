@@ -34,6 +34,30 @@ constexpr double kMaxFriction = 10.0;
 constexpr double kMaxIterations = 1e6;
 constexpr int kMaxCurvedSegments = 1024;
 
+// The contact model derives R_w and the rotational damping from k_t, k_r and d_t; a session that
+// sets them means the thesis model.
+void ValidateTorqueModel(const RenderingSettings& r) {
+  if (r.torque_model == "thesis") return;
+  if (r.torque_model != "contact") {
+    throw InvalidArgument(fmt::format(
+        "rendering.torque_model = \"{}\"; expected \"contact\" (default: every force a contact "
+        "force) or \"thesis\" (eq. 3.8 with a rotation weight)",
+        r.torque_model));
+  }
+  if (r.rotation_weight || r.rotation_weight_scale != 1.0) {
+    throw InvalidArgument(
+        "rendering.rotation_weight/rotation_weight_scale is set, but torque_model \"contact\" "
+        "uses R_w = rot_stiffness / stiffness; remove it or set rendering.torque_model to "
+        "\"thesis\"");
+  }
+  if (r.rot_damping != 0.0) {
+    throw InvalidArgument(fmt::format(
+        "rendering.rot_damping = {} N*m*s/rad, but torque_model \"contact\" damps through the "
+        "contacts (rendering.damping); set it to 0 or rendering.torque_model to \"thesis\"",
+        FormatNumber(r.rot_damping)));
+  }
+}
+
 void ValidateProxy(const RenderingSettings& r) {
   RequireNonNegative(r.rot_stiffness, "rendering.rot_stiffness", "N*m/rad", kMaxRotStiffness);
   RequireNonNegative(r.rot_damping, "rendering.rot_damping", "N*m*s/rad", kMaxRotDamping);
@@ -49,6 +73,7 @@ void ValidateProxy(const RenderingSettings& r) {
     }
   }
   RequireNonNegative(r.friction, "rendering.friction", "", kMaxFriction);
+  ValidateTorqueModel(r);
   if (r.proxy_solver != "active-set" && r.proxy_solver != "pgs") {
     throw InvalidArgument(fmt::format(
         "rendering.proxy_solver = \"{}\"; expected \"active-set\" (exact, default) or \"pgs\" "

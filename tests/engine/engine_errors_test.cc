@@ -33,6 +33,27 @@ TEST(EngineErrorsTest, UnknownProxySolverIsRejectedNamingTheChoices) {
                                                    HasSubstr("\"pgs\""))));
 }
 
+TEST(EngineErrorsTest, UnknownTorqueModelIsRejectedNamingTheChoices) {
+  EngineSettings s = T41Settings("impulse");
+  s.rendering.torque_model = "euler";
+  EXPECT_THAT([&] { T41Engine(s); },
+              ThrowsMessage<InvalidArgument>(AllOf(HasSubstr("rendering.torque_model = \"euler\""),
+                                                   HasSubstr("\"contact\""),
+                                                   HasSubstr("\"thesis\""))));
+}
+
+TEST(EngineErrorsTest, ContactTorqueModelRefusesTheThesisOnlyKeys) {
+  EngineSettings s = T41Settings("impulse");
+  s.rendering.torque_model = "contact";
+  s.rendering.rot_damping = 0.1;
+  EXPECT_THAT([&] { T41Engine(s); },
+              ThrowsMessage<InvalidArgument>(HasSubstr("rendering.rot_damping = 0.1")));
+  s.rendering.rot_damping = 0.0;
+  s.rendering.rotation_weight = Vec3::Constant(1.0);
+  EXPECT_THAT([&] { T41Engine(s); },
+              ThrowsMessage<InvalidArgument>(HasSubstr("rendering.rotation_weight")));
+}
+
 TEST(EngineErrorsTest, WatchdogShorterThanPhysicsStepIsRejected) {
   EngineSettings s = T41Settings("impulse");
   s.safety.watchdog_timeout = 0.06;

@@ -196,12 +196,19 @@ TEST(ProxyMethodTest, PushedBoxMomentumChangeEqualsReportedImpulse) {
   EXPECT_EQ(run.tap.ticks.back().contacts, 0);
 }
 
-TEST(ProxyMethodTest, HapticTicksNeverAllocateWithFrictionAndAMovingBox) {
-  // Pressed 2 mm into the floor and slid into a resting box: normal and friction rows on two
-  // pairs, one of them moving.
+// Pressed 2 mm into the floor and slid into a resting box: normal and friction rows on two pairs,
+// one of them moving; with either torque model.
+class ProxyAllocationTest : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ProxyAllocationTest, HapticTicksNeverAllocateWithFrictionAndAMovingBox) {
   EngineSettings s = T31Settings(1.0);
   s.rendering.friction = 0.5;
   s.rendering.stiffness = 2000.0;
+  s.rendering.torque_model = GetParam();
+  if (GetParam() == "contact") {
+    s.rendering.rotation_weight.reset();
+    s.rendering.rot_stiffness = 20.0;
+  }
   world::World w = world::World::LoadString(Scene("0 0 -9.81", true, true, 1000));
   auto device = device::MakeScriptedDevice(
       Keys({{0.0, At(0.0, 0, kHalf - 0.002)}, {1.0, At(0.16, 0.01, kHalf - 0.002)}}));
@@ -218,6 +225,8 @@ TEST(ProxyMethodTest, HapticTicksNeverAllocateWithFrictionAndAMovingBox) {
   EXPECT_GT(sliding, 0) << "friction rows never slid";
   EXPECT_GE(box_pairs, 2) << "the box never became a neighbor";
 }
+
+INSTANTIATE_TEST_SUITE_P(TorqueModels, ProxyAllocationTest, ::testing::Values("thesis", "contact"));
 
 // Closed loop at the T3.1 gains: a simulated hand (device.hand defaults: 0.5 kg, 300 N/m,
 // 20 N·s/m) whose target goes from 5 cm above the face contact to d = 1 cm below it in 0.5 s and

@@ -43,10 +43,18 @@ struct RenderingSettings {
   // 6-DOF proxy rendering (method proxy-6dof, SPEC §3.4–3.10).
   /// Rotational spring k_r of eq. 3.8 (N·m/rad).
   double rot_stiffness = 10.0;
-  /// Rotational damper d_r of eq. 3.8 (N·m·s/rad).
+  /// Rotational damper d_r of eq. 3.8 (N·m·s/rad); torque_model "thesis" only (must be 0 with
+  /// "contact", which damps through the contacts).
   double rot_damping = 0.0;
-  /// Diagonal of the rotation weight R_w (m²). Empty: the pointer's unit-mass inertia times
-  /// rotation_weight_scale (SPEC §3.10).
+  /// How the proxy's wrench relates to its contacts (docs/theory.md, "Torque models"):
+  /// "thesis" (default): eq. 3.8 with the rotation weight below; the objects receive the
+  /// rendered wrench, torque included, which is not a contact wrench (a point contact can be
+  /// given a moment); "contact": R_w = (k_r / k_t)·I, so the rendered wrench is the sum of the
+  /// proxy's contact forces and every touched object receives exactly minus its own contacts'
+  /// forces, where they act.
+  std::string torque_model = "thesis";
+  /// Diagonal of the rotation weight R_w (m²), torque_model "thesis" only. Empty: the pointer's
+  /// unit-mass inertia times rotation_weight_scale (SPEC §3.10).
   std::optional<Vec3> rotation_weight;
   /// Multiplier on the unit-mass inertia when rotation_weight is empty (dimensionless, > 0).
   double rotation_weight_scale = 1.0;

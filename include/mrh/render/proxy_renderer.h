@@ -43,18 +43,36 @@ enum class ProxySolverKind : std::uint8_t {
   kPgs,
 };
 
+/// How the rendered wrench and the objects' reactions relate to the proxy's contacts.
+enum class ProxyTorqueModel : std::uint8_t {
+  /// Every force is a contact force. R_w = (k_r / k_t)·I, so that the proxy's KKT conditions
+  /// make its spring wrench (k_t Δr, k_r Δθ) exactly the wrench of the forces k_t f_k a_k at the
+  /// rows' points. Those forces, limited to each pair's friction cone (|F_t| <= μ N) and scaled
+  /// per pair by a damper on the pair's normal load, (1 + (d_t / k_t) Ṅ / N) >= 0, are what the
+  /// user feels (their sum) and what each object receives (minus its own pairs' forces, at their
+  /// points). rotation_weight and d_r are not used (d_r must be 0).
+  kContact,
+  /// Eq. 3.7–3.8 with the given R_w and d_r; each object receives its share of the rendered
+  /// wrench, couple included (not a contact wrench: a point contact can be given a moment).
+  /// Default.
+  kThesis,
+};
+
 /// Parameters of the proxy renderer (SPEC §3.4–3.10). Designated initializers welcome.
 struct ProxyRendererSettings {
   double k_t = 1000.0;  ///< translational spring of eq. 3.7 (N/m, >= 0)
   double d_t = 0.0;     ///< translational damper of eq. 3.7 (N·s/m, >= 0)
   double k_r = 10.0;    ///< rotational spring of eq. 3.8 (N·m/rad, >= 0)
   double d_r = 0.0;     ///< rotational damper of eq. 3.8 (N·m·s/rad, >= 0)
-  /// Rotation weight R_w (m², world frame, symmetric positive definite; SPEC §3.10). For the
-  /// thesis recipe use RotationWeightFromInertia; a diagonal one is Vec3(...).asDiagonal().
+  /// Rotation weight R_w (m², world frame, symmetric positive definite; SPEC §3.10), kThesis
+  /// only. For the thesis recipe use RotationWeightFromInertia; a diagonal one is
+  /// Vec3(...).asDiagonal().
   Mat3 rotation_weight = Mat3::Identity();
   /// Coulomb coefficient μ of the friction cones (eq. 3.9–3.10; static = kinetic, >= 0).
   /// 0 builds no friction rows.
   double mu = 0.0;
+  /// kContact needs k_t > 0 and k_r > 0 and d_r = 0.
+  ProxyTorqueModel torque_model = ProxyTorqueModel::kThesis;
   ProxySolverKind solver = ProxySolverKind::kActiveSet;
   /// PGS sweeps or active-set steps per tick at most, in [1, kMaxProxyIterations].
   int max_iterations = 50;
@@ -138,8 +156,9 @@ struct ProxyDiagnostics {
 /// Everything one tick produces. The spans point into the renderer and stay valid until its
 /// next Tick or Reset.
 struct ProxyOutput {
-  /// Wrench on the user's hand, world frame: force f_d of eq. 3.7 (N) and torque τ_d of
-  /// eq. 3.8 (N·m) at the pointer origin. It pulls the pointer toward the proxy.
+  /// Wrench on the user's hand, world frame, torque about the pointer origin (N, N·m): the sum
+  /// of the contact forces (ProxyTorqueModel::kContact) or f_d and τ_d of eq. 3.7–3.8
+  /// (kThesis). It pulls the pointer toward the proxy.
   Wrench w_W;
   Pose X_WQ;                       ///< proxy pose Q: {x_p + Δr, exp(Δθ) q_p} (SPEC §3.5)
   Vec3 dr = Vec3::Zero();          ///< Δr, proxy − pointer translation (m, world)
@@ -205,6 +224,7 @@ class ProxyRenderer {
     bool in_contact = false;
     Vec3 dr_pair = Vec3::Zero();
     Vec3 dtheta_pair = Vec3::Zero();
+    double normal_load = 0.0;  // N, the contact model's pair normal force
   };
 
   // Identity of a row for the warm start: (pair key, point index, normal/friction) mixed into
@@ -220,6 +240,10 @@ class ProxyRenderer {
   bool BuildRows(const TickIr& ir, const Pose& X_WP, ProxyDiagnostics* diag) noexcept;
   bool LoadPair(const TickIr& ir, int pair, PairFrame* frame) const noexcept;
   void ComputeReactions(const TickIr& ir, const Pose& X_WP, double dt, ProxyOutput* out) noexcept;
+  void ComputeContactForces(const TickIr& ir, const Pose& X_WP, double dt,
+                            ProxyOutput* out) noexcept;
+  void AddRowForces() noexcept;
+  void PushReactions(const TickIr& ir, const Pose& X_WP, ProxyOutput* out) const noexcept;
   void DistributeReactions(const TickIr& ir, const Pose& X_WP, double dt,
                            ProxyOutput* out) noexcept;
   void SplitAcrossPairs(const TickIr& ir, std::size_t touched, const ProxyOutput* out) noexcept;
@@ -255,6 +279,12 @@ class ProxyRenderer {
   std::array<Vec3, ir::kMaxGeometricPairs> dtheta_pair_{};  // Σ_pair f_k R_w⁻¹(r_k × a_k)
   std::array<Vec3, ir::kMaxGeometricPairs> force_pair_{};   // F_i on the pointer this tick
   std::array<Vec3, ir::kMaxGeometricPairs> torque_pair_{};  // M_i about the pointer origin
+  // Contact model: the pair's friction rows' force and moment (pointer origin), its normal load
+  // this tick and last tick (N).
+  std::array<Vec3, ir::kMaxGeometricPairs> friction_force_{};
+  std::array<Vec3, ir::kMaxGeometricPairs> friction_torque_{};
+  std::array<double, ir::kMaxGeometricPairs> normal_load_{};
+  std::array<double, ir::kMaxGeometricPairs> previous_load_{};
   std::array<PairMemory, ir::kMaxGeometricPairs> memory_{};
   std::size_t memory_count_ = 0;
 
