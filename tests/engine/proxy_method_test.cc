@@ -59,6 +59,7 @@ EngineSettings T31Settings(double duration) {
   s.rendering.stiffness = 9000.0;
   s.rendering.rot_stiffness = 9000.0;
   s.rendering.rotation_weight = Vec3::Constant(3.33);
+  s.rendering.torque_model = "thesis";
   s.rendering.friction = 0.0;
   s.safety.ramp = false;
   s.realtime_priority = false;
@@ -331,6 +332,16 @@ TEST(ProxyMethodTest, MasslessPointerWithoutRotationWeightIsRejected) {
         Engine(std::move(w), device::MakeFixedDevice(Pose{}), {}, s);
       },
       ThrowsMessage<SceneError>(HasSubstr("set rendering.rotation_weight")));
+}
+
+TEST(ProxyMethodTest, MasslessPointerRunsUnderTheContactTorqueModel) {
+  // The contact model's rotation weight is k_r / k_t: the pointer's inertia is not needed.
+  EngineSettings s = T31Settings(0.1);
+  s.rendering.rotation_weight.reset();
+  s.rendering.torque_model = "contact";
+  world::World w = world::World::LoadString(Scene("0 0 -9.81", true, false, 0));
+  Engine engine(std::move(w), device::MakeFixedDevice(Pose{}), {}, s);
+  EXPECT_GT(engine.Run(nullptr).ticks, 0);
 }
 
 TEST(ProxyMethodTest, MaxIterationsAboveTheSolverCeilingIsRejected) {

@@ -79,6 +79,7 @@ inline ProxyRendererSettings T31() {
   return ProxyRendererSettings{.k_t = kKt,
                                .k_r = kKr,
                                .rotation_weight = 3.33 * Mat3::Identity(),
+                               .torque_model = ProxyTorqueModel::kThesis,
                                .max_iterations = kSolverBudget,
                                .tolerance = kSolverTol};
 }

@@ -268,7 +268,8 @@ TEST(SessionTest, EveryRepositorySessionFileLoads) {
 
 TEST(SessionTest, ProxyAndLocalDynamicsKeysAreParsed) {
   const Session s = Parse(Minimal(
-      R"("rendering": {"rot_stiffness": 9000, "rot_damping": 3, "rotation_weight": [1, 2, 3],
+      R"("rendering": {"torque_model": "thesis", "rot_stiffness": 9000, "rot_damping": 3,
+                       "rotation_weight": [1, 2, 3],
                        "friction": 0.5, "max_iterations": 20, "curved_segments": 24,
                        "perturbation": false, "perturbation_force": 0.25})"));
   EXPECT_EQ(s.engine.rendering.rot_stiffness, 9000.0);
