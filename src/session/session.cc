@@ -117,8 +117,8 @@ Session ParseDocument(const nlohmann::json& document, const Context& context) {
     } else if (session.engine.mode != engine::Mode::kRealtime) {
       mode->Fail(fmt::format("\"{}\" with the real device \"{}\"",
                              engine::ModeName(session.engine.mode), type),
-                 "\"realtime\" (lockstep never waits for the device; drop the key or set "
-                 "\"mode\": \"realtime\")");
+                 "\"realtime\" (lockstep never waits for the device; drop the key, set "
+                 "\"mode\": \"realtime\" or run with --mode realtime)");
     }
   }
   return session;

@@ -139,7 +139,7 @@ bad_input_test(MasslessPointerNamesTheScene
 
 # Issue 39 item 1: a real device in lockstep mode never gets an answer; the session is refused.
 bad_input_test(UdpDeviceInLockstepNamesTheModeToUse
-               "${err}tests/apps/fixtures/tiny\\.json: mode: \"lockstep\" with the real device \"udp\".*expected \"realtime\""
+               "${err}tests/apps/fixtures/tiny\\.json: mode: \"lockstep\" with the real device \"udp\".*expected \"realtime\".*--mode realtime"
                run ${fixtures}/tiny.json --mode lockstep --set "device={\"type\": \"udp\"}")
 
 # The compound (non-convex) example scene runs as shipped (issue 39 item 10).
