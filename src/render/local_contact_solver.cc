@@ -60,6 +60,10 @@ double VelocityChange(double dl, double inv_w) {
   return inv_w > 0.0 ? std::abs(dl) / inv_w : 0.0;
 }
 
+// The point a row is matched on across periods: the contact point on A, or for a round A the
+// core point (the contact point on a rolling body moves over its surface from period to period).
+Vec3 WarmKey(const ir::LocalContactRow& c) { return c.r_A > 0.0 ? c.s_A : c.p_A; }
+
 Mat3 InverseOrZero(const Mat3& I) {
   const double det = I.determinant();
   if (!(std::abs(det) > 0.0) || !std::isfinite(det)) return Mat3::Zero();
@@ -121,7 +125,7 @@ void LocalContactSolver::SaveWarmStart() noexcept {
     const Row& r = rows_[k];
     warm_[k].a_body = bodies_[static_cast<std::size_t>(r.c.a)].body;
     warm_[k].b_body = r.c.b >= 0 ? bodies_[static_cast<std::size_t>(r.c.b)].body : -1;
-    warm_[k].p_A = r.c.p_A;
+    warm_[k].p_A = WarmKey(r.c);
     warm_[k].lambda = r.lambda;
   }
 }
@@ -138,7 +142,9 @@ void LocalContactSolver::WarmStart(Row& r, std::size_t k) const noexcept {
   const std::size_t hi = std::min(warm_count_, k + kWindow + 1);
   for (std::size_t o = lo; o < hi; ++o) {
     const WarmRow& w = warm_[o];
-    if (w.a_body != a_body || w.b_body != b_body || (w.p_A - r.c.p_A).norm() > kMatch) continue;
+    if (w.a_body != a_body || w.b_body != b_body || (w.p_A - WarmKey(r.c)).norm() > kMatch) {
+      continue;
+    }
     r.lambda = w.lambda;
     return;
   }
@@ -204,7 +210,7 @@ void LocalContactSolver::PrepareRows(double dt) noexcept {
   for (std::size_t k = 0; k < rows_count_; ++k) {
     Row& r = rows_[k];
     const Body& A = bodies_[static_cast<std::size_t>(r.c.a)];
-    const Vec3 pA = A.p + A.q * (r.c.p_A - A.p_BCm);
+    Vec3 pA = A.p + A.q * (r.c.p_A - A.p_BCm);
     Vec3 pB = r.c.p_B;
     Vec3 n = r.c.n_B;
     Vec3 t = r.c.t_B;
@@ -213,8 +219,17 @@ void LocalContactSolver::PrepareRows(double dt) noexcept {
       pB = B.p + B.q * (r.c.p_B - B.p_BCm);
       n = B.q * r.c.n_B;
       t = B.q * r.c.t_B;
+      if (r.c.r_B > 0.0) {  // B round: its point (and, both round, the normal) follow the cores
+        const Vec3 sB = B.p + B.q * (r.c.s_B - B.p_BCm);
+        if (r.c.r_A > 0.0) {
+          const Vec3 between = A.p + A.q * (r.c.s_A - A.p_BCm) - sB;
+          if (between.squaredNorm() > 1e-18) n = between.normalized();
+        }
+        pB = sB + r.c.r_B * n;
+      }
       r.rB = pB - B.p;
     }
+    if (r.c.r_A > 0.0) pA = A.p + A.q * (r.c.s_A - A.p_BCm) - r.c.r_A * n;  // A's support point
     r.rA = pA - A.p;
     r.d[0] = n;
     FrictionDirections(n, t, r.c.pyramidal, &r.d[1], &r.d[2]);

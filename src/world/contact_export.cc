@@ -210,6 +210,24 @@ void SetContactParameters(const mjModel& m, const mjContact& con, ir::LocalConta
   for (int i = 0; i < 5; ++i) row->solimp[i] = con.solimp[i];
 }
 
+// The core of a round geom g (sphere, capsule) nearest the world point p, and its radius; 0 for
+// any other shape.
+double RoundCore(const mjModel& m, const mjData& d, int g, const Vec3& p, Vec3* core) {
+  const Vec3 c = ToVec3(d.geom_xpos + 3 * g);
+  if (m.geom_type[g] == mjGEOM_SPHERE) {
+    *core = c;
+    return m.geom_size[3 * g];
+  }
+  if (m.geom_type[g] == mjGEOM_CAPSULE) {
+    const mjtNum* R = d.geom_xmat + 9 * g;
+    const Vec3 axis(R[2], R[5], R[8]);
+    const double h = m.geom_size[3 * g + 1];
+    *core = c + std::clamp(axis.dot(p - c), -h, h) * axis;
+    return m.geom_size[3 * g];
+  }
+  return 0.0;
+}
+
 }  // namespace
 
 // One row per contact with an island body: A is the island body (geom2's if both are), the
@@ -250,6 +268,18 @@ std::uint32_t ContactExporter::AddRows(ir::LocalContactModel* out) {
       row.t_B = t;
     }
     SetContactParameters(m, con, &row);
+    Vec3 core;
+    const int gA = a_is_2 ? con.geom2 : con.geom1;
+    if (const double r = RoundCore(m, d, gA, pA, &core); r > 0.0) {
+      row.r_A = r;
+      row.s_A = X_WA.Inverse() * core;
+    }
+    if (row.b >= 0) {
+      if (const double r = RoundCore(m, d, a_is_2 ? con.geom1 : con.geom2, pB, &core); r > 0.0) {
+        row.r_B = r;
+        row.s_B = out->bodies[static_cast<std::size_t>(row.b)].X_WB.Inverse() * core;
+      }
+    }
     if (!out->contacts.PushBack(row)) return ir::kStatusContactsFull;
   }
   return ir::kStatusOk;

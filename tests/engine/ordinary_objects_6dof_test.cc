@@ -3,8 +3,8 @@
 // (scenes/push_*.json: a box pointer moving along +x at v = 0.1 m/s, 20 ms physics, friction
 // 0.5 on the floor, elliptic cones), against what the contact patch allows:
 //  - a sphere rolls ahead: no faster than the pointer pushes it (kicks are bounded by 2 v) and
-//    rolling without slip at the end (|ω| r = |v|); proxy-6dof only: local-dynamics-6dof's
-//    island still kicks the sphere to ~3 v (its rolling contact is an open fault);
+//    rolling without slip at the end (|ω| r = |v|); proxy-6dof here, local-dynamics-6dof's
+//    no-throw bar in rolling_island_test.cc;
 //  - an upright cylinder slides at Coulomb's force μ m g without spinning up;
 //  - a box pushed 4 cm off its centre line turns away from the push (negative yaw).
 // The thesis torque model (eq. 3.8's couple given to the objects) fails each: it spins the

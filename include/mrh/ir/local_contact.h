@@ -57,6 +57,17 @@ struct LocalContactRow {
   /// defaults here): the local solve reproduces the reference's soft contacts with them.
   double solref[2] = {0.02, 1.0};
   double solimp[5] = {0.9, 0.95, 0.001, 0.5, 2.0};
+  /// Round surfaces (issue 33): r_A > 0 when A's geom is a sphere or a capsule. Its surface is
+  /// then the points within r_A of a core point s_A (the sphere's centre, or the point of the
+  /// capsule's segment nearest the contact), A's body frame, and the local solve re-derives the
+  /// contact point each tick as s_A - r_A n at the local pose: a point fixed on a rolling body
+  /// would turn with it, off the support point, and the normal force on it would spin the body.
+  /// Likewise r_B / s_B for B (an island body; then the normal follows the two cores when both
+  /// are round).
+  double r_A = 0.0;
+  Vec3 s_A = Vec3::Zero();
+  double r_B = 0.0;
+  Vec3 s_B = Vec3::Zero();
 };
 
 /// Everything the contact local model needs for one period (physics → haptic, in the snapshot).
