@@ -26,8 +26,9 @@ constexpr Entry kExperiments[] = {
      "real-time computation ratio vs cubes: proxy-6dof, contact-volume (B2), virtual-coupling "
      "(B3), penalty-sum (B5) (figs. 3.15-3.16); --full: 3-30 cubes",
      internal::RunT33, internal::RunT33Full},
-    {"t3.4", "6-DOF proxy tick time vs contact points, N-gon prism, with/without friction "
-             "(fig. 3.17)",
+    {"t3.4",
+     "6-DOF proxy tick time vs contact points, N-gon prism, with/without friction "
+     "(fig. 3.17)",
      internal::RunT34},
     {"t3.5", "6-DOF proxy rotation-weight sweep: free-vertex penetration and torque (fig. 3.18)",
      internal::RunT35},
@@ -54,6 +55,10 @@ constexpr Entry kExperiments[] = {
      "a box pointer pushes, turns, tips and presses boxes on a floor: proxy-6dof at 1 and 20 ms, "
      "local-dynamics-6dof at 20 ms",
      internal::RunT36},
+    {"t3.7",
+     "6-DOF methods on spheres, capsules, cylinders, ellipsoids, meshes and compounds, centred "
+     "and off centre, vs virtual coupling at 1 ms and mechanics; --full: the sphere pointer too",
+     internal::RunT37, internal::RunT37Full},
     {"t4.push",
      "pushing resting boxes across a floor with friction: force and trajectory vs single-rate",
      internal::RunT4Push},
@@ -69,11 +74,13 @@ int Run(const std::string& name, const std::filesystem::path& out, bool quiet) {
 
 int Run(const std::string& name, const std::filesystem::path& out, bool quiet, bool full) {
   for (const Entry& e : kExperiments) {
-    if (name == e.name) return full && e.run_full != nullptr ? e.run_full(out, quiet) : e.run(out, quiet);
+    if (name == e.name)
+      return full && e.run_full != nullptr ? e.run_full(out, quiet) : e.run(out, quiet);
   }
   std::string known;
   for (const Entry& e : kExperiments) known += (known.empty() ? "" : ", ") + std::string(e.name);
-  throw InvalidArgument(fmt::format("experiment '{}' is unknown; expected one of: {}", name, known));
+  throw InvalidArgument(
+      fmt::format("experiment '{}' is unknown; expected one of: {}", name, known));
 }
 
 std::vector<std::pair<std::string, std::string>> List() {

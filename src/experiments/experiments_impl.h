@@ -7,10 +7,10 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "mrh/core/spatial.h"
 #include "mrh/engine/engine.h"
@@ -36,8 +36,8 @@ namespace mrh::experiments::internal {
 /// compute per tick (run wall time − physics step time, over the ticks: engine bookkeeping
 /// included) / 1 ms plus its p50 physics step / physics_dt (20 ms; 1 ms for the single-rate
 /// contact-volume and virtual-coupling, whose step is their haptic loop); the p99 step gives
-/// ratio_p99 and max_realtime_cubes_p99 (on a shared VM the p99 is mostly its stalls). Returns 0 if every
-/// ratio is finite, proxy-6dof is cheaper than contact-volume at every count and
+/// ratio_p99 and max_realtime_cubes_p99 (on a shared VM the p99 is mostly its stalls). Returns 0 if
+/// every ratio is finite, proxy-6dof is cheaper than contact-volume at every count and
 /// contact-volume's ratio grows from the smallest to the largest count.
 struct T33Options {
   std::vector<std::string> methods = {"proxy-6dof", "contact-volume", "virtual-coupling",
@@ -45,6 +45,7 @@ struct T33Options {
   std::vector<int> cubes = {3, 9, 18};
   double duration = 0.3;  ///< s simulated per run
 };
+
 int RunT33(const std::filesystem::path& out, bool quiet);
 int RunT33(const std::filesystem::path& out, bool quiet, const T33Options& options);
 /// `mrh experiment t3.3 --full`: 3–30 cubes in steps of 3, 1 s per run.
@@ -59,6 +60,7 @@ struct T41Options {
   std::vector<std::string> methods = {"single-rate", "impulse", "local-dynamics"};
   bool sweep = true;  ///< also sweep mass (15–240 kg) × speed (0.005–0.1 m/s)
 };
+
 int RunT41(const std::filesystem::path& out, bool quiet, const T41Options& options);
 
 /// T4.2: the 2AFC mass study (scenes/t4_2.json) with simulated observers through
@@ -68,13 +70,14 @@ int RunT42(const std::filesystem::path& out, bool quiet);
 /// What RunT42 runs.
 struct T42Options {
   std::vector<std::string> observers = {"A", "B", "C", "D", "E"};
-  int trials_per_mass = 0;  ///< 0: the session's (20)
-  double weber = 0.10;      ///< Weber fraction of the observers' momentum percept
+  int trials_per_mass = 0;           ///< 0: the session's (20)
+  double weber = 0.10;               ///< Weber fraction of the observers' momentum percept
   std::uint64_t observer_seed = 42;  ///< observer i draws its noise from seed + i
   /// Simulate each distinct stimulus once and reuse its momentum (the lockstep world is
   /// deterministic, so repeated presentations are identical); false re-simulates every one.
   bool cache = true;
 };
+
 int RunT42(const std::filesystem::path& out, bool quiet, const T42Options& options);
 
 /// Per-call timings of a method wrapped by RegisterTimedMethod (filled on the calling threads).
@@ -84,12 +87,12 @@ struct MethodTimings {
   /// Called on the physics side after each PhysicsStep with the wrapped method (optional), to
   /// read its counters.
   std::function<void(const physics::MethodPhysics&)> on_step;
-  std::vector<double> step_wall_ms;  ///< PhysicsStep wall time (ms)
-  std::vector<double> step_cpu_ms;   ///< PhysicsStep thread CPU time (ms): immune to preemption
-  std::vector<double> tick_wall_us;  ///< HapticTick wall time (µs)
-  std::vector<int> tick_j;           ///< TickInput::j of each tick
-  std::vector<int> tick_contacts;    ///< TickOutput::contacts of each tick
-  std::vector<double> adopt_wall_us;       ///< Adopt wall time (µs)
+  std::vector<double> step_wall_ms;   ///< PhysicsStep wall time (ms)
+  std::vector<double> step_cpu_ms;    ///< PhysicsStep thread CPU time (ms): immune to preemption
+  std::vector<double> tick_wall_us;   ///< HapticTick wall time (µs)
+  std::vector<int> tick_j;            ///< TickInput::j of each tick
+  std::vector<int> tick_contacts;     ///< TickOutput::contacts of each tick
+  std::vector<double> adopt_wall_us;  ///< Adopt wall time (µs)
   std::vector<double> end_period_wall_us;  ///< EndPeriod wall time (µs)
 };
 
@@ -117,13 +120,14 @@ struct T43Options {
   /// Runs with friction (condim 3, μ = 1, pyramidal cones), file and summary keys
   /// "<cubes>_friction". MuJoCo 2.2.2 holds at most ~620 such cubes (World's buffer sizing).
   std::vector<int> friction_cubes = {1, 10, 100};
-  double physics_dt = 0.02;  ///< s, multi-rate methods (single-rate steps at haptic_dt)
-  int steps = 50;               ///< physics steps per multi-rate run
+  double physics_dt = 0.02;      ///< s, multi-rate methods (single-rate steps at haptic_dt)
+  int steps = 50;                ///< physics steps per multi-rate run
   int single_rate_steps = 1000;  ///< physics steps (1 ms each) per single-rate run
   /// Physics steps of the accuracy run at the largest cube count: local-dynamics whose every
   /// measurement is repeated with the exact warm start (TestRunWarmStart::kSaved). 0: none.
   int accuracy_steps = 5;
 };
+
 int RunT43(const std::filesystem::path& out, bool quiet, const T43Options& options);
 /// `mrh experiment t4.3 --full`: 1-1000 cubes frictionless, 1-500 with friction.
 int RunT43Full(const std::filesystem::path& out, bool quiet);
@@ -137,6 +141,7 @@ struct T44Options {
   std::vector<std::string> variants = {"local-dynamics", "single-rate", "impulse",
                                        "local-dynamics/no-perturbation"};
 };
+
 int RunT44(const std::filesystem::path& out, bool quiet, const T44Options& options);
 
 /// T4.5: neighbors simulated locally vs haptic tick cost and physics occupancy. Returns 0 if
@@ -151,6 +156,7 @@ struct T45Options {
   std::vector<int> neighbors = {1, 2, 4, 8, 16, 32, 64, 128};
   double duration = 1.0;  ///< s simulated per run
 };
+
 int RunT45(const std::filesystem::path& out, bool quiet, const T45Options& options);
 
 /// T4.6 (issue 14 item 3): a body's 6×6 accelerance (and the 3×3 point accelerance) estimated
@@ -163,6 +169,7 @@ struct T46Options {
   std::vector<int> cubes = {10};
   int repetitions = 10;  ///< timed physics steps per cube count (medians)
 };
+
 int RunT46(const std::filesystem::path& out, bool quiet);
 int RunT46(const std::filesystem::path& out, bool quiet, const T46Options& options);
 /// `mrh experiment t4.6 --full`: 10 and 100 cubes, 30 repetitions.
@@ -178,6 +185,7 @@ struct LatencyOptions {
   /// Tick of the physics period at which contact starts (0 .. n−1).
   std::vector<int> onset_phases = {0, 25, 49};
 };
+
 int RunLatency(const std::filesystem::path& out, bool quiet, const LatencyOptions& options);
 
 /// A t4.push case (issue 13): scene scenes/t4_push_<scene or name>.xml, pointer height z (m),
@@ -203,11 +211,11 @@ struct PushOptions {
 
 /// One case × method of t4.push: |f| statistics over 2–5 s, box COM at 5 s, peak |ω|.
 struct PushResult {
-  double mean_force = 0.0;    ///< N
-  double sd_force = 0.0;      ///< N
-  double contact_lost = 0.0;  ///< share of ticks with |f| = 0
+  double mean_force = 0.0;       ///< N
+  double sd_force = 0.0;         ///< N
+  double contact_lost = 0.0;     ///< share of ticks with |f| = 0
   Vec3 position = Vec3::Zero();  ///< m
-  double peak_spin = 0.0;     ///< rad/s
+  double peak_spin = 0.0;        ///< rad/s
 };
 
 /// The issue's cases (one box, heavy box, row of three, wall, tip), plus the row's two
@@ -230,7 +238,7 @@ int RunT4Push(const std::filesystem::path& out, bool quiet, const PushOptions& o
 /// of any box after a global step, every box's COM at 4 s.
 struct T36Result {
   std::string case_name;
-  std::string method;         ///< e.g. "local-dynamics-6dof@20ms"
+  std::string method;                   ///< e.g. "local-dynamics-6dof@20ms"
   double mean_f = 0.0, sd_f = 0.0;      ///< N
   double mean_tau = 0.0, sd_tau = 0.0;  ///< N·m, of |τ|
   Vec3 mean_tau_W = Vec3::Zero();       ///< N·m, mean rendered torque vector (world)
@@ -248,16 +256,72 @@ std::vector<std::vector<T36Result>> RunT36Cases(const std::filesystem::path& out
 /// t3.6: returns 0 if local-dynamics-6dof meets the face push's force, sd, position and spin bars.
 int RunT36(const std::filesystem::path& out, bool quiet);
 
+/// What t3.7 runs: the shape matrix (scenes/t3_7_*.xml) × pointers × centred and off-centre
+/// pushes, each with virtual coupling at 1 ms (the reference), proxy-6dof at 1 and 20 ms and
+/// local-dynamics-6dof at 20 ms.
+struct T37Options {
+  std::vector<std::string> shapes;              ///< empty: all six
+  std::vector<std::string> pointers = {"box"};  ///< "box", "sphere"
+  bool offcentre = true;  ///< also push off centre (box pointer 4 cm, sphere 2 cm)
+};
+
+/// One t3.7 run's figures (statistics window 2–5 s; peaks from the touch at 1 s).
+struct T37Result {
+  std::string shape, pointer, method;  ///< method: e.g. "local-dynamics-6dof@20ms"
+  bool offcentre = false;
+  double mean_f = 0.0;          ///< N, rendered |f| over 2–5 s
+  Vec3 impulse = Vec3::Zero();  ///< N·s, ∫f dt of the rendered force from the touch on (world)
+  double coulomb_f = 0.0;       ///< N, μ m |g| where the push is a steady slide, else 0
+  double rolling_radius = 0.0;  ///< m, where the object rolls, else 0
+  double peak_speed = 0.0;      ///< m/s, the object's COM
+  double peak_spin = 0.0;       ///< rad/s
+  Vec3 end = Vec3::Zero();      ///< m, COM at the end (world)
+  double yaw = 0.0;             ///< rad, heading of the body's x axis about +z at the end
+  double end_speed = 0.0;       ///< m/s, horizontal COM speed at the end
+  double end_spin = 0.0;        ///< rad/s at the end
+};
+
+/// A run judged by the issue's bars against the analytic expectations and the reference run
+/// of its case (virtual coupling at 1 ms). Unset optionals: the bar does not apply.
+struct T37Verdict {
+  /// m/s: 2.5× the larger of the pointer's speed and the reference's peak speed.
+  double speed_bound = 0.0;
+  bool thrown = false;  ///< peak speed above speed_bound
+  /// rad/s, rolling bodies: 2.5× the larger of v / r and the reference's peak spin.
+  std::optional<double> spin_bound;
+  bool spun = false;                  ///< peak spin above spin_bound
+  std::optional<double> slide_error;  ///< mean |f| / μ m g − 1 (steady slides)
+  std::optional<bool> slide_ok;       ///< |slide_error| ≤ 5 %
+  /// Off-centre, sliding: |J − J_ref| / |J_ref| of the impulses J = ∫f dt.
+  std::optional<double> force_vs_ref;
+  std::optional<double> pose_error;  ///< off-centre, sliding: m, end (x, y) from the reference's
+  std::optional<bool> follows_ref;   ///< pose_error ≤ 2 cm and |force_vs_ref| ≤ 10 %
+  std::optional<bool> same_turn;     ///< off-centre, sliding, the reference turned ≥ 5°
+};
+
+T37Verdict Judge(const T37Result& r, const T37Result& ref);
+
+/// Runs the matrix; results in case order, kVariants' order within a case (reference first).
+std::vector<T37Result> RunT37Cases(const std::filesystem::path& out, bool quiet,
+                                   const T37Options& options);
+
+/// t3.7 with the box pointer (`--full`: box and sphere pointers). Returns 0 if every check
+/// passes: nothing thrown; local-dynamics-6dof and proxy-6dof at 1 ms within the analytic bars;
+/// local-dynamics-6dof following the reference off centre.
+int RunT37(const std::filesystem::path& out, bool quiet);
+int RunT37(const std::filesystem::path& out, bool quiet, const T37Options& options);
+int RunT37Full(const std::filesystem::path& out, bool quiet);
+
 /// One haptic tick of a proxy-6dof run as the chapter-3 drivers see it (world frame).
 struct ProxyTick {
-  double t = 0.0;                         ///< s
-  Pose X_WP;                              ///< pointer
-  Wrench w_W;                             ///< rendered wrench (before the safety layer)
-  Pose X_WQ;                              ///< proxy
-  Vec3 dr = Vec3::Zero();                 ///< Δr, proxy − pointer translation (m)
-  Vec3 dtheta = Vec3::Zero();             ///< Δθ, proxy rotation vector from the pointer (rad)
-  render::ProxyDiagnostics diagnostics;   ///< rows, friction states, PGS sweeps
-  std::vector<Vec3> constrained_p_PV;     ///< pointer-frame points with a normal row this tick
+  double t = 0.0;                        ///< s
+  Pose X_WP;                             ///< pointer
+  Wrench w_W;                            ///< rendered wrench (before the safety layer)
+  Pose X_WQ;                             ///< proxy
+  Vec3 dr = Vec3::Zero();                ///< Δr, proxy − pointer translation (m)
+  Vec3 dtheta = Vec3::Zero();            ///< Δθ, proxy rotation vector from the pointer (rad)
+  render::ProxyDiagnostics diagnostics;  ///< rows, friction states, PGS sweeps
+  std::vector<Vec3> constrained_p_PV;    ///< pointer-frame points with a normal row this tick
 };
 
 /// A proxy-6dof session run: the engine's statistics and one ProxyTick per haptic tick.
@@ -306,8 +370,9 @@ int RunT34(const std::filesystem::path& out, bool quiet);
 /// What RunT34 runs.
 struct T34Options {
   std::vector<int> sides = {5, 10, 20, 50, 100, 200, 500, 1000};
-  double duration = 2.0;    ///< s simulated per run (ticks = duration / 1 ms)
+  double duration = 2.0;  ///< s simulated per run (ticks = duration / 1 ms)
 };
+
 int RunT34(const std::filesystem::path& out, bool quiet, const T34Options& options);
 
 /// T3.5: rotation-weight sweep on the T3.1 motion: penetration of unconstrained vertices and
@@ -318,6 +383,7 @@ int RunT35(const std::filesystem::path& out, bool quiet);
 struct T35Options {
   std::vector<double> multipliers = {1, 3, 10, 30, 100, 300, 500, 1000, 3000, 10000};
 };
+
 int RunT35(const std::filesystem::path& out, bool quiet, const T35Options& options);
 
 }  // namespace mrh::experiments::internal
