@@ -19,12 +19,14 @@
 namespace mrh::experiments::internal {
 namespace {
 
-constexpr double kHalf = 0.05;      // m, cube half side
-constexpr double kRowPitch = 0.25;  // m between rows (along y)
-constexpr double kSpeed = 0.1;      // m/s, pointer along +x
-constexpr double kPhysicsDt = 0.02; // s, multi-rate methods
+constexpr double kHalf = 0.05;       // m, cube half side
+constexpr double kRowPitch = 0.25;   // m between rows (along y)
+constexpr double kSpeed = 0.1;       // m/s, pointer along +x
+constexpr double kPhysicsDt = 0.02;  // s, multi-rate methods
 
-bool SingleRate(const std::string& m) { return m == "contact-volume" || m == "virtual-coupling"; }
+bool SingleRate(const std::string& m) {
+  return m == "contact-volume" || m == "virtual-coupling";
+}
 
 // Rows of 3 resting 10 cm, 0.5 kg cubes (1 mm apart along x), the box pointer 5 mm from the first
 // row's first cube at its COM height.
@@ -59,12 +61,15 @@ session::Session MakeSession(const std::filesystem::path& dir, int cubes, const 
   j["physics_dt"] = SingleRate(m) ? 0.001 : kPhysicsDt;
   j["haptic_dt"] = 0.001;
   j["duration"] = duration;
-  j["rendering"] = {{"stiffness", 2000.0}, {"damping", 5.0},   {"rot_stiffness", 20.0},
-                    {"rot_damping", 0.1},  {"friction", 0.5}, {"tool_mass", 0.5}};
+  // The thesis' proxy (eq. 3.8), whose cost the thesis measured.
+  j["rendering"] = {{"stiffness", 2000.0},     {"damping", 5.0},  {"rot_stiffness", 20.0},
+                    {"rot_damping", 0.1},      {"friction", 0.5}, {"tool_mass", 0.5},
+                    {"torque_model", "thesis"}};
   j["safety"] = {{"ramp", false}};
   const double x0 = -0.065, x1 = x0 + kSpeed * duration;
-  j["device"] = {{"type", "scripted"},
-                 {"keyframes", {{0.0, x0, 0.0, 0.05, 1, 0, 0, 0}, {duration, x1, 0.0, 0.05, 1, 0, 0, 0}}}};
+  j["device"] = {
+      {"type", "scripted"},
+      {"keyframes", {{0.0, x0, 0.0, 0.05, 1, 0, 0, 0}, {duration, x1, 0.0, 0.05, 1, 0, 0, 0}}}};
   return session::ParseSession(j.dump(), dir, {}, fmt::format("t3.3 {} cubes ({})", cubes, m));
 }
 
@@ -78,9 +83,11 @@ struct Ratio {
 
 struct StepSum final : engine::Recorder {
   void OnTick(const engine::TickRecord&) override {}
+
   void OnStep(const engine::StepRecord& step, const world::World&) override {
     total_ms += step.compute_ms;
   }
+
   double total_ms = 0.0;
 };
 
@@ -96,7 +103,9 @@ Ratio Measure(const session::Session& s, const std::string& m) {
   Ratio r;
   r.physics_ms = stats.step_ms_p50;
   r.physics_p99_ms = stats.step_ms_p99;
-  r.haptic_ms = stats.ticks > 0 ? std::max(0.0, wall_ms - sum.total_ms) / static_cast<double>(stats.ticks) : 0.0;
+  r.haptic_ms = stats.ticks > 0
+                    ? std::max(0.0, wall_ms - sum.total_ms) / static_cast<double>(stats.ticks)
+                    : 0.0;
   const double period_ms = SingleRate(m) ? 1.0 : kPhysicsDt * 1e3;
   r.ratio = r.haptic_ms / 1.0 + r.physics_ms / period_ms;
   r.ratio_p99 = r.haptic_ms / 1.0 + r.physics_p99_ms / period_ms;
@@ -145,8 +154,8 @@ Checks CheckT33(const T33Options& o, bool finite, nlohmann::json* out) {
 
 // Every count × method: the scenes, the CSV rows and summary["runs"] / max_realtime_cubes.
 // False if a ratio is not finite and positive.
-bool MeasureAll(const std::filesystem::path& out, const T33Options& o, bool quiet,
-                std::string* csv, nlohmann::json* summary) {
+bool MeasureAll(const std::filesystem::path& out, const T33Options& o, bool quiet, std::string* csv,
+                nlohmann::json* summary) {
   bool finite = true;
   for (const int n : o.cubes) {
     WriteText(out / fmt::format("t3_3_{}.xml", n), Scene(n));
@@ -157,9 +166,11 @@ bool MeasureAll(const std::filesystem::path& out, const T33Options& o, bool quie
       finite = finite && std::isfinite(r.ratio) && r.ratio > 0.0;
       *csv += fmt::format("{},{},{},{:.5f},{:.5f},{:.5f},{:.5f},{:.5f}\n", n, mi, m, r.haptic_ms,
                           r.physics_ms, r.ratio, r.physics_p99_ms, r.ratio_p99);
-      (*summary)["runs"][m][std::to_string(n)] = {
-          {"haptic_ms", r.haptic_ms}, {"physics_p50_ms", r.physics_ms}, {"ratio", r.ratio},
-          {"physics_p99_ms", r.physics_p99_ms}, {"ratio_p99", r.ratio_p99}};
+      (*summary)["runs"][m][std::to_string(n)] = {{"haptic_ms", r.haptic_ms},
+                                                  {"physics_p50_ms", r.physics_ms},
+                                                  {"ratio", r.ratio},
+                                                  {"physics_p99_ms", r.physics_p99_ms},
+                                                  {"ratio_p99", r.ratio_p99}};
       if (r.ratio <= 1.0) (*summary)["max_realtime_cubes"][m] = n;
       if (r.ratio_p99 <= 1.0) (*summary)["max_realtime_cubes_p99"][m] = n;
     }
@@ -175,7 +186,9 @@ bool MeasureAll(const std::filesystem::path& out, const T33Options& o, bool quie
 
 }  // namespace
 
-int RunT33(const std::filesystem::path& out, bool quiet) { return RunT33(out, quiet, T33Options{}); }
+int RunT33(const std::filesystem::path& out, bool quiet) {
+  return RunT33(out, quiet, T33Options{});
+}
 
 int RunT33Full(const std::filesystem::path& out, bool quiet) {
   T33Options o;
@@ -187,8 +200,9 @@ int RunT33Full(const std::filesystem::path& out, bool quiet) {
 int RunT33(const std::filesystem::path& out, bool quiet, const T33Options& o) {
   std::filesystem::create_directories(out);
   nlohmann::json summary;
-  std::string csv = "cubes,method_index,method,haptic_ms,physics_p50_ms,ratio,physics_p99_ms,"
-                    "ratio_p99\n";
+  std::string csv =
+      "cubes,method_index,method,haptic_ms,physics_p50_ms,ratio,physics_p99_ms,"
+      "ratio_p99\n";
   const bool finite = MeasureAll(out, o, quiet, &csv, &summary);
   WriteText(out / "t3_3.csv", csv);
   PlotT33(out, o, quiet);

@@ -14,9 +14,11 @@ namespace {
 
 using mrh::testing::HashingRecorder;
 
-std::uint64_t RunAndHash(const char* method) {
+std::uint64_t RunAndHash(const char* method, const char* torque_model = "contact") {
   HashingRecorder recorder;
-  auto engine = T41Engine(T41Settings(method));
+  EngineSettings settings = T41Settings(method);
+  settings.rendering.torque_model = torque_model;
+  auto engine = T41Engine(settings);
   (void)engine->Run(&recorder);
   return recorder.hash();
 }
@@ -33,6 +35,7 @@ std::uint64_t PushHash(const char* method) {
   s.rendering.rot_stiffness = 20.0;
   s.rendering.rot_damping = 0.1;
   s.rendering.friction = 0.3;
+  s.rendering.torque_model = "thesis";  // scenes/t3_6_push.json
   s.safety.ramp = false;
   s.realtime_priority = false;
   auto device = device::MakeScriptedDevice(
@@ -60,7 +63,9 @@ TEST(DeterminismTest, LockstepTraceMatchesGoldenHash) {
   EXPECT_EQ(RunAndHash("single-rate"), 11100527457005068796ull);
   // Issue 14: proxy-6dof's default reaction on the pushed T4.1 cube is "local" (it was
   // 5953774388721870096 with the plain J/Δt, now rendering.proxy_reaction "impulse").
-  EXPECT_EQ(RunAndHash("proxy-6dof"), 15725993211209883540ull);
+  EXPECT_EQ(RunAndHash("proxy-6dof", "thesis"), 15725993211209883540ull);
+  // The default torque model, "contact": the touched cube receives the proxy's contact forces.
+  EXPECT_EQ(RunAndHash("proxy-6dof"), 3454479041474762608ull);
   EXPECT_EQ(RunAndHash("local-dynamics"), 15579156835783394508ull);
   // Issue 14 item 2. T4.1's cube is slide-jointed, so it is not in the contact island, and the
   // fixed device does not move, so this equals proxy-6dof's "impulse" trace; the island itself

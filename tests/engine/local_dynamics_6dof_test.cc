@@ -34,6 +34,8 @@ EngineSettings PushSettings(const char* method, double physics_dt, double durati
   s.rendering.rot_stiffness = 20.0;
   s.rendering.rot_damping = 0.1;
   s.rendering.friction = 0.3;
+  // The thesis model of scenes/t3_6_push.json, whose bars these runs were set against.
+  s.rendering.torque_model = "thesis";
   s.safety.ramp = false;
   s.realtime_priority = false;
   return s;

@@ -47,12 +47,12 @@ struct RenderingSettings {
   /// "contact", which damps through the contacts).
   double rot_damping = 0.0;
   /// How the proxy's wrench relates to its contacts (docs/theory.md, "Torque models"):
-  /// "thesis" (default): eq. 3.8 with the rotation weight below; the objects receive the
+  /// "contact" (default): R_w = (k_r / k_t)·I, so the rendered wrench is the sum of the proxy's
+  /// contact forces and every touched object receives exactly minus its own contacts' forces,
+  /// where they act; "thesis": eq. 3.8 with the rotation weight below; the objects receive the
   /// rendered wrench, torque included, which is not a contact wrench (a point contact can be
-  /// given a moment); "contact": R_w = (k_r / k_t)·I, so the rendered wrench is the sum of the
-  /// proxy's contact forces and every touched object receives exactly minus its own contacts'
-  /// forces, where they act.
-  std::string torque_model = "thesis";
+  /// given a moment), so it is for static worlds (T3.1–T3.5).
+  std::string torque_model = "contact";
   /// Diagonal of the rotation weight R_w (m²), torque_model "thesis" only. Empty: the pointer's
   /// unit-mass inertia times rotation_weight_scale (SPEC §3.10).
   std::optional<Vec3> rotation_weight;
