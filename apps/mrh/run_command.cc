@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 
 #include "commands.h"
 #include "mrh/device/device.h"
@@ -105,8 +106,7 @@ void PrintDeviceFaults(const device::Device& device) {
                device.last_error());
   }
   if (c.torque_dropped > 0) {
-    fmt::print(stderr,
-               "mrh: warning: device: torque dropped on {} ticks (3-DOF force output)\n",
+    fmt::print(stderr, "mrh: warning: device: torque dropped on {} ticks (3-DOF force output)\n",
                c.torque_dropped);
   }
   if (c.packets_malformed > 0) {
@@ -183,10 +183,24 @@ int RunCommand(const RunOptions& o) {
       ProgressSettings{.enabled = !o.quiet && (o.progress || ::isatty(STDERR_FILENO) == 1),
                        .realtime = s.engine.mode == engine::Mode::kRealtime,
                        .duration = s.engine.duration});
-  const auto update = [&](double f) { bar.Update(f); };
-  const engine::RunStats stats = on_servo_thread
-                                     ? RunOnServoThread(s, servo, &recorder, update)
-                                     : engine->Run(&recorder, update);
+  const auto update = [&](double f) {
+    bar.Update(f);
+  };
+  engine::RunStats stats;
+  try {
+    stats = on_servo_thread ? RunOnServoThread(s, servo, &recorder, update)
+                            : engine->Run(&recorder, update);
+  } catch (...) {
+    // A fault (a diverged simulation) ends the run: keep what was recorded up to it, the
+    // evidence of what diverged, then report the fault.
+    bar.Finish();
+    try {
+      recorder.Close();
+      fmt::print("records up to the fault: {}\n", out.string());
+    } catch (const std::exception&) {  // the fault is the error to report, not a CSV's
+    }
+    throw;
+  }
   bar.Finish();
   recorder.Close();
   report::WriteSummary(out, stats, s.file.string(), s.scene.string());

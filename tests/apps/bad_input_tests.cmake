@@ -112,6 +112,16 @@ endfunction()
 diverged_test(StiffSpringResetsTheState
               "${err}.*diverging_scene\\.xml: the simulation diverged at t = .* bad number in .* body 'arm'.*likely causes"
               run ${fixtures}/diverging.json --out ${CMAKE_BINARY_DIR}/cli_diverged_spring)
+# The records up to the fault stay. The thrown ball (30 m/s) under gravity passes 40 m/s at
+# t = sqrt(40^2 - 30^2) / 9.81 = 2.697 s: 134 steps of 20 ms and 2680 ticks precede the fault.
+add_test(NAME cli.diverged.RecordsUpToTheFaultAreKept
+         COMMAND sh -c "rm -rf \"$1\" && \"$0\" run ${fixtures}/thrown.json --out \"$1\" -q \
+--set safety.max_body_speed=40 --set 'gravity=[0,0,-9.81]' --set duration=4; \
+test $? -eq 1 && test $(wc -l < \"$1/steps.csv\") -gt 130 && \
+test $(wc -l < \"$1/ticks.csv\") -gt 2600"
+                 ${mrh_bin} ${CMAKE_BINARY_DIR}/cli_diverged_records
+         WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+set_tests_properties(cli.diverged.RecordsUpToTheFaultAreKept PROPERTIES LABELS apps TIMEOUT 60)
 diverged_test(BodyFasterThanMaxBodySpeed
               "${err}.*thrown_scene\\.xml: the simulation diverged at t = 0\\.02 s: body 'ball' moves at 30 m/s, over safety\\.max_body_speed = 20 m/s"
               run ${fixtures}/thrown.json --out ${CMAKE_BINARY_DIR}/cli_diverged_thrown)
