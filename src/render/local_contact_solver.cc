@@ -11,7 +11,9 @@
 namespace mrh::render {
 namespace {
 
-bool Finite(const Vec3& v) { return v.allFinite(); }
+bool Finite(const Vec3& v) {
+  return v.allFinite();
+}
 
 // Two unit tangents completing the unit normal n to a right-handed frame.
 void Tangents(const Vec3& n, Vec3* t1, Vec3* t2) {
@@ -62,7 +64,9 @@ double VelocityChange(double dl, double inv_w) {
 
 // The point a row is matched on across periods: the contact point on A, or for a round A the
 // core point (the contact point on a rolling body moves over its surface from period to period).
-Vec3 WarmKey(const ir::LocalContactRow& c) { return c.r_A > 0.0 ? c.s_A : c.p_A; }
+Vec3 WarmKey(const ir::LocalContactRow& c) {
+  return c.r_A > 0.0 || c.e_A.x() > 0.0 ? c.s_A : c.p_A;
+}
 
 Mat3 InverseOrZero(const Mat3& I) {
   const double det = I.determinant();
@@ -205,6 +209,22 @@ void LocalContactSolver::Integrate(double dt) noexcept {
   }
 }
 
+namespace {
+
+// The point of an ellipsoid (semi-axes e, centre s and orientation q in the body frame of a
+// body at position p, orientation q_W, COM offset c) farthest along the world direction u.
+Vec3 EllipsoidSupport(const Vec3& p, const Quat& q_W, const Vec3& c, const Vec3& s, const Quat& q,
+                      const Vec3& e, const Vec3& u) noexcept {
+  const Quat q_WG = q_W * q;
+  const Vec3 u_G = q_WG.conjugate() * u;
+  const Vec3 eu = e.cwiseProduct(u_G);
+  const double norm = eu.norm();
+  const Vec3 x_G = norm > 0.0 ? Vec3(e.cwiseProduct(eu) / norm) : Vec3::Zero();
+  return p + q_W * (s - c) + q_WG * x_G;
+}
+
+}  // namespace
+
 // World frames, lever arms, effective masses and targets of this tick; warm start.
 void LocalContactSolver::PrepareRows(double dt) noexcept {
   for (std::size_t k = 0; k < rows_count_; ++k) {
@@ -226,10 +246,13 @@ void LocalContactSolver::PrepareRows(double dt) noexcept {
           if (between.squaredNorm() > 1e-18) n = between.normalized();
         }
         pB = sB + r.c.r_B * n;
+      } else if (r.c.e_B.x() > 0.0) {
+        pB = EllipsoidSupport(B.p, B.q, B.p_BCm, r.c.s_B, r.c.q_B, r.c.e_B, n);
       }
       r.rB = pB - B.p;
     }
     if (r.c.r_A > 0.0) pA = A.p + A.q * (r.c.s_A - A.p_BCm) - r.c.r_A * n;  // A's support point
+    if (r.c.e_A.x() > 0.0) pA = EllipsoidSupport(A.p, A.q, A.p_BCm, r.c.s_A, r.c.q_A, r.c.e_A, -n);
     r.rA = pA - A.p;
     r.d[0] = n;
     FrictionDirections(n, t, r.c.pyramidal, &r.d[1], &r.d[2]);

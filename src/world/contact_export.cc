@@ -57,9 +57,9 @@ double ContactExporter::GeomMargin(int g) const {
   const double omega = std::sqrt(qvel[3] * qvel[3] + qvel[4] * qvel[4] + qvel[5] * qvel[5]);
   const mjtNum* gp = d.geom_xpos + 3 * g;
   const mjtNum* bp = d.xpos + 3 * body;
-  const double offset = std::sqrt((gp[0] - bp[0]) * (gp[0] - bp[0]) +
-                                  (gp[1] - bp[1]) * (gp[1] - bp[1]) +
-                                  (gp[2] - bp[2]) * (gp[2] - bp[2]));
+  const double offset =
+      std::sqrt((gp[0] - bp[0]) * (gp[0] - bp[0]) + (gp[1] - bp[1]) * (gp[1] - bp[1]) +
+                (gp[2] - bp[2]) * (gp[2] - bp[2]));
   const double horizon = 2.0 * m.opt.timestep;
   return std::max(margin, horizon * (v + omega * (offset + m.geom_rbound[g])));
 }
@@ -228,6 +228,17 @@ double RoundCore(const mjModel& m, const mjData& d, int g, const Vec3& p, Vec3* 
   return 0.0;
 }
 
+// An ellipsoid geom g: its centre, semi-axes and world orientation; false for any other shape.
+bool Ellipsoid(const mjModel& m, const mjData& d, int g, Vec3* centre, Vec3* axes, Quat* q_WG) {
+  if (m.geom_type[g] != mjGEOM_ELLIPSOID) return false;
+  *centre = ToVec3(d.geom_xpos + 3 * g);
+  *axes = ToVec3(m.geom_size + 3 * g);
+  mjtNum q[4];
+  mju_mat2Quat(q, d.geom_xmat + 9 * g);
+  *q_WG = Quat(q[0], q[1], q[2], q[3]);
+  return true;
+}
+
 }  // namespace
 
 // One row per contact with an island body: A is the island body (geom2's if both are), the
@@ -274,10 +285,23 @@ std::uint32_t ContactExporter::AddRows(ir::LocalContactModel* out) {
       row.r_A = r;
       row.s_A = X_WA.Inverse() * core;
     }
+    Vec3 axes;
+    Quat q_WG;
+    if (Ellipsoid(m, d, gA, &core, &axes, &q_WG)) {
+      row.e_A = axes;
+      row.s_A = X_WA.Inverse() * core;
+      row.q_A = X_WA.q.conjugate() * q_WG;
+    }
     if (row.b >= 0) {
-      if (const double r = RoundCore(m, d, a_is_2 ? con.geom1 : con.geom2, pB, &core); r > 0.0) {
+      const Pose& X_WB = out->bodies[static_cast<std::size_t>(row.b)].X_WB;
+      const int gB = a_is_2 ? con.geom1 : con.geom2;
+      if (const double r = RoundCore(m, d, gB, pB, &core); r > 0.0) {
         row.r_B = r;
-        row.s_B = out->bodies[static_cast<std::size_t>(row.b)].X_WB.Inverse() * core;
+        row.s_B = X_WB.Inverse() * core;
+      } else if (Ellipsoid(m, d, gB, &core, &axes, &q_WG)) {
+        row.e_B = axes;
+        row.s_B = X_WB.Inverse() * core;
+        row.q_B = X_WB.q.conjugate() * q_WG;
       }
     }
     if (!out->contacts.PushBack(row)) return ir::kStatusContactsFull;

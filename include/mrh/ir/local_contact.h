@@ -18,13 +18,13 @@ inline constexpr std::size_t kMaxLocalContacts = 192;
 
 /// A dynamic body of the local island, state at the end of the physics step.
 struct LocalIslandBody {
-  int body = -1;               ///< world body id
-  int motion = -1;             ///< index into PhysicsSnapshot::bodies, -1: not a pointer neighbor
-  double mass = 0.0;           ///< kg
+  int body = -1;      ///< world body id
+  int motion = -1;    ///< index into PhysicsSnapshot::bodies, -1: not a pointer neighbor
+  double mass = 0.0;  ///< kg
   Mat3 inertia_B = Mat3::Zero();  ///< rotational inertia about the COM, body axes (kg·m²)
-  Pose X_WB;                   ///< body pose (world)
-  Vec3 p_BCm = Vec3::Zero();   ///< COM in the body frame (m)
-  Twist V_WCm;                 ///< COM twist (world)
+  Pose X_WB;                      ///< body pose (world)
+  Vec3 p_BCm = Vec3::Zero();      ///< COM in the body frame (m)
+  Twist V_WCm;                    ///< COM twist (world)
   /// true: the haptic side must restart this body from X_WB / V_WCm even if it simulated it in
   /// the previous period (the world could not take its local state).
   bool reset = false;
@@ -35,17 +35,17 @@ struct LocalIslandBody {
 /// margin (so contacts about to close are included). Points and normal are fixed on their
 /// bodies, so the gap follows the local poses.
 struct LocalContactRow {
-  int a = -1;                  ///< index into LocalContactModel::bodies
-  int b = -1;                  ///< index into LocalContactModel::bodies, -1: static (world frame)
-  Vec3 p_A = Vec3::Zero();     ///< contact point on A's surface, A's body frame (m)
-  Vec3 p_B = Vec3::Zero();     ///< contact point on B's surface, B's body frame or world (m)
-  Vec3 n_B = Vec3::UnitZ();    ///< unit normal from B toward A, B's body frame or world
+  int a = -1;                ///< index into LocalContactModel::bodies
+  int b = -1;                ///< index into LocalContactModel::bodies, -1: static (world frame)
+  Vec3 p_A = Vec3::Zero();   ///< contact point on A's surface, A's body frame (m)
+  Vec3 p_B = Vec3::Zero();   ///< contact point on B's surface, B's body frame or world (m)
+  Vec3 n_B = Vec3::UnitZ();  ///< unit normal from B toward A, B's body frame or world
   /// Signed distance when exported (m, < 0: penetration). The local solve uses the gap at the
   /// local poses; only its hard model (LocalContactSolverSettings::soft_contacts = false) uses
   /// this, holding the shallowest exported penetration of the body pair's rows (MuJoCo's soft
   /// resting depth) rather than pushing it out.
   double dist0 = 0.0;
-  double mu = 0.0;             ///< Coulomb friction coefficient (0: frictionless, condim 1)
+  double mu = 0.0;  ///< Coulomb friction coefficient (0: frictionless, condim 1)
   /// The first tangent of MuJoCo's contact frame, in the frame of n_B (zero: none given, any
   /// tangent frame will do). The friction set depends on it when `pyramidal`.
   Vec3 t_B = Vec3::Zero();
@@ -68,12 +68,19 @@ struct LocalContactRow {
   Vec3 s_A = Vec3::Zero();
   double r_B = 0.0;
   Vec3 s_B = Vec3::Zero();
+  /// Ellipsoids: e_A > 0 (semi-axes, m) when A's geom is an ellipsoid centred at s_A with
+  /// orientation q_A (A's body frame); the local solve then puts A's contact at the ellipsoid's
+  /// support point along −n each tick, for the reason above. Likewise e_B / q_B (support along n).
+  Vec3 e_A = Vec3::Zero();
+  Quat q_A = Quat::Identity();
+  Vec3 e_B = Vec3::Zero();
+  Quat q_B = Quat::Identity();
 };
 
 /// Everything the contact local model needs for one period (physics → haptic, in the snapshot).
 struct LocalContactModel {
-  bool valid = false;          ///< false: the method does not use the contact model
-  Vec3 gravity = Vec3::Zero(); ///< m/s², world
+  bool valid = false;           ///< false: the method does not use the contact model
+  Vec3 gravity = Vec3::Zero();  ///< m/s², world
   FixedVector<LocalIslandBody, kMaxLocalBodies> bodies;
   FixedVector<LocalContactRow, kMaxLocalContacts> contacts;
 };
