@@ -62,6 +62,10 @@ constexpr Entry kExperiments[] = {
     {"t4.push",
      "pushing resting boxes across a floor with friction: force and trajectory vs single-rate",
      internal::RunT4Push},
+    {"d1",
+     "demo D1: a simulated hand sweeps through 80 boxes, spheres, capsules and meshes on a table "
+     "in real time (local-dynamics): haptic rate, overruns, step times, peak memory; --full: 60 s",
+     internal::RunD1, internal::RunD1Full},
     {"t4.latency", "haptic ticks from the user's force onset to the touched object's response",
      internal::RunLatency},
 };
