@@ -121,9 +121,12 @@ TickInput Input(std::int64_t tick) {
   return in;
 }
 
+// Argument: 0 the thesis torque model, 1 the contact model (the sessions' default).
 void BM_LocalDynamics6dofTick1000Contacts8Objects(benchmark::State& state) {
   const auto snapshot = Snapshot();
-  const auto method = MakeLocalDynamics6dofHaptic(Settings());
+  render::ProxyRendererSettings settings = Settings();
+  if (state.range(0) == 1) settings.torque_model = render::ProxyTorqueModel::kContact;
+  const auto method = MakeLocalDynamics6dofHaptic(settings);
   auto report = std::make_unique<ir::HapticReport>();
   std::vector<double> wall_us, cpu_us;
   wall_us.reserve(1 << 20);
@@ -164,7 +167,7 @@ void BM_LocalDynamics6dofTick1000Contacts8Objects(benchmark::State& state) {
   state.counters["cpu_p99_us"] = Percentile(cpu_us, 99.0);
 }
 
-BENCHMARK(BM_LocalDynamics6dofTick1000Contacts8Objects);
+BENCHMARK(BM_LocalDynamics6dofTick1000Contacts8Objects)->ArgName("contact_model")->Arg(0)->Arg(1);
 
 }  // namespace
 }  // namespace mrh::haptic
