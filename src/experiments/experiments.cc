@@ -24,7 +24,7 @@ constexpr Entry kExperiments[] = {
      internal::RunT32},
     {"t3.3",
      "real-time computation ratio vs cubes: proxy-6dof, contact-volume (B2), virtual-coupling "
-     "(B3), penalty-sum (B5) (figs. 3.15-3.16); --full: 3-30 cubes",
+     "(B3), penalty-sum (B5) (figs. 3.15-3.16); --full: each method to its real-time limit",
      internal::RunT33, internal::RunT33Full},
     {"t3.4",
      "6-DOF proxy tick time vs contact points, N-gon prism, with/without friction "

@@ -42,13 +42,27 @@ namespace mrh::experiments::internal {
 struct T33Options {
   std::vector<std::string> methods = {"proxy-6dof", "contact-volume", "virtual-coupling",
                                       "penalty-sum"};
-  std::vector<int> cubes = {3, 9, 18};
-  double duration = 0.3;  ///< s simulated per run
+  std::vector<int> cubes = {3, 9, 18};  ///< to_limit: the first count only
+  double duration = 0.3;                ///< s simulated per run
+  /// Grow each method's cube count from cubes.front() (by 3 up to 30, then by half) until its
+  /// ratio passes 1 or the count passes max_cubes; summary["limit"] has each method's maximum.
+  bool to_limit = false;
+  int max_cubes = 600;  ///< the scene-size limit of to_limit
 };
+
+/// Where a method's real-time computation ratio passes 1 as the cube count grows.
+struct T33Limit {
+  int max_realtime = 0;  ///< largest measured count with ratio ≤ 1 (0: none)
+  int first_over = 0;  ///< first measured count with ratio > 1 (0: the scene-size limit came first)
+};
+
+/// Measures ratio(n) for n = first (rounded down to a multiple of 3, at least 3), +3 up to 30,
+/// then ×1.5 (to a multiple of 3), until a ratio passes 1 or n passes max_cubes.
+T33Limit GrowToLimit(int first, int max_cubes, const std::function<double(int)>& ratio);
 
 int RunT33(const std::filesystem::path& out, bool quiet);
 int RunT33(const std::filesystem::path& out, bool quiet, const T33Options& options);
-/// `mrh experiment t3.3 --full`: 3–30 cubes in steps of 3, 1 s per run.
+/// `mrh experiment t3.3 --full`: every method to its limit (GrowToLimit from 3 cubes, 1 s per run).
 int RunT33Full(const std::filesystem::path& out, bool quiet);
 
 /// T4.1: single-rate, impulse and local-dynamics on the moving 60 kg cube, plus a mass × speed
@@ -249,6 +263,7 @@ struct D1Options {
   /// check that its objects stay on the table within the same speed bound.
   bool reference = true;
 };
+
 int RunD1(const std::filesystem::path& out, bool quiet);
 int RunD1(const std::filesystem::path& out, bool quiet, const D1Options& options);
 /// `mrh experiment d1 --full`: 60 s in real time.

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "experiment_test_util.h"
 #include "experiments/experiments_impl.h"
@@ -46,6 +47,33 @@ TEST_F(T33ExperimentTest, ReportsMaxRealtimeCubesForEveryMethod) {
     EXPECT_TRUE((*summary_)["max_realtime_cubes"].contains(m)) << m;
     EXPECT_TRUE(std::isfinite((*summary_)["cost_vs_proxy_at_max_cubes"][m].get<double>())) << m;
   }
+}
+
+// --full grows each method's count until its ratio passes 1: by 3 up to 30, then by half.
+TEST(T33GrowToLimitTest, StopsAtTheFirstCountOverRealTime) {
+  std::vector<int> measured;
+  const T33Limit limit = GrowToLimit(3, 600, [&](int n) {
+    measured.push_back(n);
+    return n / 100.0;
+  });
+  EXPECT_EQ(limit.max_realtime, 69);
+  EXPECT_EQ(limit.first_over, 105);
+  const std::vector<int> expected = {3, 6, 9, 12, 15, 18, 21, 24, 27, 30, 45, 69, 105};
+  EXPECT_EQ(measured, expected);
+}
+
+TEST(T33GrowToLimitTest, ReportsTheSceneLimitWhenNothingPassesRealTime) {
+  const T33Limit limit = GrowToLimit(3, 50, [](int) {
+    return 0.5;
+  });
+  EXPECT_EQ(limit.max_realtime, 45);
+  EXPECT_EQ(limit.first_over, 0);
+  EXPECT_EQ(GrowToLimit(3, 600,
+                        [](int) {
+                          return 1.5;
+                        })
+                .max_realtime,
+            0);
 }
 
 }  // namespace
