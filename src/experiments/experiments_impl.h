@@ -314,8 +314,6 @@ struct T37Result {
   double peak_spin = 0.0;       ///< rad/s
   Vec3 end = Vec3::Zero();      ///< m, COM at the end (world)
   double yaw = 0.0;             ///< rad, heading of the body's x axis about +z at the end
-  double end_speed = 0.0;       ///< m/s, horizontal COM speed at the end
-  double end_spin = 0.0;        ///< rad/s at the end
 };
 
 /// A run judged by the bars against the analytic expectations and the reference run

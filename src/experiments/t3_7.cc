@@ -196,8 +196,6 @@ T37Result Analyze(const Case& c, const Variant& v, const Tap& tap) {
     const world::BodyState& end = tap.steps.back().state;
     r.end = end.p_WCm;
     r.yaw = Yaw(end.X_WB.q);
-    r.end_speed = end.V_WCm.v.head<2>().norm();
-    r.end_spin = end.V_WCm.w.norm();
   }
   return r;
 }
