@@ -251,9 +251,17 @@ void LocalContactSolver::PrepareRows(double dt) noexcept {
       }
       r.rB = pB - B.p;
     }
+    const bool round_A = r.c.r_A > 0.0 || r.c.e_A.x() > 0.0;
     if (r.c.r_A > 0.0) pA = A.p + A.q * (r.c.s_A - A.p_BCm) - r.c.r_A * n;  // A's support point
     if (r.c.e_A.x() > 0.0) pA = EllipsoidSupport(A.p, A.q, A.p_BCm, r.c.s_A, r.c.q_A, r.c.e_A, -n);
     r.rA = pA - A.p;
+    if (round_A && r.c.b >= 0 && !(r.c.r_B > 0.0 || r.c.e_B.x() > 0.0)) {
+      // A round body touches B's face where A's support point meets it, wherever it has rolled
+      // or slid along the face since the export: B's lever arm goes there, not to the point
+      // fixed on B at the export, or B's torque would not be the moment of the contact force.
+      const Body& B = bodies_[static_cast<std::size_t>(r.c.b)];
+      r.rB = pA - n.dot(pA - pB) * n - B.p;
+    }
     r.d[0] = n;
     FrictionDirections(n, t, r.c.pyramidal, &r.d[1], &r.d[2]);
     for (int j = 0; j < 3; ++j) {

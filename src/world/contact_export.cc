@@ -228,6 +228,12 @@ double RoundCore(const mjModel& m, const mjData& d, int g, const Vec3& p, Vec3* 
   return 0.0;
 }
 
+// A geom whose contact point the local solve re-derives each tick (sphere, capsule, ellipsoid).
+bool IsRound(const mjModel& m, int g) {
+  const int type = m.geom_type[g];
+  return type == mjGEOM_SPHERE || type == mjGEOM_CAPSULE || type == mjGEOM_ELLIPSOID;
+}
+
 // An ellipsoid geom g: its centre, semi-axes and world orientation; false for any other shape.
 bool Ellipsoid(const mjModel& m, const mjData& d, int g, Vec3* centre, Vec3* axes, Quat* q_WG) {
   if (m.geom_type[g] != mjGEOM_ELLIPSOID) return false;
@@ -241,8 +247,10 @@ bool Ellipsoid(const mjModel& m, const mjData& d, int g, Vec3* centre, Vec3* axe
 
 }  // namespace
 
-// One row per contact with an island body: A is the island body (geom2's if both are), the
-// normal points from B to A, points on each surface in its own body frame (world for static B).
+// One row per contact with an island body: A is the island body (geom2's if both are, unless
+// only geom1 is round: the normal of a round body against another shape must stay fixed on the
+// other body, and B's normal is the one that follows B), the normal points from B to A, points on
+// each surface in its own body frame (world for static B).
 std::uint32_t ContactExporter::AddRows(ir::LocalContactModel* out) {
   const World::Impl& w = *world_->impl_;
   const mjModel& m = *w.model;
@@ -258,10 +266,10 @@ std::uint32_t ContactExporter::AddRows(ir::LocalContactModel* out) {
     const Vec3 pos = ToVec3(con.pos);
     const Vec3 p1 = pos - 0.5 * con.dist * n12;
     const Vec3 p2 = pos + 0.5 * con.dist * n12;
-    const bool a_is_2 = i2 >= 0;
+    const bool a_is_2 = i2 >= 0 && !(i1 >= 0 && IsRound(m, con.geom1) && !IsRound(m, con.geom2));
     ir::LocalContactRow row;
     row.a = a_is_2 ? i2 : i1;
-    row.b = a_is_2 ? i1 : -1;
+    row.b = a_is_2 ? i1 : i2;  // i2 < 0: B is static
     const Vec3 pA = a_is_2 ? p2 : p1;
     const Vec3 pB = a_is_2 ? p1 : p2;
     const Vec3 n = a_is_2 ? n12 : Vec3(-n12);
