@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
 // local-dynamics, contact local model, haptic half: the island at 1 kHz and 3-DOF penalty
 // rendering against planes fixed on its bodies.
+#include "local_contact_haptic.h"
+
 #include <algorithm>
 
-#include "local_contact_haptic.h"
 #include "mrh/render/point_penalty.h"
 
 namespace mrh::haptic::internal {
@@ -29,6 +30,27 @@ void LocalContactHaptic::Adopt(const ir::PhysicsSnapshot& snapshot) noexcept {
     rendered_n_[i] = previous_n_[i];
   }
 }
+
+namespace {
+
+// The tangent plane of a round object (sphere, capsule) facing the pointer centre p_WP: normal
+// from the core point nearest p_WP, point on the surface. Keeps n_W and p_WO when p_WP is on
+// the core (no direction).
+void RoundPlane(const Pose& X_WB, const ir::PointContact& c, const Vec3& p_WP, Vec3* n_W,
+                Vec3* p_WO) noexcept {
+  const Vec3 a = X_WB * c.core_B[0];
+  const Vec3 ab = X_WB * c.core_B[1] - a;
+  const double len2 = ab.squaredNorm();
+  const double s = len2 > 0.0 ? std::clamp((p_WP - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+  const Vec3 core = a + s * ab;
+  const Vec3 dir = p_WP - core;
+  const double len = dir.norm();
+  if (!(len > 1e-12)) return;
+  *n_W = dir / len;
+  *p_WO = core + c.r * *n_W;
+}
+
+}  // namespace
 
 void LocalContactHaptic::HapticTick(const TickInput& in, TickOutput* out) noexcept {
   const double alpha = in.alpha();
@@ -59,6 +81,7 @@ void LocalContactHaptic::RenderContacts(const TickInput& in, double alpha,
       const Pose X_WB = solver_.X_WB(l);
       n_W = X_WB.q * n_B_[i];
       p_WO = X_WB * c.p_BC;
+      if (c.r > 0.0) RoundPlane(X_WB, c, in.X_WP.p, &n_W, &p_WO);
       v_WO = solver_.PointVelocity(l, p_WO);
       p_WCm = solver_.p_WCm(l);
     } else {

@@ -35,6 +35,16 @@ Vec3 ContactNormal(const geometry::DistanceResult& r, const Vec3& centre, double
   return dir / len;
 }
 
+// The core segment of a sphere or capsule geom, in its body frame (MJCF: a capsule's axis is
+// the geom's z, half-length size[1]).
+void SetRoundCore(const world::GeomInfo& info, ir::PointContact* contact) {
+  const geometry::Shape& s = info.shape;
+  if (s.type != geometry::ShapeType::kSphere && s.type != geometry::ShapeType::kCapsule) return;
+  const double h = s.type == geometry::ShapeType::kCapsule ? s.size.y() : 0.0;
+  contact->r = s.size.x();
+  contact->core_B = {info.X_BG * Vec3(0.0, 0.0, -h), info.X_BG * Vec3(0.0, 0.0, h)};
+}
+
 }  // namespace
 
 PointIrBuilder::PointIrBuilder(const world::World& world, int pointer_body, double radius,
@@ -83,6 +93,7 @@ void PointIrBuilder::Build(const world::World& world, const Pose& X_WP,
     contact.p_BC = X_WB.Inverse() * r.p_WB;
     contact.n_W = ContactNormal(r, X_WP.p, radius_);
     contact.distance = r.distance;
+    SetRoundCore(world.geom(c.geom), &contact);
     (void)out->contacts.PushBack(contact);
   }
 }

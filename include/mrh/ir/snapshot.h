@@ -2,6 +2,8 @@
 // Intermediate representations exchanged between the physics and haptic threads (fixed capacity).
 #pragma once
 
+#include <array>
+
 #include <cstdint>
 
 #include <Eigen/Core>
@@ -65,6 +67,13 @@ struct PointContact {
   Vec3 p_BC = Vec3::Zero();     ///< plane point on the object, body frame (m)
   Vec3 n_W = Vec3::UnitZ();     ///< unit plane normal, object → pointer, world frame
   double distance = 0.0;        ///< signed pointer–object distance when built (m)
+  /// Round objects: r > 0 when the object's geom is a sphere or a capsule, whose surface is the
+  /// points within r of the segment core_B[0]–core_B[1] (body frame; one point for a sphere). A
+  /// local simulation that turns the body re-derives the plane each tick from the core point
+  /// nearest the pointer: a plane fixed on a rolling body turns with it, and a force along its
+  /// turned normal would drive the roll.
+  double r = 0.0;
+  std::array<Vec3, 2> core_B{Vec3::Zero(), Vec3::Zero()};
 };
 
 /// One pointer-geom/object-geom pair of the geometric IR (SPEC §3.3.3): a plane fixed on the
