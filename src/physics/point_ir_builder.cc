@@ -42,6 +42,7 @@ PointIrBuilder::PointIrBuilder(const world::World& world, int pointer_body, doub
     : pointer_body_(pointer_body),
       radius_(radius),
       rendering_(rendering),
+      materials_(world, rendering),
       pointer_shape_(PointerSphere(radius)),
       motions_(world) {
   for (int g = 0; g < world.num_geoms(); ++g) {
@@ -83,6 +84,7 @@ void PointIrBuilder::Build(const world::World& world, const Pose& X_WP,
     contact.p_BC = X_WB.Inverse() * r.p_WB;
     contact.n_W = ContactNormal(r, X_WP.p, radius_);
     contact.distance = r.distance;
+    contact.material = materials_.of(c.geom);
     (void)out->contacts.PushBack(contact);
   }
 }

@@ -9,6 +9,7 @@
 #include "mrh/core/fixed_vector.h"
 #include "mrh/core/spatial.h"
 #include "mrh/ir/local_contact.h"
+#include "mrh/ir/material.h"
 
 namespace mrh::ir {
 
@@ -65,6 +66,7 @@ struct PointContact {
   Vec3 p_BC = Vec3::Zero();     ///< plane point on the object, body frame (m)
   Vec3 n_W = Vec3::UnitZ();     ///< unit plane normal, object → pointer, world frame
   double distance = 0.0;        ///< signed pointer–object distance when built (m)
+  ContactMaterial material;     ///< the geom's haptic material (none: rendering.*)
 };
 
 /// One pointer-geom/object-geom pair of the geometric IR (SPEC §3.3.3): a plane fixed on the
@@ -81,6 +83,7 @@ struct GeometricPair {
   /// true: points are penetration-region vertices below the plane; false: the fallback (not
   /// penetrating, touching, or region failed): the pointer-side closest point only.
   bool penetrating = false;
+  ContactMaterial material;     ///< the object geom's haptic material (none: rendering.*)
 };
 
 /// A contact point of a geometric pair, fixed on the pointer.
