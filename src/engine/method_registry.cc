@@ -178,6 +178,7 @@ Method MakeMethod(const std::string& name, const MethodContext& context) {
     }
     factory = it->second.factory;
   }
+  physics::CheckMaterialsUsed(*context.world, context.settings->rendering);
   return factory(context);
 }
 

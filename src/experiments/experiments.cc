@@ -66,6 +66,10 @@ constexpr Entry kExperiments[] = {
      "demo D1: a simulated hand sweeps through 80 boxes, spheres, capsules and meshes on a table "
      "in real time (local-dynamics): haptic rate, overruns, step times, peak memory; --full: 60 s",
      internal::RunD1, internal::RunD1Full},
+    {"d3",
+     "demo D3: taps on aluminium, wood and rubber at three speeds; the contact transient's f, B "
+     "and a*v fitted back, and each material's stiffness at rest",
+     internal::RunD3},
     {"t4.latency", "haptic ticks from the user's force onset to the touched object's response",
      internal::RunLatency},
 };

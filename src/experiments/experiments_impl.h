@@ -269,6 +269,15 @@ int RunD1(const std::filesystem::path& out, bool quiet, const D1Options& options
 /// `mrh experiment d1 --full`: 60 s in real time.
 int RunD1Full(const std::filesystem::path& out, bool quiet);
 
+/// Demo D3, material display: scenes/d3.json's aluminium, wood and rubber blocks each tapped at
+/// 0.05, 0.1 and 0.2 m/s (scripted device, lockstep); fits f, B and a·v of the contact transient
+/// back from the rendered force after the stop, and the stiffness felt at rest. Writes d3.csv,
+/// d3.md, d3_transients.csv, d3_spectra.csv, d3.png and summary.json; returns 0 if every check
+/// passes (f within 5 %, B within 25 %, a·v within 15 %, stiffness at rest within 1 %).
+int RunD3(const std::filesystem::path& out, bool quiet);
+/// D3's gnuplot figure from the CSVs in `out`.
+void PlotD3(const std::filesystem::path& out, bool quiet);
+
 // Chapter 3 (method proxy-6dof).
 
 /// One case × method of t3.6 (issue 14): rendered |f| and |τ| statistics over 2–5 s, peak |ω|

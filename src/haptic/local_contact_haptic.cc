@@ -59,6 +59,7 @@ void LocalContactHaptic::HapticTick(const TickInput& in, TickOutput* out) noexce
   out->status = 0;
   for (ir::BodyImpulse& entry : period_.impulses) entry.last_force = Vec3::Zero();
   RenderContacts(in, alpha, out);
+  render::AddTransientForce(in.dt, &transients_, &out->w_W.f);
   if (!solver_.Step(in.dt)) {
     ++counters_.local_faults;
     out->status |= kLocalBodyFault;
@@ -72,6 +73,8 @@ void LocalContactHaptic::RenderContacts(const TickInput& in, double alpha,
                                         TickOutput* out) noexcept {
   for (std::size_t i = 0; i < snapshot_.contacts.size(); ++i) {
     const ir::PointContact& c = snapshot_.contacts[i];
+    // The geom's material, or rendering.* (3-DOF contacts have no friction).
+    const ir::ContactGains g = ir::GainsOf(c.material, {stiffness_, damping_, 0.0});
     const auto motion = static_cast<std::size_t>(c.motion);
     const ir::BodyMotion& body = snapshot_.bodies[motion];
     const int local = local_of_motion_[motion];
@@ -93,10 +96,12 @@ void LocalContactHaptic::RenderContacts(const TickInput& in, double alpha,
     }
     rendered_n_[i] = n_W;
     const render::SphereContact contact = render::TouchSpherePlane(
-        p_WO, v_WO, n_W, in.X_WP.p, in.V_WP, radius_, stiffness_, damping_);
+        p_WO, v_WO, n_W, in.X_WP.p, in.V_WP, radius_, g.stiffness, g.damping);
     if (contact.result.magnitude <= 0.0) continue;
     const Vec3& f_d = contact.result.f_W;
     ++out->contacts;
+    transients_.Touch(c.geom, contact.state.n_W, render::ApproachSpeed(contact),
+                      c.material.vibration);
     const Wrench w = render::PointerWrench(contact, in.X_WP.p);
     out->w_W.f += w.f;
     out->w_W.tau += w.tau;

@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "mrh/haptic/method_haptic.h"
+#include "mrh/render/contact_transients.h"
 #include "mrh/haptic/methods.h"
 #include "mrh/render/local_contact_solver.h"
 #include "normal_carry.h"
@@ -56,6 +57,8 @@ class LocalContactHaptic final : public MethodHaptic {
   ContactNormals previous_n_{};
   ContactNormals rendered_n_{};
   ir::HapticReport period_;
+  // Material vibration at contact onset, added to the rendered force.
+  render::ContactTransients transients_;
   LocalContactHapticCounters counters_;
 };
 

@@ -92,6 +92,8 @@ void LocalDynamics6dofHaptic::HapticTick(const TickInput& in, TickOutput* out) n
   out->X_WQ = output_.X_WQ;
   out->contacts = output_.diagnostics.contacts;
   out->status = output_.diagnostics.status;
+  render::TouchPairs(tick_ir_, in.X_WP, in.V_WP, &transients_);
+  render::AddTransientForce(in.dt, &transients_, &out->w_W.f);
   tick_dt_ = in.dt;
   PushLocalBodies();
   if (!solver_.Step(in.dt)) out->status |= kLocal6dofBodyFault;

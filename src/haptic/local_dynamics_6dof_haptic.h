@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "mrh/haptic/method_haptic.h"
+#include "mrh/render/contact_transients.h"
 #include "mrh/render/ir_interpolator.h"
 #include "mrh/render/local_contact_solver.h"
 #include "mrh/render/proxy_renderer.h"
@@ -71,6 +72,8 @@ class LocalDynamics6dofHaptic final : public MethodHaptic {
   // Per tick pair (the interpolator's output order): the plane normal in the body frame.
   std::array<Vec3, ir::kMaxGeometricPairs> n_B_{};
   ir::HapticReport period_;
+  // Material vibration at contact onset, added to the rendered force.
+  render::ContactTransients transients_;
 };
 
 }  // namespace mrh::haptic::internal

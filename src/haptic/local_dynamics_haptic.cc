@@ -51,6 +51,7 @@ void LocalDynamicsHaptic::HapticTick(const TickInput& in, TickOutput* out) noexc
     }
   }
   RenderContacts(in, alpha, out);
+  render::AddTransientForce(in.dt, &transients_, &out->w_W.f);
   StepLocalBodies(in, out);
   ++haptic_counters_.ticks;
 }
@@ -61,6 +62,8 @@ void LocalDynamicsHaptic::RenderContacts(const TickInput& in, double alpha,
                                          TickOutput* out) noexcept {
   for (std::size_t i = 0; i < snapshot_.contacts.size(); ++i) {
     const ir::PointContact& c = snapshot_.contacts[i];
+    // The geom's material, or rendering.* (3-DOF contacts have no friction).
+    const ir::ContactGains g = ir::GainsOf(c.material, {stiffness_, damping_, 0.0});
     const auto motion = static_cast<std::size_t>(c.motion);
     const ir::BodyMotion& body = snapshot_.bodies[motion];
     const Vec3 n = render::BlendNormal(previous_n_[i], c.n_W, alpha);
@@ -69,17 +72,19 @@ void LocalDynamicsHaptic::RenderContacts(const TickInput& in, double alpha,
     Vec3 p_WCm;
     if (body.has_dynamics) {
       contact =
-          local()[motion].TouchSphere(c.p_BC, n, in.X_WP.p, in.V_WP, radius_, stiffness_, damping_);
+          local()[motion].TouchSphere(c.p_BC, n, in.X_WP.p, in.V_WP, radius_, g.stiffness, g.damping);
       p_WCm = local()[motion].p_WCm();
     } else {
       const render::BlendedPoint o = render::BlendBodyPoint(body, c.p_BC, alpha);
       p_WCm = o.p_WCm;
       contact = render::TouchSpherePlane(o.p_WO, o.v_WO, n, in.X_WP.p, in.V_WP, radius_,
-                                         stiffness_, damping_);
+                                         g.stiffness, g.damping);
     }
     if (contact.result.magnitude <= 0.0) continue;
     const Vec3& f_d = contact.result.f_W;
     ++out->contacts;
+    transients_.Touch(c.geom, contact.state.n_W, render::ApproachSpeed(contact),
+                      c.material.vibration);
     const Wrench w = render::PointerWrench(contact, in.X_WP.p);
     out->w_W.f += w.f;
     out->w_W.tau += w.tau;

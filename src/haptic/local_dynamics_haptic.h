@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "mrh/haptic/method_haptic.h"
+#include "mrh/render/contact_transients.h"
 #include "mrh/haptic/methods.h"
 #include "mrh/render/local_body.h"
 #include "normal_carry.h"
@@ -68,6 +69,8 @@ class LocalDynamicsHaptic final : public MethodHaptic {
   std::array<Vec3, ir::kMaxNeighborBodies> tick_force_{};
   std::array<Vec3, ir::kMaxNeighborBodies> tick_torque_{};
   ir::HapticReport period_;
+  // Material vibration at contact onset, added to the rendered force.
+  render::ContactTransients transients_;
   LocalDynamicsHapticCounters haptic_counters_;
 };
 

@@ -14,6 +14,8 @@ void PenaltySumHaptic::HapticTick(const TickInput& in, TickOutput* out) noexcept
   out->w_W = output_.w_W;
   out->contacts = output_.contacts;
   out->status = output_.status;
+  render::TouchPairs(tick_ir_, in.X_WP, in.V_WP, &transients_);
+  render::AddTransientForce(in.dt, &transients_, &out->w_W.f);
   render::AddReactionImpulses(output_.reactions, in.dt, &period_);
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "mrh/haptic/method_haptic.h"
+#include "mrh/render/contact_transients.h"
 #include "mrh/render/ir_interpolator.h"
 #include "mrh/render/penalty_sum.h"
 
@@ -32,6 +33,8 @@ class PenaltySumHaptic final : public MethodHaptic {
   render::TickIr tick_ir_;
   render::PenaltySumOutput output_;
   ir::HapticReport period_;
+  // Material vibration at contact onset, added to the rendered force.
+  render::ContactTransients transients_;
 };
 
 }  // namespace mrh::haptic::internal

@@ -27,15 +27,19 @@ void PointPenaltyHaptic::HapticTick(const TickInput& in, TickOutput* out) noexce
   }
   for (std::size_t i = 0; i < snapshot_.contacts.size(); ++i) {
     const ir::PointContact& c = snapshot_.contacts[i];
+    // The geom's material, or rendering.* (3-DOF contacts have no friction).
+    const ir::ContactGains g = ir::GainsOf(c.material, {stiffness_, damping_, 0.0});
     const auto motion = static_cast<std::size_t>(c.motion);
     const ir::BodyMotion& body = snapshot_.bodies[motion];
     const Vec3 n = render::BlendNormal(previous_n_[i], c.n_W, alpha);
     rendered_n_[i] = n;
     const render::BlendedPoint o = render::BlendBodyPoint(body, c.p_BC, alpha);
     const render::SphereContact contact = render::TouchSpherePlane(
-        o.p_WO, o.v_WO, n, in.X_WP.p, in.V_WP, radius_, stiffness_, damping_);
+        o.p_WO, o.v_WO, n, in.X_WP.p, in.V_WP, radius_, g.stiffness, g.damping);
     if (contact.result.magnitude <= 0.0) continue;
     ++out->contacts;
+    transients_.Touch(c.geom, contact.state.n_W, render::ApproachSpeed(contact),
+                      c.material.vibration);
     const Wrench w = render::PointerWrench(contact, in.X_WP.p);
     out->w_W.f += w.f;
     out->w_W.tau += w.tau;
@@ -45,6 +49,7 @@ void PointPenaltyHaptic::HapticTick(const TickInput& in, TickOutput* out) noexce
       tick_torque_[motion] += (o.p_WO - o.p_WCm).cross(-contact.result.f_W);
     }
   }
+  render::AddTransientForce(in.dt, &transients_, &out->w_W.f);
   for (ir::BodyImpulse& entry : period_.impulses) entry.last_force = Vec3::Zero();
   for (std::size_t b = 0; b < snapshot_.bodies.size(); ++b) {
     if (tick_force_[b].isZero(0.0) && tick_torque_[b].isZero(0.0)) continue;

@@ -5,6 +5,7 @@
 #include <array>
 
 #include "mrh/haptic/method_haptic.h"
+#include "mrh/render/contact_transients.h"
 #include "normal_carry.h"
 
 namespace mrh::haptic::internal {
@@ -33,6 +34,8 @@ class PointPenaltyHaptic final : public MethodHaptic {
   std::array<Vec3, ir::kMaxNeighborBodies> tick_force_{};
   std::array<Vec3, ir::kMaxNeighborBodies> tick_torque_{};
   ir::HapticReport period_;
+  // Material vibration at contact onset, added to the rendered force.
+  render::ContactTransients transients_;
 };
 
 }  // namespace mrh::haptic::internal

@@ -19,6 +19,9 @@ void ProxyHaptic::HapticTick(const TickInput& in, TickOutput* out) noexcept {
   out->contacts = output_.diagnostics.contacts;
   out->status = output_.diagnostics.status;
   render::AddReactionImpulses(output_, in.dt, &period_);
+  render::TouchPairs(tick_ir_, in.X_WP, in.V_WP, &transients_);
+  render::AddTransientForce(in.dt, &transients_, &out->w_W.f);
+
 }
 
 void ProxyHaptic::EndPeriod(ir::HapticReport* report) noexcept {

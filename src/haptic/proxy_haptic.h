@@ -3,6 +3,7 @@
 #pragma once
 
 #include "mrh/haptic/method_haptic.h"
+#include "mrh/render/contact_transients.h"
 #include "mrh/render/ir_interpolator.h"
 #include "mrh/render/proxy_renderer.h"
 #include "mrh/render/tick_ir.h"
@@ -43,6 +44,8 @@ class ProxyHaptic final : public MethodHaptic {
   render::TickIr tick_ir_;
   render::ProxyOutput output_;
   ir::HapticReport period_;
+  // Material vibration at contact onset, added to the rendered force.
+  render::ContactTransients transients_;
 };
 
 }  // namespace mrh::haptic::internal

@@ -42,7 +42,8 @@ GeometricIrBuilder::GeometricIrBuilder(const world::World& world, int pointer_bo
       // Below neighbor_distance the broad phase could drop a true neighbor (an AABB gap never
       // exceeds the distance between the shapes), so the margin never goes below it.
       inflation_(std::max(rendering.neighbor_margin, rendering.neighbor_distance)),
-      motions_(world) {
+      motions_(world),
+      materials_(world, rendering) {
   const world::BodyInfo& pointer = world.body(pointer_body);
   for (const int g : pointer.geoms) {
     if (world.geom(g).shape.type == geometry::ShapeType::kPlane) {
@@ -197,6 +198,7 @@ void GeometricIrBuilder::FillPair(const Neighbor& n, const Pose& X_WP, int motio
   pair.first_point = static_cast<int>(out->points.size());
   pair.distance = n.d.distance;
   pair.penetrating = region.status == geometry::RegionStatus::kRegion;
+  pair.material = materials_.of(o.geom);
   if (pair.penetrating) ++stats_.penetrating;
   const Pose X_PW = X_WP.Inverse();
   for (std::size_t k = 0; k < region.points_W.size(); ++k) {

@@ -13,6 +13,7 @@
 #include "mrh/geometry/polyhedron.h"
 #include "mrh/ir/snapshot.h"
 #include "body_motions.h"
+#include "material_table.h"
 
 namespace mrh::world {
 class World;
@@ -105,6 +106,7 @@ class GeometricIrBuilder {
   std::vector<int> object_of_handle_;  // sweep-and-prune handle -> objects_ index, or -1
   geometry::SweepAndPrune sap_;
   BodyMotions motions_;
+  MaterialTable materials_;
   std::vector<int> candidates_;      // scratch
   std::vector<Neighbor> neighbors_;  // scratch
   GeometricIrStats stats_;

@@ -52,6 +52,7 @@ PointIrBuilder::PointIrBuilder(const world::World& world, int pointer_body, doub
     : pointer_body_(pointer_body),
       radius_(radius),
       rendering_(rendering),
+      materials_(world, rendering),
       pointer_shape_(PointerSphere(radius)),
       motions_(world) {
   for (int g = 0; g < world.num_geoms(); ++g) {
@@ -94,6 +95,7 @@ void PointIrBuilder::Build(const world::World& world, const Pose& X_WP,
     contact.n_W = ContactNormal(r, X_WP.p, radius_);
     contact.distance = r.distance;
     SetRoundCore(world.geom(c.geom), &contact);
+    contact.material = materials_.of(c.geom);
     (void)out->contacts.PushBack(contact);
   }
 }

@@ -8,6 +8,7 @@
 #include "mrh/geometry/distance.h"
 #include "mrh/ir/snapshot.h"
 #include "body_motions.h"
+#include "material_table.h"
 
 namespace mrh::world {
 class World;
@@ -44,6 +45,7 @@ class PointIrBuilder {
   int pointer_body_;
   double radius_;
   RenderingSettings rendering_;
+  MaterialTable materials_;
   geometry::CollisionShape pointer_shape_;
   std::vector<Candidate> candidates_;
   BodyMotions motions_;

@@ -93,6 +93,9 @@ void IrInterpolator::Evaluate(double alpha, const Pose& X_WP, TickIr* out) noexc
     tick.c_W = tick.X_WB * pair.p_BC;
     tick.first = static_cast<int>(out->points.size());
     tick.new_pair = new_pair_[i];
+    tick.V_WCm = body.V_WCm;
+    tick.object_geom = pair.object_geom;
+    tick.material = pair.material;
     rendered_n_[i] = tick.n_W;
     AppendPoints(snapshot_, pair, tick, static_cast<int>(out->pairs.size()), R_WP, X_WP.p, out);
     tick.count = static_cast<int>(out->points.size()) - tick.first;

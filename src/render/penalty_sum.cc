@@ -75,6 +75,8 @@ void PenaltySumRenderer::Tick(const TickIr& ir, const Pose& X_WP, double dt,
   }
   std::size_t count = 0;
   for (const TickPair& pair : ir.pairs) {
+    // The object geom's material, or the renderer's k and d.
+    const ir::ContactGains g = ir::GainsOf(pair.material, {settings_.k, settings_.d, 0.0});
     Vec3 f_pair = Vec3::Zero();
     Vec3 tau_pair = Vec3::Zero();  // reaction moment about the object's COM
     for (int i = 0; i < pair.count; ++i) {
@@ -85,7 +87,7 @@ void PenaltySumRenderer::Tick(const TickIr& ir, const Pose& X_WP, double dt,
       ids_[count] = id;
       depths_[count] = point.depth;
       ++count;
-      const double magnitude = std::max(0.0, settings_.k * point.depth + settings_.d * rate);
+      const double magnitude = std::max(0.0, g.stiffness * point.depth + g.damping * rate);
       const Vec3 f = magnitude * pair.n_W;
       out->w_W.f += f;
       out->w_W.tau += (point.v_W - X_WP.p).cross(f);

@@ -10,19 +10,21 @@ namespace mrh::render {
 
 // With R_w = (k_r / k_t)·I the proxy's stationarity conditions read Δr = Σ f_k a_k and
 // (k_r / k_t) Δθ = Σ f_k r_k × a_k, so the forces k_t f_k a_k at the rows' points carry exactly
-// the spring wrench (k_t Δr, k_r Δθ) of eq. 3.7–3.8. Per pair i (normal n_i):
+// the spring wrench (k_t Δr, k_r Δθ) of eq. 3.7–3.8. A pair whose geom has a haptic material
+// uses its stiffness k_i, damping d_i and μ_i in place of k_t, d_t and μ: its forces are
+// k_i f_k a_k, so a pointer resting on it with offset δ feels k_i δ (the proxy's geometry does
+// not depend on the gains; only the wrench is then no longer k_t Δr). Per pair i (normal n_i):
 //  - normal load N_i = n_i · Σ_normal k_t f_k a_k; friction force F_t,i = Σ_friction k_t f_k a_k,
 //    scaled by s_i = min(1, μ N_i / |F_t,i|) into the pair's Coulomb cone (the LCP bounds each
 //    friction row's offset by μ δ, not its multiplier by μ f_n);
 //  - the damper d_t of eq. 3.7 acts on the pair's load: every force of the pair is scaled by
-//    max(0, 1 + (d_t / k_t) (N_i − N_i,prev) / (dt N_i)), which keeps its centre of pressure and
+//    max(0, 1 + (d_i / k_i) (N_i − N_i,prev) / (dt N_i)), which keeps its centre of pressure and
 //    its cone and never pulls. On the first tick after a start or reset the damper is at rest.
 // The rendered wrench is the sum over all pairs (static ones included); each moving object
 // receives minus its pairs' forces where they act, so action = reaction holds about every point.
 void ProxyRenderer::ComputeContactForces(const TickIr& ir, const Pose& X_WP, double dt,
                                          ProxyOutput* out) noexcept {
   AddRowForces();
-  const double tau_d = settings_.d_t / settings_.k_t;  // s
   Wrench total;
   for (std::size_t i = 0; i < ir.pairs.size(); ++i) {
     dr_pair_[i].setZero();
@@ -34,8 +36,9 @@ void ProxyRenderer::ComputeContactForces(const TickIr& ir, const Pose& X_WP, dou
       torque_pair_[i].setZero();
       continue;
     }
+    const double tau_d = gains_[i].damping / gains_[i].stiffness;  // s; k_i > 0 as load > 0
     const double friction = friction_force_[i].norm();
-    const double limit = settings_.mu * load;
+    const double limit = gains_[i].friction * load;
     const double cone = friction > limit ? limit / friction : 1.0;
     const double rate = has_previous_ ? (load - previous_load_[i]) / dt : 0.0;
     const double scale = std::max(0.0, 1.0 + tau_d * rate / load);
@@ -48,7 +51,7 @@ void ProxyRenderer::ComputeContactForces(const TickIr& ir, const Pose& X_WP, dou
   PushReactions(ir, X_WP, out);
 }
 
-// Each row's spring force k_t f_k a_k and its moment about the pointer origin, summed per pair:
+// Each row's spring force k_i f_k a_k (k_i the pair's stiffness: k_t without a material) and its moment about the pointer origin, summed per pair:
 // normal rows into force_pair_/torque_pair_, friction rows into friction_force_/_torque_.
 void ProxyRenderer::AddRowForces() noexcept {
   for (std::size_t i = 0; i < ir::kMaxGeometricPairs; ++i) {
@@ -59,7 +62,7 @@ void ProxyRenderer::AddRowForces() noexcept {
   }
   const auto add = [&](std::size_t k) noexcept {
     const auto i = static_cast<std::size_t>(info_[k].pair);
-    const Vec3 force = (settings_.k_t * f_[k]) * rows_[k].a;
+    const Vec3 force = (gains_[i].stiffness * f_[k]) * rows_[k].a;
     const Vec3 moment = rows_[k].r.cross(force);
     if (info_[k].kind == ProxyRowKind::kNormal) {
       force_pair_[i] += force;

@@ -133,6 +133,7 @@ bool ProxyRenderer::InputIsFinite(const TickIr& ir, const Pose& X_WP, double dt)
 void ProxyRenderer::CarryPreviousProxy(const TickIr& ir, const Pose& X_WP) noexcept {
   for (std::size_t i = 0; i < ir.pairs.size(); ++i) {
     const TickPair& pair = ir.pairs[i];
+    gains_[i] = ir::GainsOf(pair.material, {settings_.k_t, settings_.d_t, settings_.mu});
     const PairMemory* memory = nullptr;
     // Pairs usually keep their order between ticks: try the same slot first.
     if (i < memory_count_ && memory_[i].key == pair.key) memory = &memory_[i];

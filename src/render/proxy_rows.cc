@@ -78,6 +78,7 @@ struct ProxyRenderer::PairFrame {
   Vec3 p_WQ = Vec3::Zero();  // the previous proxy, carried with the object
   Mat3 R_WQ = Mat3::Identity();
   std::uint64_t key = 0;
+  double mu = 0.0;  // the pair's Coulomb coefficient
   bool with_friction = false;
 
   // Friction cone of eq. 3.9, the tangential offset of corrected eq. 3.10. With v_q the
@@ -98,7 +99,8 @@ bool ProxyRenderer::LoadPair(const TickIr& ir, int pair, PairFrame* frame) const
   frame->R_WQ = carried_R_WQ_[i];
   frame->p_WQ = carried_p_WQ_[i];
   frame->key = ir.pairs[i].key;
-  frame->with_friction = settings_.mu > 0.0 && !first_tick_[i];
+  frame->mu = gains_[i].friction;
+  frame->with_friction = frame->mu > 0.0 && !first_tick_[i];
   return true;
 }
 
@@ -127,7 +129,7 @@ bool ProxyRenderer::BuildRows(const TickIr& ir, const Pose& X_WP, ProxyDiagnosti
     const Vec3 s = frame.Slip(point);
     const double slip = s.norm();
     if (!(slip > kMinSlip)) continue;
-    const double radius = settings_.mu * point.depth;  // ρ_i = μ δ_i
+    const double radius = frame.mu * point.depth;  // ρ_i = μ δ_i
     const bool slides = slip > radius;
     if (out.Push(s * (1.0 / slip), r, slides ? radius : slip,
                  slides ? ProxyRowKind::kSliding : ProxyRowKind::kSticking, index, frame.index,

@@ -88,6 +88,20 @@ inline constexpr std::array<Field<engine::RenderingSettings>, 22> kRenderingFiel
      "virtual-coupling tool mass; 0: the pointer body's"},
 }};
 
+/// `materials.NAME` block (every key optional; unset gains are the rendering.* ones).
+inline constexpr std::array<Field<engine::MaterialSettings>, 3> kMaterialFields{{
+    {"stiffness", &engine::MaterialSettings::stiffness, "N/m", "spring k of this material"},
+    {"damping", &engine::MaterialSettings::damping, "N*s/m", "damper d of this material"},
+    {"friction", &engine::MaterialSettings::friction, "", "Coulomb mu of this material"},
+}};
+
+/// `materials.NAME.vibration` block (all three keys required).
+inline constexpr std::array<Field<engine::VibrationSettings>, 3> kVibrationFields{{
+    {"amplitude", &engine::VibrationSettings::amplitude, "N*s/m", "a: N per m/s of impact"},
+    {"decay", &engine::VibrationSettings::decay, "1/s", "B: decay rate of the transient"},
+    {"frequency", &engine::VibrationSettings::frequency, "Hz", "f: frequency of the transient"},
+}};
+
 /// `rendering` keys the parser handles itself (not plain fields).
 inline constexpr std::array<std::string_view, 2> kRenderingSpecialKeys{{"rotation_weight",
                                                                         "tool_inertia"}};
@@ -122,8 +136,8 @@ inline constexpr std::array<Field<device::Specifications>, 3> kLimitFields{{
 
 /// Keys the parser handles itself (not plain fields), top level. `psychophysics` is read and
 /// validated by mrh::psychophysics::LoadStudy (docs/psychophysics.md); sessions ignore it.
-inline constexpr std::array<std::string_view, 6> kTopLevelSpecialKeys{
-    {"scene", "mode", "keyframe", "gravity", "device", "psychophysics"}};
+inline constexpr std::array<std::string_view, 7> kTopLevelSpecialKeys{
+    {"scene", "mode", "keyframe", "gravity", "device", "psychophysics", "materials"}};
 
 /// Top-level blocks made only of fields (kPointerFields, kRenderingFields, kSafetyFields).
 inline constexpr std::array<std::string_view, 3> kTopLevelBlocks{

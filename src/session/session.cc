@@ -76,6 +76,34 @@ void ReadRendering(const Node& root, engine::RenderingSettings* out) {
   }
 }
 
+// `materials`: an object of named materials, each a block of optional gains and an optional
+// `vibration` whose three keys are all required (a transient has no rendering.* default).
+void ReadMaterials(const Node& root, engine::RenderingSettings* out) {
+  const std::optional<Node> block = root.Find("materials");
+  if (!block) return;
+  if (!block->value().is_object()) {
+    block->Fail(internal::Describe(block->value()), "an object of named materials");
+  }
+  std::vector<std::string_view> keys = internal::KeysOf(internal::kMaterialFields);
+  keys.push_back("vibration");
+  for (const auto& [name, value] : block->value().items()) {
+    const Node material = block->Require(name, "a material");
+    material.ExpectObject(keys, "an object");
+    engine::MaterialSettings settings;
+    internal::ReadFields(material, internal::kMaterialFields, &settings);
+    if (const auto vibration = material.Find("vibration")) {
+      vibration->ExpectObject(internal::KeysOf(internal::kVibrationFields), "an object");
+      engine::VibrationSettings v;
+      for (const auto& field : internal::kVibrationFields) {
+        v.*std::get<double engine::VibrationSettings::*>(field.member) =
+            vibration->Require(field.key, "a number").Number(field.unit);
+      }
+      settings.vibration = v;
+    }
+    out->materials[name] = settings;
+  }
+}
+
 // Keys that fill Session itself or the engine settings, then the blocks.
 Session ParseDocument(const nlohmann::json& document, const Context& context) {
   const Node root(context, document, "");
@@ -102,6 +130,7 @@ Session ParseDocument(const nlohmann::json& document, const Context& context) {
   }
   internal::ReadBlock(root, "pointer", internal::kPointerFields, &session.engine.pointer);
   ReadRendering(root, &session.engine.rendering);
+  ReadMaterials(root, &session.engine.rendering);
   internal::ReadBlock(root, "safety", internal::kSafetyFields, &session.engine.safety);
   session.device = internal::ParseDevice(
       root.Require("device", "an object with at least \"type\" (see docs/session-format.md)"));

@@ -10,6 +10,7 @@
 
 #include "mrh/core/error.h"
 #include "mrh/core/validate.h"
+#include "material_settings.h"
 
 namespace mrh::engine {
 namespace {
@@ -162,6 +163,7 @@ void EngineSettings::Validate() const {
     throw InvalidArgument("pointer.body is empty; expected the name of the scene's mocap body");
   }
   ValidateRendering(rendering);
+  internal::ValidateMaterials(rendering, haptic_dt);
   safety.Validate();
 }
 

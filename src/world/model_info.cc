@@ -140,6 +140,7 @@ void DescribeModel(const mjModel& m, const std::string& origin, std::vector<Body
     info.shape = ShapeOf(m, g, origin, &meshes);
     info.X_BG = Pose{ToVec3(m.geom_pos + 3 * g), ToQuat(m.geom_quat + 4 * g)};
     info.collides = (m.geom_contype[g] | m.geom_conaffinity[g]) != 0;
+    if (m.geom_matid[g] >= 0) info.material = NameOf(m, mjOBJ_MATERIAL, m.geom_matid[g]);
     geoms->push_back(std::move(info));
   }
 }

@@ -28,7 +28,7 @@ TEST(SessionKeysTest, UnknownTopLevelKeyListsTheAllowedKeysAndTheClosestOne) {
       },
       ThrowsInvalidExactly(
           "session.json: phyiscs_dt: unknown key; expected one of: scene, mode, keyframe, "
-          "gravity, device, psychophysics, method, physics_dt, haptic_dt, duration, "
+          "gravity, device, psychophysics, materials, method, physics_dt, haptic_dt, duration, "
           "realtime_priority, "
           "pointer, rendering, safety (did you mean \"physics_dt\"?)"));
 }

@@ -2,6 +2,7 @@
 // Settings of the multi-rate engine (the `session` module fills them from a session file).
 #pragma once
 
+#include <map>
 #include <optional>
 #include <string>
 
@@ -24,6 +25,23 @@ struct PointerSettings {
   std::string body = "pointer";  ///< mocap body of the scene
   /// Sphere radius for 3-DOF rendering (m). 0: take it from the pointer body's sphere geom.
   double radius = 0.0;
+};
+
+/// A contact transient (session key `materials.NAME.vibration`): at contact onset with normal
+/// approach speed v the user feels Q(t) = a·v·e^(−B t)·sin(2π f t) along the contact normal.
+struct VibrationSettings {
+  double amplitude = 0.0;  ///< a (N per m/s, >= 0)
+  double decay = 0.0;      ///< B (1/s, > 0)
+  double frequency = 0.0;  ///< f (Hz, > 0 and below the haptic Nyquist rate 1 / (2 haptic_dt))
+};
+
+/// A haptic material (session key `materials.NAME`), given to every scene geom whose MJCF
+/// `material` attribute is NAME. An unset gain is the `rendering.*` one.
+struct MaterialSettings {
+  std::optional<double> stiffness;  ///< N/m
+  std::optional<double> damping;    ///< N·s/m
+  std::optional<double> friction;   ///< Coulomb μ
+  std::optional<VibrationSettings> vibration;
 };
 
 /// Rendering parameters. Session key: `rendering`.
@@ -100,6 +118,10 @@ struct RenderingSettings {
   /// Tool principal inertia (kg·m², body-axes diagonal, each > 0); empty: the MJCF's (scaled
   /// with tool_mass when that is given).
   std::optional<Vec3> tool_inertia;
+
+  /// Haptic materials by MJCF material name (session key `materials`, top level). Empty: every
+  /// contact is rendered with the gains above, exactly as without materials.
+  std::map<std::string, MaterialSettings> materials;
 };
 
 /// Everything the engine needs besides the world and the device.

@@ -11,6 +11,7 @@
 #include "mrh/core/fixed_vector.h"
 #include "mrh/core/spatial.h"
 #include "mrh/ir/local_contact.h"
+#include "mrh/ir/material.h"
 
 namespace mrh::ir {
 
@@ -74,6 +75,7 @@ struct PointContact {
   /// turned normal would drive the roll.
   double r = 0.0;
   std::array<Vec3, 2> core_B{Vec3::Zero(), Vec3::Zero()};
+  ContactMaterial material;     ///< the geom's haptic material (none: rendering.*)
 };
 
 /// One pointer-geom/object-geom pair of the geometric IR (SPEC §3.3.3): a plane fixed on the
@@ -90,6 +92,7 @@ struct GeometricPair {
   /// true: points are penetration-region vertices below the plane; false: the fallback (not
   /// penetrating, touching, or region failed): the pointer-side closest point only.
   bool penetrating = false;
+  ContactMaterial material;     ///< the object geom's haptic material (none: rendering.*)
 };
 
 /// A contact point of a geometric pair, fixed on the pointer.

@@ -78,4 +78,10 @@ Mat3 PointerRotationWeight(const world::World& world, int pointer_body,
 render::ProxyRendererSettings ProxySettingsFor(const world::World& world, int pointer_body,
                                                const engine::RenderingSettings& rendering);
 
+/// Every session material must be used: an entry of `rendering.materials` whose name no geom's
+/// MJCF `material` attribute carries is a typo.
+/// @throws mrh::InvalidArgument "materials.NAME: no geom of the scene uses ..." listing the
+/// material names the scene's geoms use. Not RT-safe.
+void CheckMaterialsUsed(const world::World& world, const engine::RenderingSettings& rendering);
+
 }  // namespace mrh::physics

@@ -27,7 +27,8 @@ struct PenaltySumSettings {
 struct PenaltySumOutput {
   /// Wrench on the user's hand, world frame: f = Σᵢ fᵢ nᵢ (N) and τ = Σᵢ rᵢ × fᵢ nᵢ (N·m) about
   /// the pointer origin X_WP.p, with fᵢ = max(0, k δᵢ + d δ̇ᵢ) for every penetrating point (δᵢ > 0)
-  /// and rᵢ = v_W,i − X_WP.p.
+  /// and rᵢ = v_W,i − X_WP.p; k and d are the pair's material's (TickPair::material) when it
+  /// has one, else the settings'.
   Wrench w_W;
   /// One entry per TickIr pair, same order: −(Σ_pair fᵢ nᵢ) on the object, moment about its COM
   /// (zero for a static pair or one without penetrating points). Summed over all pairs (static

@@ -85,6 +85,11 @@ inline Vec3 BlendNormal(const Vec3& n_prev, const Vec3& n, double alpha) noexcep
   return ((1.0 - alpha) * n_prev + alpha * n).normalized();
 }
 
+/// The contact's normal approach speed n·(v_WO − v_WC) (m/s; > 0 while the pointer closes in).
+inline double ApproachSpeed(const SphereContact& c) noexcept {
+  return c.state.n_W.dot(c.state.v_WO - c.state.v_WC);
+}
+
 /// The wrench a contact's force puts on the user's hand, torque about the pointer origin p_WP.
 inline Wrench PointerWrench(const SphereContact& c, const Vec3& p_WP) noexcept {
   return Wrench{c.result.f_W, (c.state.p_WC - p_WP).cross(c.result.f_W)};

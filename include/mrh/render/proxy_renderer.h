@@ -69,7 +69,10 @@ struct ProxyRendererSettings {
   /// Vec3(...).asDiagonal().
   Mat3 rotation_weight = Mat3::Identity();
   /// Coulomb coefficient μ of the friction cones (eq. 3.9–3.10; static = kinetic, >= 0).
-  /// 0 builds no friction rows.
+  /// 0 builds no friction rows. A pair whose TickPair::material has a material uses that
+  /// material's friction instead, and with kContact also its stiffness and damping in place of
+  /// k_t and d_t for its contact forces (kThesis keeps k_t and d_t: its wrench is one spring on
+  /// the whole proxy offset).
   double mu = 0.0;
   /// kContact needs k_t > 0 and k_r > 0 and d_r = 0.
   ProxyTorqueModel torque_model = ProxyTorqueModel::kThesis;
@@ -285,6 +288,8 @@ class ProxyRenderer {
   std::array<Vec3, ir::kMaxGeometricPairs> friction_torque_{};
   std::array<double, ir::kMaxGeometricPairs> normal_load_{};
   std::array<double, ir::kMaxGeometricPairs> previous_load_{};
+  // Per current pair: its object geom's gains (TickPair::material, else k_t, d_t, μ).
+  std::array<ir::ContactGains, ir::kMaxGeometricPairs> gains_{};
   std::array<PairMemory, ir::kMaxGeometricPairs> memory_{};
   std::size_t memory_count_ = 0;
 

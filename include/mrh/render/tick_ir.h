@@ -25,6 +25,9 @@ struct TickPair {
   int first = 0;              ///< first index into TickIr::points
   int count = 0;              ///< points of this pair
   bool new_pair = false;      ///< the pair was not in the previous snapshot
+  Twist V_WCm;                ///< object COM velocity at the end of the step (world)
+  int object_geom = -1;       ///< world geom id of the object side
+  ir::ContactMaterial material;  ///< the object geom's haptic material (none: rendering.*)
 };
 
 /// A pointer contact point at this tick.

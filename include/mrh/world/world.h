@@ -42,6 +42,9 @@ struct GeomInfo {
   geometry::Shape shape;          ///< convex shape in the geom frame G
   Pose X_BG;                      ///< geom frame in its body frame
   bool collides = true;           ///< MuJoCo contype/conaffinity allow contacts
+  /// Name of the MJCF material the geom uses (its `material` attribute); empty if none. It
+  /// selects the geom's haptic material (session key `materials`).
+  std::string material;
 };
 
 /// Static properties of a body. Body 0 is the world (static).
