@@ -291,15 +291,18 @@ struct T36Result {
   double sliding_f = 0.0;               ///< N, Coulomb's μ Σm |g| if the boxes slide, else 0
   double peak_spin = 0.0;               ///< rad/s
   double peak_speed = 0.0;              ///< m/s, the boxes' COM
-  std::vector<Vec3> pose_at;            ///< m, world
+  std::vector<Vec3> pose_at;            ///< m, world, each box's COM at 4 s
+  double yaw_at = 0.0;                  ///< rad, the first box's heading about +z at 4 s
 };
 
-/// Runs t3.6's five cases (face, offcentre, tip, wall, row) × three methods (proxy-6dof at 1 ms,
-/// the reference, first; proxy-6dof at 20 ms; local-dynamics-6dof at 20 ms); runs/ CSVs under
-/// `out`; results[case][method].
+/// Runs t3.6's cases (face, offcentre, tip, wall, row, edge) × the reference (virtual coupling
+/// at 1 ms, first), proxy-6dof at 1 and 20 ms, local-dynamics-6dof at 20 ms, then the reference
+/// and local-dynamics-6dof with the pointer nudged 10 µm to −y and +y; runs/ CSVs under `out`;
+/// results[case][method].
 std::vector<std::vector<T36Result>> RunT36Cases(const std::filesystem::path& out, bool quiet);
 
-/// t3.6: returns 0 if local-dynamics-6dof meets the face push's force, sd, position and spin bars.
+/// t3.6: returns 0 if every check passes (nothing thrown; Coulomb's force in steady slides; the
+/// off-centre push follows the reference; local-dynamics-6dof is robust to a 10 µm nudge).
 int RunT36(const std::filesystem::path& out, bool quiet);
 
 /// What t3.7 runs: the shape matrix (scenes/t3_7_*.xml) × pointers × centred and off-centre

@@ -68,6 +68,9 @@ TEST(T37JudgeTest, OffCentreSlidersFollowTheReferenceImpulseAndTurn) {
   v = Judge(r, ref);
   EXPECT_FALSE(*v.same_turn);
   EXPECT_FALSE(*v.follows_ref);
+  // A body held straight does not turn the reference's way, whatever the sign of its yaw.
+  r.yaw = -0.01;
+  EXPECT_FALSE(*Judge(r, ref).same_turn);
   // A reference that barely turned sets no direction.
   ref.yaw = 0.01;
   EXPECT_FALSE(Judge(r, ref).same_turn.has_value());
