@@ -10,6 +10,7 @@
 
 #include "mrh/core/error.h"
 #include "mrh/ir/snapshot.h"
+#include "world/contact_manifold.h"
 #include "world/world_impl.h"
 
 namespace mrh::world {
@@ -313,6 +314,17 @@ std::uint32_t ContactExporter::AddRows(ir::LocalContactModel* out) {
       }
     }
     if (!out->contacts.PushBack(row)) return ir::kStatusContactsFull;
+    // MuJoCo emits a geom pair's contacts together: complete the pair after its last one, so
+    // that its rows stay consecutive and the vertices MuJoCo's rows already hold are skipped.
+    const bool last_of_pair = c + 1 == d.ncon || d.contact[c + 1].geom1 != con.geom1 ||
+                              d.contact[c + 1].geom2 != con.geom2;
+    if (!last_of_pair || row.r_A > 0.0 || row.e_A.x() > 0.0) continue;
+    const int gB = a_is_2 ? con.geom1 : con.geom2;
+    const Pose X_WB = row.b >= 0 ? out->bodies[static_cast<std::size_t>(row.b)].X_WB : Pose{};
+    if (internal::AddVertexRows(m, d, gA, gB, row, X_WA, X_WB,
+                                margins_[static_cast<std::size_t>(gA)], out) != ir::kStatusOk) {
+      return ir::kStatusContactsFull;
+    }
   }
   return ir::kStatusOk;
 }
