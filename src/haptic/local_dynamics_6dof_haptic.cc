@@ -28,6 +28,9 @@ void LocalDynamics6dofHaptic::Adopt(const ir::PhysicsSnapshot& snapshot) noexcep
       continue;
     }
     const ir::BodyMotion& body = snapshot.bodies[static_cast<std::size_t>(pair.motion)];
+    round_[j] = pair.round;
+    n_W_[j] = pair.n_W;
+    c_Cm_[j] = body.X_WB * pair.p_BC - body.X_WB * body.p_BCm;
     n_B_[j++] = body.X_WB.q.conjugate() * pair.n_W;
   }
 }
@@ -42,8 +45,15 @@ void LocalDynamics6dofHaptic::RePoseOnLocalBodies() noexcept {
     const auto l = static_cast<std::size_t>(local);
     pair.X_WB = solver_.X_WB(l);
     pair.p_WCm = solver_.p_WCm(l);
-    pair.n_W = (pair.X_WB.q * n_B_[i]).normalized();
-    pair.c_W = pair.X_WB * pair.p_BC;
+    if (round_[i]) {
+      // A rolling round body's surface facing the pointer moves with its centre, unturned: a
+      // plane turned with the body would push along its turned normal and drive the roll.
+      pair.n_W = n_W_[i];
+      pair.c_W = pair.p_WCm + c_Cm_[i];
+    } else {
+      pair.n_W = (pair.X_WB.q * n_B_[i]).normalized();
+      pair.c_W = pair.X_WB * pair.p_BC;
+    }
     const double n_dot_c = pair.n_W.dot(pair.c_W);
     for (int k = pair.first; k < pair.first + pair.count; ++k) {
       render::TickPoint& point = tick_ir_.points[static_cast<std::size_t>(k)];

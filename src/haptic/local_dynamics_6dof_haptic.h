@@ -24,8 +24,9 @@ inline constexpr std::uint32_t kLocal6dofBodyFault = 1u << 3;
 ///  1. the geometric IR is evaluated as in proxy-6dof (IrInterpolator, α = min(1, (j+1)/n));
 ///  2. every pair whose object is a body of the snapshot's ir::LocalContactModel island is
 ///     re-posed on that body's CURRENT local pose: its plane (point p_BC and normal, both fixed in
-///     the body frame of the snapshot's end pose) follows the locally simulated body, and the
-///     points' depths are recomputed; static pairs and non-island bodies keep the interpolated IR;
+///     the body frame of the snapshot's end pose) follows the locally simulated body (a round
+///     object's, ir::GeometricPair::round, follows its COM without turning), and the points'
+///     depths are recomputed; static pairs and non-island bodies keep the interpolated IR;
 ///  3. render::ProxyRenderer solves the proxy (eq. 3.4–3.10) and renders eq. 3.7–3.8;
 ///  4. each island pair's reaction, the renderer's wrench (render::ProxyPairReaction: force in N
 ///     and moment about the COM in N·m, world), is applied to the local body in the same tick
@@ -71,6 +72,10 @@ class LocalDynamics6dofHaptic final : public MethodHaptic {
   std::array<int, ir::kMaxNeighborBodies> local_of_motion_{};
   // Per tick pair (the interpolator's output order): the plane normal in the body frame.
   std::array<Vec3, ir::kMaxGeometricPairs> n_B_{};
+  // Round objects: the exported plane normal (world) and plane point relative to the COM.
+  std::array<bool, ir::kMaxGeometricPairs> round_{};
+  std::array<Vec3, ir::kMaxGeometricPairs> n_W_{};
+  std::array<Vec3, ir::kMaxGeometricPairs> c_Cm_{};
   ir::HapticReport period_;
   // Material vibration at contact onset, added to the rendered force.
   render::ContactTransients transients_;

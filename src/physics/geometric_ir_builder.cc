@@ -85,6 +85,8 @@ GeometricIrBuilder::Piece GeometricIrBuilder::MakePiece(const world::World& worl
   piece.body = info.body;
   piece.X_BG = info.X_BG;
   piece.moves = BodyMoves(world.body(info.body));
+  piece.round = info.shape.type == geometry::ShapeType::kSphere ||
+                info.shape.type == geometry::ShapeType::kCapsule;
   try {
     piece.polyhedron =
         geometry::ConvexPolyhedron::FromShape(info.shape, rendering_.curved_segments);
@@ -198,6 +200,7 @@ void GeometricIrBuilder::FillPair(const Neighbor& n, const Pose& X_WP, int motio
   pair.first_point = static_cast<int>(out->points.size());
   pair.distance = n.d.distance;
   pair.penetrating = region.status == geometry::RegionStatus::kRegion;
+  pair.round = o.round;
   pair.material = materials_.of(o.geom);
   if (pair.penetrating) ++stats_.penetrating;
   const Pose X_PW = X_WP.Inverse();

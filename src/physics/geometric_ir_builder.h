@@ -80,6 +80,7 @@ class GeometricIrBuilder {
     Pose X_BG;          // geom in its body frame
     Pose X_WG;          // last world pose (objects)
     bool moves = true;  // its body can move (boxes refreshed every Build)
+    bool round = false; // sphere or capsule (ir::GeometricPair::round)
     int handle = -1;    // sweep-and-prune handle
     geometry::ConvexPolyhedron polyhedron;
     std::unique_ptr<geometry::CollisionShape> shape;

@@ -92,6 +92,10 @@ struct GeometricPair {
   /// true: points are penetration-region vertices below the plane; false: the fallback (not
   /// penetrating, touching, or region failed): the pointer-side closest point only.
   bool penetrating = false;
+  /// The object's geom is a sphere or a capsule: where it rolls (a capsule about its axis) its
+  /// surface, and so the plane facing the pointer, does not turn with the body. An ellipsoid's
+  /// does.
+  bool round = false;
   ContactMaterial material;     ///< the object geom's haptic material (none: rendering.*)
 };
 
