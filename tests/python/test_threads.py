@@ -47,7 +47,9 @@ def interrupt_after(seconds):
 @pytest.mark.parametrize("mode", ["lockstep", "realtime"])
 def test_ctrl_c_stops_the_run_and_closes_its_files(root, tmp_path, mode):
     # 600 s of simulated (lockstep) or wall (realtime) time: only the interrupt ends it soon.
-    session = mrhaptics.load_session(root / SESSION, {"duration": 600.0})
+    # single-rate steps MuJoCo every tick, so even in lockstep the run lasts several seconds (the
+    # impulse method finished 600 s in under 0.3 s on an idle machine, before the interrupt).
+    session = mrhaptics.load_session(root / SESSION, {"duration": 600.0, "method": "single-rate"})
     timer = interrupt_after(0.3)
     begin = time.perf_counter()
     with pytest.raises(KeyboardInterrupt):
