@@ -67,7 +67,8 @@ EngineState::EngineState(world::World w, std::unique_ptr<device::Device> d,
 }
 
 void EngineState::MakeMethodForSettings() {
-  MethodContext context{&world, &settings, pointer_body, pointer_radius};
+  MethodContext context{&world, &settings, pointer_body, pointer_radius,
+                        device->specifications().max_force};
   world.set_timestep(settings.physics_dt);
   method = MakeMethod(settings.method, context);
   if (method.single_rate && settings.physics_dt != settings.haptic_dt) {

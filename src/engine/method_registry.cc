@@ -51,12 +51,14 @@ Method Impulse(const MethodContext& c) { return PointPenalty(c, false); }
 
 Method Proxy(const MethodContext& c) {
   // The renderer settings first: they carry the session-key errors.
-  const render::ProxyRendererSettings settings =
-      physics::ProxySettingsFor(*c.world, c.pointer_body, c.settings->rendering);
-  return Method{"proxy-6dof", false, physics::MakeProxyPhysics(c),
+  const render::ProxyRendererSettings settings = physics::ProxySettingsFor(c);
+  return Method{"proxy-6dof",
+                false,
+                physics::MakeProxyPhysics(c),
                 haptic::MakeProxyHaptic(settings),
                 // render::ProxyStatusBits
-                {"proxy.rows_full", "proxy.not_converged", "proxy.bad_input"}};
+                {"proxy.rows_full", "proxy.not_converged", "proxy.bad_input", "",
+                 "proxy.pair_force_limited"}};
 }
 
 // B5: proxy-6dof's physics half (reaction one step late, geometric IR), per-contact springs.
@@ -101,13 +103,14 @@ Method LocalDynamics(const MethodContext& c) {
 
 // Issue 14: the 6-DOF proxy against the neighbors' contact island simulated at the haptic rate.
 Method LocalDynamics6dof(const MethodContext& c) {
-  const render::ProxyRendererSettings settings =
-      physics::ProxySettingsFor(*c.world, c.pointer_body, c.settings->rendering);
-  return Method{"local-dynamics-6dof", false, physics::MakeLocalDynamics6dofPhysics(c),
+  const render::ProxyRendererSettings settings = physics::ProxySettingsFor(c);
+  return Method{"local-dynamics-6dof",
+                false,
+                physics::MakeLocalDynamics6dofPhysics(c),
                 haptic::MakeLocalDynamics6dofHaptic(settings),
                 // render::ProxyStatusBits, then the local island's fault bit
                 {"proxy.rows_full", "proxy.not_converged", "proxy.bad_input",
-                 "local_dynamics.local_body_fault"}};
+                 "local_dynamics.local_body_fault", "proxy.pair_force_limited"}};
 }
 
 // Built-in methods register on first use: self-registering statics would be dropped by the

@@ -29,6 +29,9 @@ struct Case {
   double slide_mu;
   double tool_mu;     // the scene's box friction: MuJoCo's tool–box contact takes it (max rule)
   bool open = false;  // a known failure (docs/architecture.md): reported, not checked
+  // The push ends in an unstable equilibrium (a box jammed and tipping over its edge): a 10 µm
+  // nudge may change where it falls, so the nudged runs are reported, not held to one bar.
+  bool tips = false;
 };
 
 // The box reaches the wall at 2.5 s; the pointer stops 8 mm further (about 16 N of press).
@@ -36,7 +39,7 @@ struct Case {
 inline constexpr Case kCases[] = {
     {"face", "t3_6_push.xml", 0.0, 0.05, kDuration, true, 0.5, 0.5},
     {"offcentre", "t3_6_push.xml", 0.03, 0.05, kDuration, false, 0.0, 0.5},
-    {"tip", "t3_6_tip.xml", 0.0, 0.085, kDuration, true, 0.0, 1.0},
+    {"tip", "t3_6_tip.xml", 0.0, 0.085, kDuration, true, 0.0, 1.0, false, true},
     {"wall", "t3_6_wall.xml", 0.0, 0.05, 2.6, true, 0.0, 0.5},
     {"row", "t3_6_row.xml", 0.0, 0.05, kDuration, true, 0.5, 0.5},
     // The pointer centred on the box's side edge, half its face overhanging.

@@ -66,6 +66,13 @@ render::ProxyRendererSettings ProxySettingsFor(const world::World& world, int po
   return s;
 }
 
+render::ProxyRendererSettings ProxySettingsFor(const MethodContext& context) {
+  render::ProxyRendererSettings s =
+      ProxySettingsFor(*context.world, context.pointer_body, context.settings->rendering);
+  s.max_pair_force = context.max_pair_force;
+  return s;
+}
+
 }  // namespace mrh::physics
 
 namespace mrh::physics::internal {
@@ -80,8 +87,7 @@ ProxyPhysics::ProxyPhysics(const MethodContext& context)
   // multi-rate runs.
   const double haptic_dt = context.settings->haptic_dt;
   if (rendering.proxy_reaction == "local" && std::lround(physics_dt_ / haptic_dt) > 1) {
-    local_.emplace(*world_, pointer_body_, rendering,
-                   ProxySettingsFor(*world_, pointer_body_, rendering), physics_dt_,
+    local_.emplace(*world_, pointer_body_, rendering, ProxySettingsFor(context), physics_dt_,
                    haptic_dt);
   }
 }

@@ -19,13 +19,16 @@ namespace mrh::render {
 //    friction row's offset by μ δ, not its multiplier by μ f_n);
 //  - the damper d_t of eq. 3.7 acts on the pair's load: every force of the pair is scaled by
 //    max(0, 1 + (d_i / k_i) (N_i − N_i,prev) / (dt N_i)), which keeps its centre of pressure and
-//    its cone and never pulls. On the first tick after a start or reset the damper is at rest.
+//    its cone and never pulls. On the first tick after a start or reset the damper is at rest;
+//  - if a pair's force exceeds max_pair_force, every pair's force is scaled by one factor so
+//    the largest equals it (nearly contradictory rows: a proxy wedged between overlapping
+//    objects); cones, centres of pressure and action = reaction are kept.
 // The rendered wrench is the sum over all pairs (static ones included); each moving object
 // receives minus its pairs' forces where they act, so action = reaction holds about every point.
 void ProxyRenderer::ComputeContactForces(const TickIr& ir, const Pose& X_WP, double dt,
                                          ProxyOutput* out) noexcept {
   AddRowForces();
-  Wrench total;
+  double largest = 0.0;
   for (std::size_t i = 0; i < ir.pairs.size(); ++i) {
     dr_pair_[i].setZero();
     dtheta_pair_[i].setZero();
@@ -44,6 +47,15 @@ void ProxyRenderer::ComputeContactForces(const TickIr& ir, const Pose& X_WP, dou
     const double scale = std::max(0.0, 1.0 + tau_d * rate / load);
     force_pair_[i] = scale * (force_pair_[i] + cone * friction_force_[i]);
     torque_pair_[i] = scale * (torque_pair_[i] + cone * friction_torque_[i]);
+    largest = std::max(largest, force_pair_[i].norm());
+  }
+  const double limit =
+      largest > settings_.max_pair_force ? settings_.max_pair_force / largest : 1.0;
+  if (limit < 1.0) out->diagnostics.status |= kProxyStatusPairForceLimited;
+  Wrench total;
+  for (std::size_t i = 0; i < ir.pairs.size(); ++i) {
+    force_pair_[i] *= limit;
+    torque_pair_[i] *= limit;
     total.f += force_pair_[i];
     total.tau += torque_pair_[i];
   }

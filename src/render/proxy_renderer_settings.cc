@@ -63,6 +63,10 @@ void ProxyRendererSettings::Validate() const {
         "ProxyRendererSettings.max_iterations = " + std::to_string(max_iterations) +
         "; expected 1.." + std::to_string(kMaxProxyIterations) + "; set a sweep budget (20–50)");
   }
+  if (!(max_pair_force > 0.0)) {  // +inf allowed: unbounded
+    throw InvalidArgument("ProxyRendererSettings.max_pair_force = " + Text(max_pair_force) +
+                          " N; expected > 0 (infinity: unbounded); give the device's max_force");
+  }
   if (max_rows < 1 || max_rows > kMaxProxyRows) {
     throw InvalidArgument("ProxyRendererSettings.max_rows = " + std::to_string(max_rows) +
                           "; expected 1.." + std::to_string(kMaxProxyRows) +

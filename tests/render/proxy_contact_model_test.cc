@@ -3,6 +3,7 @@
 // are one set of contact forces, inside each object's friction cone.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -107,6 +108,67 @@ TEST(ProxyContactModelTest, FaceOnTheFloorFeelsKtTimesDepthLikeTheThesisModel) {
   EXPECT_LT(out.w_W.tau.norm(), kForceTol);
 }
 
+// The pointer squeezed between a box under it and a box pressing on its top face, tilted by
+// `tilt` (rad) from facing it squarely: both are kDepth deep, so the proxy satisfies both rows
+// only ~2 kDepth / tilt to the side, and the rows nearly contradict each other.
+std::vector<PairSpec> Wedge(double tilt) {
+  PairSpec below = Box(5, Pose{});
+  PairSpec above = Box(6, Pose{});
+  above.key = 10;
+  above.n_B = Vec3(std::sin(tilt), 0.0, -std::cos(tilt));
+  above.p_BC = Vec3(0.0, 0.0, 2.0 * kHalf - 2.0 * kDepth);
+  above.p_BCm = Vec3(0.0, 0.0, 2.0 * kHalf + 0.05);
+  above.points_P = {Vec3(kHalf, kHalf, kHalf), Vec3(-kHalf, kHalf, kHalf),
+                    Vec3(-kHalf, -kHalf, kHalf), Vec3(kHalf, -kHalf, kHalf)};
+  return {below, above};
+}
+
+TEST(ProxyContactModelTest, AWedgedProxyGivesNoPairMoreThanMaxPairForce) {
+  // Unbounded, the nearly contradictory rows ask for forces far beyond the k_t·depth each box
+  // presses with; bounded, every pair carries at most max_pair_force, the forces keep their
+  // directions (one common factor) and the reactions still cancel the felt wrench.
+  Rig free(Contact(0.0));
+  const ProxyOutput& wild = free.Tick(Wedge(0.01), Pressed());
+  ASSERT_EQ(wild.reactions.size(), 2u);
+  double largest = 0.0;
+  for (const ProxyPairReaction& r : wild.reactions) largest = std::max(largest, r.w_W.f.norm());
+  ASSERT_GT(largest, 100.0 * kKt * kDepth);
+  EXPECT_EQ(wild.diagnostics.status & kProxyStatusPairForceLimited, 0u);
+
+  constexpr double kLimit = 20.0;  // N
+  ProxyRendererSettings settings = Contact(0.0);
+  settings.max_pair_force = kLimit;
+  Rig bounded(settings);
+  const ProxyOutput& out = bounded.Tick(Wedge(0.01), Pressed());
+  ASSERT_EQ(out.reactions.size(), 2u);
+  EXPECT_NE(out.diagnostics.status & kProxyStatusPairForceLimited, 0u);
+  Vec3 sum = Vec3::Zero();
+  for (std::size_t i = 0; i < out.reactions.size(); ++i) {
+    const Vec3& f = out.reactions[i].w_W.f;
+    EXPECT_LE(f.norm(), kLimit * (1.0 + 1e-12));
+    EXPECT_NEAR(f.normalized().dot(wild.reactions[i].w_W.f.normalized()), 1.0, 1e-12);
+    sum -= f;
+  }
+  EXPECT_NEAR(std::max(out.reactions[0].w_W.f.norm(), out.reactions[1].w_W.f.norm()), kLimit, 1e-9);
+  EXPECT_LT((sum - out.w_W.f).norm(), 1e-9 * kLimit);
+}
+
+TEST(ProxyContactModelTest, APairBelowMaxPairForceIsUnchanged) {
+  ProxyRendererSettings settings = Contact(kMu);
+  settings.max_pair_force = 2.0 * kKt * kDepth;
+  Rig bounded(settings);
+  Rig free(Contact(kMu));
+  const Pose X_WP = Pressed(Vec3(2e-4, 0, 0), About(Vec3::UnitZ(), 0.01));
+  (void)bounded.Tick({Box(5, Pose{})}, Pressed());
+  (void)free.Tick({Box(5, Pose{})}, Pressed());
+  const ProxyOutput& a = bounded.Tick({Box(5, Pose{})}, X_WP);
+  const ProxyOutput& b = free.Tick({Box(5, Pose{})}, X_WP);
+  ASSERT_GT(a.w_W.f.norm(), 0.5 * kKt * kDepth);
+  EXPECT_EQ(a.diagnostics.status & kProxyStatusPairForceLimited, 0u);
+  EXPECT_EQ(a.w_W.f, b.w_W.f);
+  EXPECT_EQ(a.w_W.tau, b.w_W.tau);
+}
+
 TEST(ProxyContactModelTest, SettingsRefuseARotationalDamper) {
   ProxyRendererSettings s = Contact(0.0);
   s.d_r = 0.1;
@@ -114,6 +176,14 @@ TEST(ProxyContactModelTest, SettingsRefuseARotationalDamper) {
   s.d_r = 0.0;
   s.k_r = 0.0;
   EXPECT_THROW(s.Validate(), InvalidArgument);
+}
+
+TEST(ProxyContactModelTest, SettingsRefuseANonPositiveMaxPairForce) {
+  ProxyRendererSettings s = Contact(0.0);
+  for (const double bad : {0.0, -1.0, std::nan("")}) {
+    s.max_pair_force = bad;
+    EXPECT_THROW(s.Validate(), InvalidArgument) << bad;
+  }
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <chrono>
+#include <limits>
 
 #include "mrh/engine/settings.h"
 #include "mrh/ir/snapshot.h"
@@ -19,6 +20,9 @@ struct MethodContext {
   const engine::EngineSettings* settings = nullptr;
   int pointer_body = -1;
   double pointer_radius = 0.0;    ///< m (3-DOF methods); 0 when neither session nor scene gives it
+  /// N, the most force one contact pair of a 6-DOF proxy may carry: the device's max_force
+  /// (what the user can be shown). Infinite: unbounded.
+  double max_pair_force = std::numeric_limits<double>::infinity();
 };
 
 /// The pointer radius a 3-DOF method needs (m, > 0): pointer.radius, else the pointer body's

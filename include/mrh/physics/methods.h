@@ -77,6 +77,8 @@ Mat3 PointerRotationWeight(const world::World& world, int pointer_body,
 /// render::kMaxProxyIterations) and the errors of PointerRotationWeight. Not RT-safe.
 render::ProxyRendererSettings ProxySettingsFor(const world::World& world, int pointer_body,
                                                const engine::RenderingSettings& rendering);
+/// As above for the context's world, pointer and rendering, with max_pair_force from it.
+render::ProxyRendererSettings ProxySettingsFor(const MethodContext& context);
 
 /// Every session material must be used: an entry of `rendering.materials` whose name no geom's
 /// MJCF `material` attribute carries is a typo.

@@ -5,6 +5,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -33,6 +34,9 @@ enum ProxyStatusBits : std::uint32_t {
   /// Non-finite pointer pose, dt <= 0 or non-finite IR data or result: the wrench is zero, the
   /// proxy is the pointer and the renderer was Reset.
   kProxyStatusBadInput = 1u << 2,
+  /// kContact: a pair's force exceeded max_pair_force and every contact force of the tick was
+  /// scaled down by one factor (a proxy wedged between objects whose rows nearly contradict).
+  kProxyStatusPairForceLimited = 1u << 4,
 };
 
 /// Which algorithm solves the proxy LCP of eq. 3.4 each tick.
@@ -74,6 +78,12 @@ struct ProxyRendererSettings {
   /// k_t and d_t for its contact forces (kThesis keeps k_t and d_t: its wrench is one spring on
   /// the whole proxy offset).
   double mu = 0.0;
+  /// kContact only: the most force one pair may carry (N, > 0). Rows that nearly contradict
+  /// each other (a proxy wedged between two objects that overlap around the pointer) have
+  /// solutions far from the pointer and contact forces that grow without bound; when a pair's
+  /// force exceeds this, all of the tick's contact forces are scaled by one factor so that the
+  /// largest is this, which keeps each in its cone and action = reaction exact.
+  double max_pair_force = std::numeric_limits<double>::infinity();
   /// kContact needs k_t > 0 and k_r > 0 and d_r = 0.
   ProxyTorqueModel torque_model = ProxyTorqueModel::kThesis;
   ProxySolverKind solver = ProxySolverKind::kActiveSet;
