@@ -77,5 +77,54 @@ TEST(LocalContactSolverFriction, PyramidHoldsAlongItsAxesAndSlidesAlongTheDiagon
   EXPECT_NEAR(v, kSlide, 0.1 * kSlide);
 }
 
+// A 10 × 4 cm box (5 cm tall) resting on four corner rows, elliptic cone, then thrown along a
+// diagonal of the floor. Sliding, each corner's friction opposes its slip (maximum dissipation),
+// so the box decelerates at μ g along its own track and does not start to spin. Its corners'
+// tangents differ in effective mass (the lever arms to x and y differ), which is where a radial
+// projection of the two friction impulses in the impulse metric turns friction off the slip.
+TEST(LocalContactSolverFriction, EllipticConeOpposesTheSlipOfAnOblongBox) {
+  constexpr double kA = 0.05, kB = 0.02, kC = 0.025;  // half sizes (m)
+  ir::LocalContactModel m;
+  m.valid = true;
+  m.gravity = Vec3(0, 0, -kG);
+  ir::LocalIslandBody b;
+  b.body = 1;
+  b.motion = 0;
+  b.mass = kMass;
+  b.inertia_B =
+      (kMass / 3.0) * Vec3(kB * kB + kC * kC, kA * kA + kC * kC, kA * kA + kB * kB).asDiagonal();
+  b.X_WB = Pose{Vec3(0, 0, kC), Quat::Identity()};
+  ASSERT_TRUE(m.bodies.PushBack(b));
+  for (const double sx : {-1.0, 1.0}) {
+    for (const double sy : {-1.0, 1.0}) {
+      ir::LocalContactRow r;
+      r.a = 0;
+      r.p_A = Vec3(sx * kA, sy * kB, -kC);
+      r.p_B = Vec3(sx * kA, sy * kB, 0.0);
+      r.n_B = Vec3::UnitZ();
+      r.t_B = Vec3::UnitX();
+      r.mu = kMu;
+      ASSERT_TRUE(m.contacts.PushBack(r));
+    }
+  }
+  LocalContactSolver solver;
+  solver.Adopt(m);
+  for (int k = 0; k < 300; ++k) ASSERT_TRUE(solver.Step(kDt));
+  const Vec3 dir = Vec3(1.0, 2.0, 0.0).normalized();
+  constexpr double kV0 = 0.5;  // m/s
+  solver.AddForce(0, kMass * kV0 / kDt * dir, solver.p_WCm(0));
+  ASSERT_TRUE(solver.Step(kDt));
+  const Vec3 v1 = solver.V_WCm(0).v;
+  constexpr int kTicks = 50;
+  for (int k = 0; k < kTicks; ++k) ASSERT_TRUE(solver.Step(kDt));
+  const Vec3 v2 = solver.V_WCm(0).v;
+  const Vec3 h1(v1.x(), v1.y(), 0.0), h2(v2.x(), v2.y(), 0.0);
+  ASSERT_GT(h2.norm(), 0.2);  // still sliding
+  EXPECT_LT(h1.normalized().cross(h2.normalized()).norm(), 1e-3) << "the track turned";
+  EXPECT_LT(std::abs(solver.V_WCm(0).w.z()), 1e-2) << "the box started to spin";
+  const double decel = (h1.norm() - h2.norm()) / (kTicks * kDt);
+  EXPECT_NEAR(decel, kMu * kG, 0.02 * kMu * kG);
+}
+
 }  // namespace
 }  // namespace mrh::render

@@ -115,6 +115,7 @@ class LocalContactSolver {
     std::array<double, 3> inv_w{};   // 1 / (A_jj + R): A_jj the row's inverse effective mass
     std::array<double, 3> target{};  // velocity (m/s) the row drives to (less R λ when soft)
     double R = 0.0;                  // soft regularisation (1/kg; 0: hard)
+    double a12 = 0.0;   // the friction rows' coupling d1·(A d2) in A (1/kg): the disc's block
     double hold = 0.0;  // penetration kept, not pushed out (m, >= 0; HoldRestingPenetration)
     std::array<double, 3> lambda{};  // impulses (N·s): normal, t1, t2
   };
