@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
 // Experiment t3.6: a box pointer pushes, turns, tips and presses boxes on a floor (and, reported
-// as open, pushes a box at its side edge); proxy-6dof at 1 and 20 ms and local-dynamics-6dof at
-// 20 ms with the contact torque model, against a consistent reference — the tool as a rigid
-// MuJoCo body at 1 ms (virtual coupling with the rendering's gains and the scene's tool–box
-// friction) — and against mechanics: Coulomb's μ Σm g where the boxes slide steadily.
+// as open, pushes a box with its inner edge on the box's centre line and at its side edge);
+// proxy-6dof at 1 and 20 ms and local-dynamics-6dof at 20 ms with the contact torque model,
+// against a consistent reference — the tool as a rigid MuJoCo body at 1 ms (virtual coupling
+// with the rendering's gains and the scene's tool–box friction) — and against mechanics:
+// Coulomb's μ Σm g where the boxes slide steadily.
 #include <fmt/format.h>
 
 #include <algorithm>

@@ -38,10 +38,17 @@ struct Case {
 
 inline constexpr Case kCases[] = {
     {"face", "t3_6_push.xml", 0.0, 0.05, kDuration, true, 0.5, 0.5},
-    {"offcentre", "t3_6_push.xml", 0.03, 0.05, kDuration, false, 0.0, 0.5},
+    // The pointer face (y 0.01–0.07 m) wholly on one side of the box's centre line: the centre
+    // of pressure is off centre, so the push turns the box (the 4 cm case).
+    {"offcentre", "t3_6_push.xml", 0.04, 0.05, kDuration, false, 0.0, 0.5},
     {"tip", "t3_6_tip.xml", 0.0, 0.085, kDuration, true, 0.0, 1.0, false, true},
     {"wall", "t3_6_wall.xml", 0.0, 0.05, 2.6, true, 0.0, 0.5},
     {"row", "t3_6_row.xml", 0.0, 0.05, kDuration, true, 0.5, 0.5},
+    // The pointer's inner edge on the box's centre line (y 0–0.06 m): a bifurcation. A 1 mm
+    // offset decides whether the box turns (the reference holds it straight at 2.9 cm and turns
+    // it −43° at 3.0 cm; local-dynamics-6dof turns from 2.9 cm, proxy-6dof at 1 ms from 3.2 cm),
+    // so one trajectory is no reference: reported, not checked (docs/theory.md).
+    {"centreline", "t3_6_push.xml", 0.03, 0.05, kDuration, false, 0.0, 0.5, true},
     // The pointer centred on the box's side edge, half its face overhanging.
     {"edge", "t3_6_push.xml", 0.05, 0.05, kDuration, false, 0.0, 0.5, true}};
 

@@ -31,7 +31,7 @@ TEST(T36Test, SlidesAreCoulombsNothingIsThrownAndTheOffCentrePushTurnsTheBox) {
   const std::filesystem::path out = testing::TempDir("mrh_t3_6_test_");
   const auto results = RunT36Cases(out, /*quiet=*/true);
   std::filesystem::remove_all(out);
-  ASSERT_EQ(results.size(), 6u);
+  ASSERT_EQ(results.size(), 7u);
   constexpr double kPush = 0.08;  // m/s (scenes/t3_6_push.json)
   for (const auto& c : results) {
     ASSERT_EQ(c.size(), 8u);
@@ -40,7 +40,7 @@ TEST(T36Test, SlidesAreCoulombsNothingIsThrownAndTheOffCentrePushTurnsTheBox) {
     ASSERT_EQ(c[3].method, "local-dynamics-6dof@20ms");
     const std::string& name = c[0].case_name;
     EXPECT_GT(c[0].peak_speed, 0.05) << name << ": the reference never moved a box";
-    if (name == "edge") continue;  // open: reported, not checked
+    if (name == "edge" || name == "centreline") continue;  // open: reported, not checked
     for (std::size_t k = 1; k < 4; ++k) {
       EXPECT_LE(c[k].peak_speed, 2.5 * std::max(kPush, c[0].peak_speed)) << name << " " << k;
     }
