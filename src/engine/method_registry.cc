@@ -38,11 +38,13 @@ namespace {
 // from plain parameters: they share no object.
 Method PointPenalty(const MethodContext& c, bool single_rate) {
   const RenderingSettings& r = c.settings->rendering;
-  return Method{single_rate ? "single-rate" : "impulse", single_rate,
+  return Method{single_rate ? "single-rate" : "impulse",
+                single_rate,
                 physics::MakePointPenaltyPhysics(c),
                 haptic::MakePointPenaltyHaptic(physics::PointerRadiusFor3Dof(c), r.stiffness,
                                                r.damping),
-                {}};
+                {},
+                /*multi_pointer=*/true};
 }
 
 Method SingleRate(const MethodContext& c) { return PointPenalty(c, true); }
