@@ -21,8 +21,12 @@ namespace mrh::report {
 /// mass's position (m, world frame).
 class CsvRecorder : public engine::Recorder {
  public:
-  /// Creates `dir` if needed. @throws mrh::RuntimeError if a file cannot be opened.
-  explicit CsvRecorder(const std::filesystem::path& dir);
+  /// Creates `dir` if needed. With two or more `pointer_names` (the pointers' body names, in
+  /// pointer order) ticks.csv gains a last column `pointer` naming each row's pointer (one row
+  /// per pointer per tick); with one or none it is unchanged.
+  /// @throws mrh::RuntimeError if a file cannot be opened.
+  explicit CsvRecorder(const std::filesystem::path& dir,
+                       std::vector<std::string> pointer_names = {});
   ~CsvRecorder() override;
   void OnTick(const engine::TickRecord& tick) override;
   void OnStep(const engine::StepRecord& step, const world::World& world) override;
