@@ -42,7 +42,7 @@ Method PointPenalty(const MethodContext& c, bool single_rate) {
                 single_rate,
                 physics::MakePointPenaltyPhysics(c),
                 haptic::MakePointPenaltyHaptic(physics::PointerRadiusFor3Dof(c), r.stiffness,
-                                               r.damping),
+                                               r.damping, r.friction),
                 {},
                 /*multi_pointer=*/true};
 }

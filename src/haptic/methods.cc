@@ -14,8 +14,8 @@
 namespace mrh::haptic {
 
 std::unique_ptr<MethodHaptic> MakePointPenaltyHaptic(double radius, double stiffness,
-                                                     double damping) {
-  return std::make_unique<internal::PointPenaltyHaptic>(radius, stiffness, damping);
+                                                     double damping, double friction) {
+  return std::make_unique<internal::PointPenaltyHaptic>(radius, stiffness, damping, friction);
 }
 
 std::unique_ptr<MethodHaptic> MakeProxyHaptic(const render::ProxyRendererSettings& settings) {

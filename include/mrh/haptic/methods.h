@@ -20,9 +20,11 @@ enum LocalDynamicsStatusBits : std::uint32_t {
 };
 
 /// Haptic half of "single-rate" and "impulse": 3-DOF penalty (eq. 4.11) with a pointer sphere
-/// of `radius` (m), stiffness k (N/m) and damping d (N·s/m). Not RT-safe (allocates once).
+/// of `radius` (m), stiffness k (N/m) and damping d (N·s/m), and Coulomb friction μ at each
+/// contact when `friction` > 0 (issue 35; 0: frictionless, as before). Not RT-safe (allocates
+/// once).
 std::unique_ptr<MethodHaptic> MakePointPenaltyHaptic(double radius, double stiffness,
-                                                     double damping);
+                                                     double damping, double friction = 0.0);
 
 /// Haptic half of "proxy-6dof": the 6-DOF proxy with `settings` (physics::ProxySettingsFor).
 std::unique_ptr<MethodHaptic> MakeProxyHaptic(const render::ProxyRendererSettings& settings);
