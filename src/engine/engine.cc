@@ -76,7 +76,8 @@ EngineState::EngineState(world::World w, std::vector<std::unique_ptr<device::Dev
   if (static_cast<int>(devices.size()) != n || static_cast<int>(calibrations.size()) != n) {
     throw InvalidArgument(fmt::format(
         "engine: {} pointer(s) but {} device(s) and {} calibration(s); give one of each per "
-        "pointer",
+        "pointer (session::MakeEngine(session) builds them; the viewer and the Python module "
+        "drive one pointer: keep one element in `pointers`)",
         n, devices.size(), calibrations.size()));
   }
   for (const auto& d : devices) {
