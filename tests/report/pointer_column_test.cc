@@ -4,6 +4,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -14,7 +15,10 @@
 namespace mrh::report {
 namespace {
 
+using ::testing::HasSubstr;
+using ::testing::Not;
 using testing::ReadLines;
+using testing::ReadText;
 using testing::TempDir;
 
 constexpr const char* kOnePointerHeader =
@@ -74,6 +78,40 @@ TEST(PointerColumnTest, SummaryHasPerPointerBlocksOnlyWithSeveral) {
   EXPECT_EQ(summary["pointers"][0]["faults"]["force_clamped"], 4);
   EXPECT_EQ(summary["pointers"][0]["device"]["wrenches_sent"], 9);
   EXPECT_EQ(summary["pointers"][1]["body"], "index");
+}
+
+// report.png with several pointers: each pointer's rows (every 2::i) drawn in its own colour;
+// gnuplot must accept the script and draw the PNG.
+TEST(PointerColumnTest, ReportDrawsEachPointerInItsOwnColour) {
+  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) GTEST_SKIP() << "no gnuplot";
+  const TempDir dir;
+  {
+    CsvRecorder recorder(dir.path(), {"thumb", "index"});
+    for (int k = 0; k < 10; ++k) {
+      for (int pointer = 0; pointer < 2; ++pointer) {
+        engine::TickRecord tick;
+        tick.tick = k;
+        tick.t = 0.001 * k;
+        tick.pointer = pointer;
+        tick.displayed_W.f = Vec3(0.0, pointer == 0 ? 1.0 : -1.0, 0.0);
+        recorder.OnTick(tick);
+      }
+    }
+    recorder.Close();
+  }
+  std::string why;
+  ASSERT_TRUE(PlotReport(dir.path(), "two fingers", &why,
+                         ReportOptions{.six_dof = false, .pointers = {"thumb", "index"}}))
+      << why;
+  const std::string script = ReadText(dir.path() / "report.gp");
+  EXPECT_THAT(script, HasSubstr("every 2::0 using 1:(fnorm($9, $10, $11)) with lines lt 1 "
+                                "title '|f| thumb'"));
+  EXPECT_THAT(script, HasSubstr("every 2::1 using 1:(fnorm($9, $10, $11)) with lines lt 2 "
+                                "title '|f| index'"));
+  EXPECT_THAT(script, HasSubstr("title 'index z'"));
+  // One pointer keeps the one-pointer panels.
+  ASSERT_TRUE(PlotReport(dir.path(), "one", &why, ReportOptions{.six_dof = false})) << why;
+  EXPECT_THAT(ReadText(dir.path() / "report.gp"), Not(HasSubstr("every 2::")));
 }
 
 }  // namespace

@@ -60,6 +60,11 @@ struct ReportOptions {
   /// At most this many bodies get a line and a legend entry in the objects panel; beyond it the
   /// panel's title says how many are left out. >= 1.
   int max_legend_bodies = 8;
+  /// The pointers' body names of a run with several pointers (RunStats::pointers), in pointer
+  /// order: with two or more, the force panel draws each pointer's |f| and the position panel
+  /// each pointer's x, y, z, one colour per pointer (ticks.csv has one row per pointer per tick,
+  /// in this order). Empty: one pointer.
+  std::vector<std::string> pointers = {};
 };
 
 /// Writes dir/report.gp and runs gnuplot on it to draw dir/report.png from dir/ticks.csv and
