@@ -150,8 +150,8 @@ void EngineState::MakeMethodForSettings() {
   method = MakeMethod(settings.method, context);
   if (!lanes.empty() && !method.multi_pointer) {
     throw InvalidArgument(fmt::format(
-        "pointers lists {} pointers, but method = \"{}\" renders one; use \"single-rate\" or "
-        "\"impulse\", or keep one pointer",
+        "pointers lists {} pointers, but method = \"{}\" renders one; use \"single-rate\", "
+        "\"impulse\" or \"local-dynamics\" (contact local model), or keep one pointer",
         lanes.size() + 1, settings.method));
   }
   if (method.single_rate && settings.physics_dt != settings.haptic_dt) {
@@ -162,9 +162,16 @@ void EngineState::MakeMethodForSettings() {
   }
 }
 
-// Each further pointer's haptic half is its method built for that pointer alone (its body,
-// radius and rendering); the physics half built with it is dropped, as pointer 0's serves all.
+// Each further pointer's haptic half: the one the factory linked to pointer 0's, or else its
+// method built for that pointer alone (its body, radius and rendering), whose physics half is
+// dropped, as pointer 0's serves all.
 void EngineState::MakeLaneMethods() {
+  if (method.more_haptic.size() == lanes.size() && !lanes.empty()) {
+    for (std::size_t i = 0; i < lanes.size(); ++i) {
+      lanes[i]->haptic_method = std::move(method.more_haptic[i]);
+    }
+    return;
+  }
   for (std::size_t i = 0; i < lanes.size(); ++i) {
     PointerLane& lane = *lanes[i];
     lane.settings = settings;

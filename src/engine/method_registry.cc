@@ -89,6 +89,32 @@ Method ContactVolume(const MethodContext& c) {
 // or the thesis' "perturbation".
 Method LocalDynamics(const MethodContext& c) {
   const RenderingSettings& r = c.settings->rendering;
+  if (physics::UsesContactLocalModel(c) && c.pointers.size() >= 2) {
+    // Several pointers (issue 35): one island, every pointer's reaction in the same tick.
+    std::vector<haptic::PointerGains> gains;
+    for (const physics::PointerContext& p : c.pointers) {
+      gains.push_back({p.radius, p.rendering->stiffness, p.rendering->damping});
+    }
+    if (gains[0].radius <= 0.0) gains[0].radius = physics::PointerRadiusFor3Dof(c);
+    for (std::size_t i = 1; i < gains.size(); ++i) {
+      if (gains[i].radius > 0.0) continue;
+      throw SceneError(fmt::format(
+          "pointers[{}].body = '{}' has no sphere geom and pointers[{}].radius is not set, which "
+          "method 'local-dynamics' (3-DOF) needs; set the radius (m)",
+          i, c.world->body(c.pointers[i].body).name, i));
+    }
+    std::vector<std::unique_ptr<haptic::MethodHaptic>> group =
+        haptic::MakeLocalContactHapticGroup(gains);
+    Method method{"local-dynamics",
+                  false,
+                  physics::MakeLocalContactPhysics(c),
+                  std::move(group[0]),
+                  {"local_dynamics.local_body_fault"},
+                  true};
+    for (std::size_t i = 1; i < group.size(); ++i)
+      method.more_haptic.push_back(std::move(group[i]));
+    return method;
+  }
   if (physics::UsesContactLocalModel(c)) {
     return Method{"local-dynamics", false, physics::MakeLocalContactPhysics(c),
                   haptic::MakeLocalContactHaptic(physics::PointerRadiusFor3Dof(c), r.stiffness,

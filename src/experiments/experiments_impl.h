@@ -266,8 +266,9 @@ struct GraspResult {
 /// `out` is not empty.
 GraspResult RunGraspCase(const std::filesystem::path& out, const GraspRun& run);
 
-/// grasp: single-rate at 1 ms (the reference) against impulse at 20 ms (the 3-DOF method that
-/// renders several pointers at 20 ms today; local-dynamics does not yet). Writes grasp.csv,
+/// grasp: single-rate at 1 ms (the reference) against local-dynamics and impulse at 20 ms,
+/// reported against the bars (local-dynamics' 3-DOF contacts have no friction yet, so
+/// it cannot hold the box). Writes grasp.csv,
 /// grasp.md, grasp.png and summary.json; returns 0 if the reference lifts and holds the box (rise
 /// within 5 mm of 5 cm, the fingers carrying its weight within 5 %).
 int RunGrasp(const std::filesystem::path& out, bool quiet);

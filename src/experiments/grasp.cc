@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // Experiment grasp (issue 35): two simulated fingertips pinch a box, lift it 5 cm, hold it and
-// put it down; a 20 ms method against single-rate at 1 ms (the reference).
+// put it down; 20 ms methods against single-rate at 1 ms (the reference).
 #include <fmt/format.h>
 
 #include <cmath>
@@ -180,7 +180,8 @@ GraspResult RunGraspCase(const std::filesystem::path& out, const GraspRun& run) 
 }
 
 int RunGrasp(const std::filesystem::path& out, bool quiet) {
-  const std::vector<GraspRun> runs = {{"single-rate", 0.001}, {"impulse", 0.02}};
+  const std::vector<GraspRun> runs = {
+      {"single-rate", 0.001}, {"local-dynamics", 0.02}, {"impulse", 0.02}};
   Table csv({"method", "physics_dt_s", "hold_height_m", "thumb_mean_N", "index_mean_N",
              "thumb_sd_N", "index_sd_N", "carried_N", "weight_N"});
   Table md({"method", "physics dt", "hold height (mm)", "thumb mean |f| (N)", "index mean |f| (N)",
@@ -208,18 +209,20 @@ int RunGrasp(const std::filesystem::path& out, bool quiet) {
                                    {"weight_N", weight}};
   }
   const GraspResult& ref = results[0];
-  const GraspResult& fast = results[1];
   Checks checks;
   // The reference lifts the box 5 cm (the hands sag a few mm under its weight) and carries it.
   checks.Add("single_rate_lifts_the_box", std::abs(ref.hold_height - 0.05) <= 0.005);
   checks.Add("single_rate_carries_the_weight",
              std::abs(ref.mean_lift_force - ref.box_mass * 9.81) <= 0.05 * ref.box_mass * 9.81);
-  // The issue's bars for the 20 ms method, reported (not held: impulse is the conventional
-  // multi-rate baseline; local-dynamics, the method meant to meet them, renders one pointer).
-  summary["impulse_meets_bars"] =
-      std::abs(fast.hold_height - ref.hold_height) <= 0.005 &&
-      std::abs(fast.mean_force[0] - ref.mean_force[0]) <= 0.05 * ref.mean_force[0] &&
-      std::abs(fast.mean_force[1] - ref.mean_force[1]) <= 0.05 * ref.mean_force[1];
+  // The issue's bars for the 20 ms methods, reported, not held: impulse is the conventional
+  // multi-rate baseline, and local-dynamics' 3-DOF contacts render no friction yet.
+  for (std::size_t i = 1; i < runs.size(); ++i) {
+    const GraspResult& fast = results[i];
+    summary["meets_bars"][runs[i].method] =
+        std::abs(fast.hold_height - ref.hold_height) <= 0.005 &&
+        std::abs(fast.mean_force[0] - ref.mean_force[0]) <= 0.05 * ref.mean_force[0] &&
+        std::abs(fast.mean_force[1] - ref.mean_force[1]) <= 0.05 * ref.mean_force[1];
+  }
   WriteText(out / "grasp.csv", csv.Csv());
   WriteText(out / "grasp.md", md.Markdown());
   Plot(out, "grasp", GraspScript(runs), quiet);

@@ -20,15 +20,25 @@ LocalContactHaptic::LocalContactHaptic(double radius, double stiffness, double d
 void LocalContactHaptic::Adopt(const ir::PhysicsSnapshot& snapshot) noexcept {
   CarryRenderedNormals(snapshot, snapshot_, rendered_n_, &previous_n_);
   snapshot_ = snapshot;
-  solver_.Adopt(snapshot_.local_model);
-  for (std::size_t m = 0; m < snapshot_.bodies.size(); ++m) {
-    local_of_motion_[m] = solver_.FindMotion(static_cast<int>(m));
+  if (owner_ == nullptr) {
+    solver_.Adopt(snapshot_.local_model);
+    adopted_step_ = snapshot_.step;
   }
+  MapMotions();
   for (std::size_t i = 0; i < snapshot_.contacts.size(); ++i) {
     const ir::PointContact& c = snapshot_.contacts[i];
     n_B_[i] = snapshot_.bodies[static_cast<std::size_t>(c.motion)].X_WB.q.conjugate() * c.n_W;
     rendered_n_[i] = previous_n_[i];
   }
+}
+
+void LocalContactHaptic::MapMotions() noexcept {
+  const std::int64_t island_step = owner_ ? owner_->adopted_step_ : adopted_step_;
+  const bool current = island_step == snapshot_.step;
+  for (std::size_t m = 0; m < snapshot_.bodies.size(); ++m) {
+    local_of_motion_[m] = current ? island().FindMotion(static_cast<int>(m)) : -1;
+  }
+  mapped_step_ = current ? island_step : -2;
 }
 
 namespace {
@@ -58,9 +68,11 @@ void LocalContactHaptic::HapticTick(const TickInput& in, TickOutput* out) noexce
   out->contacts = 0;
   out->status = 0;
   for (ir::BodyImpulse& entry : period_.impulses) entry.last_force = Vec3::Zero();
+  // A follower whose snapshot and the island's model came a tick apart catches up here.
+  if (owner_ != nullptr && mapped_step_ != snapshot_.step) MapMotions();
   RenderContacts(in, alpha, out);
   render::AddTransientForce(in.dt, &transients_, &out->w_W.f);
-  if (!solver_.Step(in.dt)) {
+  if (steps_ && !island().Step(in.dt)) {
     ++counters_.local_faults;
     out->status |= kLocalBodyFault;
   }
@@ -79,14 +91,15 @@ void LocalContactHaptic::RenderContacts(const TickInput& in, double alpha,
     const ir::BodyMotion& body = snapshot_.bodies[motion];
     const int local = local_of_motion_[motion];
     Vec3 n_W, p_WO, v_WO, p_WCm;
+    render::LocalContactSolver& solver = island();
     if (local >= 0) {
       const auto l = static_cast<std::size_t>(local);
-      const Pose X_WB = solver_.X_WB(l);
+      const Pose X_WB = solver.X_WB(l);
       n_W = X_WB.q * n_B_[i];
       p_WO = X_WB * c.p_BC;
       if (c.r > 0.0) RoundPlane(X_WB, c, in.X_WP.p, &n_W, &p_WO);
-      v_WO = solver_.PointVelocity(l, p_WO);
-      p_WCm = solver_.p_WCm(l);
+      v_WO = solver.PointVelocity(l, p_WO);
+      p_WCm = solver.p_WCm(l);
     } else {
       n_W = render::BlendNormal(previous_n_[i], c.n_W, alpha);
       const render::BlendedPoint o = render::BlendBodyPoint(body, c.p_BC, alpha);
@@ -106,7 +119,7 @@ void LocalContactHaptic::RenderContacts(const TickInput& in, double alpha,
     out->w_W.f += w.f;
     out->w_W.tau += w.tau;
     if (body.is_static) continue;
-    if (local >= 0) solver_.AddForce(static_cast<std::size_t>(local), -f_d, p_WO);
+    if (local >= 0) solver.AddForce(static_cast<std::size_t>(local), -f_d, p_WO);
     period_.AddImpulse(body.body, -f_d * in.dt, (p_WO - p_WCm).cross(-f_d) * in.dt, -f_d);
   }
 }
@@ -114,9 +127,11 @@ void LocalContactHaptic::RenderContacts(const TickInput& in, double alpha,
 void LocalContactHaptic::EndPeriod(ir::HapticReport* report) noexcept {
   report->impulses = period_.impulses;
   report->local_states.Clear();
-  for (std::size_t i = 0; i < solver_.size(); ++i) {
+  // Several pointers: the half that steps the island reports its end states, once.
+  const render::LocalContactSolver& solver = island();
+  for (std::size_t i = 0; steps_ && i < solver.size(); ++i) {
     if (!report->local_states.PushBack(
-            ir::LocalBodyState{solver_.world_body(i), solver_.X_WB(i), solver_.V_WCm(i)})) {
+            ir::LocalBodyState{solver.world_body(i), solver.X_WB(i), solver.V_WCm(i)})) {
       period_.status |= ir::kStatusBodiesFull;
     }
   }

@@ -44,6 +44,20 @@ std::unique_ptr<MethodHaptic> MakeLocalContactHaptic(double radius, double stiff
   return std::make_unique<internal::LocalContactHaptic>(radius, stiffness, damping);
 }
 
+std::vector<std::unique_ptr<MethodHaptic>> MakeLocalContactHapticGroup(
+    const std::vector<PointerGains>& pointers) {
+  std::vector<std::unique_ptr<MethodHaptic>> group;
+  internal::LocalContactHaptic* owner = nullptr;
+  for (std::size_t i = 0; i < pointers.size(); ++i) {
+    auto half = std::make_unique<internal::LocalContactHaptic>(
+        pointers[i].radius, pointers[i].stiffness, pointers[i].damping);
+    half->ShareIsland(owner, i + 1 == pointers.size());
+    if (owner == nullptr) owner = half.get();
+    group.push_back(std::move(half));
+  }
+  return group;
+}
+
 std::unique_ptr<MethodHaptic> MakeLocalDynamics6dofHaptic(
     const render::ProxyRendererSettings& settings) {
   return std::make_unique<internal::LocalDynamics6dofHaptic>(settings);

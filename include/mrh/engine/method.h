@@ -35,6 +35,10 @@ struct Method {
   /// True if the method renders several pointers in one world (issue 35): its physics half
   /// implements MethodPhysics::PhysicsStepPointers and each pointer gets its own haptic half.
   bool multi_pointer = false;
+  /// The haptic halves of pointers 1, 2, ... when the factory links them to `haptic` (several
+  /// pointers sharing one local simulation, local-dynamics); empty: the engine builds each
+  /// pointer's own half with the method's factory.
+  std::vector<std::unique_ptr<haptic::MethodHaptic>> more_haptic = {};
 };
 
 using MethodFactory = std::function<Method(const MethodContext&)>;
