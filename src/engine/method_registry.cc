@@ -93,7 +93,8 @@ Method LocalDynamics(const MethodContext& c) {
     // Several pointers (issue 35): one island, every pointer's reaction in the same tick.
     std::vector<haptic::PointerGains> gains;
     for (const physics::PointerContext& p : c.pointers) {
-      gains.push_back({p.radius, p.rendering->stiffness, p.rendering->damping});
+      gains.push_back(
+          {p.radius, p.rendering->stiffness, p.rendering->damping, p.rendering->friction});
     }
     if (gains[0].radius <= 0.0) gains[0].radius = physics::PointerRadiusFor3Dof(c);
     for (std::size_t i = 1; i < gains.size(); ++i) {
@@ -116,9 +117,11 @@ Method LocalDynamics(const MethodContext& c) {
     return method;
   }
   if (physics::UsesContactLocalModel(c)) {
-    return Method{"local-dynamics", false, physics::MakeLocalContactPhysics(c),
+    return Method{"local-dynamics",
+                  false,
+                  physics::MakeLocalContactPhysics(c),
                   haptic::MakeLocalContactHaptic(physics::PointerRadiusFor3Dof(c), r.stiffness,
-                                                 r.damping),
+                                                 r.damping, r.friction),
                   {"local_dynamics.local_body_fault"}};  // haptic::LocalDynamicsStatusBits
   }
   return Method{"local-dynamics", false, physics::MakeLocalDynamicsPhysics(c),

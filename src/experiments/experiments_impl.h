@@ -266,11 +266,15 @@ struct GraspResult {
 /// `out` is not empty.
 GraspResult RunGraspCase(const std::filesystem::path& out, const GraspRun& run);
 
-/// grasp: single-rate at 1 ms (the reference) against local-dynamics and impulse at 20 ms,
-/// reported against the issue's bars (local-dynamics' 3-DOF contacts have no friction yet, so
-/// it cannot hold the box). Writes grasp.csv,
+/// The issue's bars for a grasp run against the reference: hold height within 5 mm, each
+/// finger's mean force within 5 % and its standard deviation at most 2x the reference's.
+bool MeetsBars(const GraspResult& r, const GraspResult& reference);
+
+/// grasp: single-rate at 1 ms (the reference) against local-dynamics (checked against the
+/// issue's bars) and impulse (reported) at 20 ms. Writes grasp.csv,
 /// grasp.md, grasp.png and summary.json; returns 0 if the reference lifts and holds the box (rise
-/// within 5 mm of 5 cm, the fingers carrying its weight within 5 %).
+/// within 5 mm of 5 cm, the fingers carrying its weight within 5 %) and local-dynamics meets the
+/// bars.
 int RunGrasp(const std::filesystem::path& out, bool quiet);
 
 /// Demo D1 (thesis §4.6.4, issue 36 item 3): scenes/d1.json, a simulated hand sweeping through

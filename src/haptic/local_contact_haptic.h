@@ -46,6 +46,12 @@ class LocalContactHaptic final : public MethodHaptic {
   /// every pointer adds its reactions to it, and the half with `steps` (the last pointer, ticked
   /// last) steps it once per tick with all of them and reports its end states. The owner must
   /// outlive the others. Setup only.
+  /// Coulomb friction μ at every contact (issue 35; 0, the default: frictionless), as
+  /// PointPenaltyHaptic renders it: a stick point per contact on the object, a tangential spring
+  /// of the contact's stiffness toward it limited to μ f_n; its reaction goes to the island body
+  /// in the same tick. Setup only.
+  void SetFriction(double friction) noexcept { friction_ = friction; }
+
   void ShareIsland(LocalContactHaptic* owner, bool steps) noexcept {
     owner_ = owner;
     steps_ = steps;
@@ -63,9 +69,24 @@ class LocalContactHaptic final : public MethodHaptic {
   /// another step's model (a follower's snapshot arrived a tick apart from the owner's).
   void MapMotions() noexcept;
 
+  // A contact's stick point, body frame of its object, kept while the geom stays in contact.
+  struct Anchor {
+    int geom = -1;
+    Vec3 p_BA = Vec3::Zero();
+    bool touched = false;
+  };
+
+  /// The friction force on the pointer for contact `c` (updating its anchor). RT-safe.
+  Vec3 Friction(int geom, const Pose& X_WB, const Vec3& p_WC, const Vec3& n, double k, double mu,
+                double f_n) noexcept;
+  void ReleaseUntouchedAnchors() noexcept;
+
   double radius_;
   double stiffness_;
   double damping_;
+  double friction_ = 0.0;
+  std::array<Anchor, ir::kMaxPointContacts> anchors_{};
+  std::size_t num_anchors_ = 0;
   ir::PhysicsSnapshot snapshot_;
   render::LocalContactSolver solver_;
   LocalContactHaptic* owner_ = nullptr;  ///< several pointers: the island's owner

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
-// 3-DOF friction of single-rate and impulse (issue 35): a fingertip pressed into the floor and
-// dragged along it feels Coulomb's μ f_n once it slides, and nothing tangential with μ = 0.
+// 3-DOF friction of single-rate, impulse and local-dynamics (issue 35): a fingertip pressed into
+// the floor and dragged along it feels Coulomb's μ f_n once it slides, and nothing tangential with
+// μ = 0.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -54,7 +55,7 @@ std::vector<TickRecord> Drag(const std::string& method, double friction) {
 }
 
 TEST(PointFrictionEngineTest, SlidingFingertipFeelsCoulombsForce) {
-  for (const char* method : {"single-rate", "impulse"}) {
+  for (const char* method : {"single-rate", "impulse", "local-dynamics"}) {
     SCOPED_TRACE(method);
     const std::vector<TickRecord> ticks = Drag(method, kMu);
     ASSERT_EQ(ticks.size(), 500u);

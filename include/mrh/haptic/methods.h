@@ -57,13 +57,14 @@ std::unique_ptr<MethodHaptic> MakeLocalDynamicsHaptic(double radius, double stif
 /// simulated at the haptic rate (render/local_contact_solver.h) under the pointer's penalty
 /// force (radius m, stiffness N/m, damping N·s/m). RT-safe after construction.
 std::unique_ptr<MethodHaptic> MakeLocalContactHaptic(double radius, double stiffness,
-                                                     double damping);
+                                                     double damping, double friction = 0.0);
 
 /// One pointer's gains for a group of haptic halves (radius m, stiffness N/m, damping N·s/m).
 struct PointerGains {
   double radius = 0.0;
   double stiffness = 0.0;
   double damping = 0.0;
+  double friction = 0.0;  ///< Coulomb μ (0: frictionless)
 };
 
 /// Several pointers (issue 35): one haptic half of "local-dynamics" (contact local model) per
