@@ -78,7 +78,8 @@ struct RenderingSettings {
   /// Multiplier on the unit-mass inertia when rotation_weight is empty (dimensionless, > 0).
   double rotation_weight_scale = 1.0;
   /// Coulomb friction coefficient μ of the friction cones (eq. 3.9–3.10), static = kinetic.
-  /// Also single-rate and impulse (issue 35): a stick point per contact, 0 frictionless.
+  /// Also single-rate, impulse and local-dynamics (issue 35): a stick point per contact, 0
+  /// frictionless.
   double friction = 0.0;
   /// Proxy solver: "active-set" (exact dual active-set method, the converged answer of the
   /// LCP in a few steps) or "pgs" (the thesis' projected Gauss–Seidel, eq. 3.6, which converges
