@@ -149,7 +149,7 @@ CLI::App* AddRunCommand(CLI::App& app, RunOptions* o) {
 // The report plot, the warnings (once, at the end, even with --quiet: they mean wrong physics or
 // timing), the summary and device faults, and where the files went.
 void PrintRunResults(const RunOptions& o, const engine::RunStats& stats, const fs::path& out,
-                     const device::Device& device) {
+                     const device::Device* device) {
   std::string why;
   const bool plotted = report::PlotRunReport(out, o.session, stats, &why);
   if (!plotted) fmt::print(stderr, "mrh: warning: no report.png: {}\n", why);
@@ -157,7 +157,7 @@ void PrintRunResults(const RunOptions& o, const engine::RunStats& stats, const f
     fmt::print(stderr, "mrh: warning: {}\n", warning);
   }
   if (!o.quiet) PrintSummary(stats);
-  PrintDeviceFaults(device);
+  if (device != nullptr) PrintDeviceFaults(*device);
   if (plotted) fmt::print("report: {}\n", (out / "report.png").string());
   fmt::print("summary: {}\n", (out / "summary.json").string());
 }
@@ -166,18 +166,23 @@ int RunCommand(const RunOptions& o) {
   const session::Session s = session::LoadSession(o.session, Overrides(o));
   CheckStudy(o.session, Overrides(o));
   // The device is built here (not by MakeEngine) to read its fault counters after the run.
-  std::unique_ptr<device::Device> owned_device = session::MakeDevice(s);
+  // Several pointers: the engine builds and owns every device (their counters reach
+  // summary.json per pointer), and the engine always owns the loop.
+  const bool several = !s.pointer_devices.empty();
+  std::unique_ptr<device::Device> owned_device = several ? nullptr : session::MakeDevice(s);
   device::Device* device = owned_device.get();
   // A device whose vendor scheduler owns the servo thread runs the engine inside its callback
   // (real time); otherwise the engine owns the loop.
   auto* servo = dynamic_cast<device::ServoDevice*>(device);
   const bool on_servo_thread = servo != nullptr && s.engine.mode == engine::Mode::kRealtime;
   std::unique_ptr<engine::Engine> engine;
-  if (!on_servo_thread) {
+  if (several) {
+    engine = session::MakeEngine(s);
+  } else if (!on_servo_thread) {
     engine = session::MakeEngine(s, std::move(owned_device));
   }
   const fs::path out = OutputDir(o, s);
-  report::CsvRecorder recorder(out);
+  report::CsvRecorder recorder(out, engine ? engine->pointer_names() : std::vector<std::string>{});
 
   ProgressBar bar(
       ProgressSettings{.enabled = !o.quiet && (o.progress || ::isatty(STDERR_FILENO) == 1),
@@ -205,7 +210,7 @@ int RunCommand(const RunOptions& o) {
   recorder.Close();
   report::WriteSummary(out, stats, s.file.string(), s.scene.string());
 
-  PrintRunResults(o, stats, out, *device);
+  PrintRunResults(o, stats, out, device);
   return kExitOk;
 }
 

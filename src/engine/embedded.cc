@@ -36,13 +36,17 @@ void Engine::Start(Recorder* recorder) {
         "Engine::Start needs an external device (device.type = \"external\"); use Run() for "
         "simulated devices");
   }
+  if (!s.lanes.empty()) {
+    throw InvalidArgument(
+        "Engine::Start embeds one pointer; a session with several pointers runs with Run()");
+  }
   if (s.has_run) throw RuntimeError("engine already ran; build a new engine for another run");
   s.has_run = true;
   s.device->Open();
   impl_->embedded.reset(new internal::EmbeddedRun(&s, recorder));
   internal::EmbeddedRun& run = *impl_->embedded;
   run.device = external;
-  run.physics.Start(s.haptic->InitialReport(0.0));
+  internal::StartPhysics(s, run.physics);
   if (s.settings.mode == Mode::kRealtime) {
     run.physics_thread = std::thread([&run] { internal::RunPhysicsThread(run.physics, run.done); });
   }

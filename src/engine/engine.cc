@@ -6,6 +6,8 @@
 
 #include <cmath>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "engine_impl.h"
 #include "mrh/core/error.h"
@@ -22,8 +24,8 @@ constexpr std::size_t kReportRingPeriods = 256;
 // Tick records buffered between drains (~32 s at 1 kHz).
 constexpr std::size_t kTickRecordCapacity = 1u << 15;
 
-double PointerRadius(const world::World& world, int pointer_body, const EngineSettings& s) {
-  if (s.pointer.radius > 0.0) return s.pointer.radius;
+double PointerRadius(const world::World& world, int pointer_body, const PointerSettings& p) {
+  if (p.radius > 0.0) return p.radius;
   for (int g : world.body(pointer_body).geoms) {
     const world::GeomInfo& geom = world.geom(g);
     if (geom.shape.type == geometry::ShapeType::kSphere) return geom.shape.size.x();
@@ -31,28 +33,77 @@ double PointerRadius(const world::World& world, int pointer_body, const EngineSe
   return 0.0;  // only 3-DOF methods need one (PointerRadiusFor3Dof)
 }
 
+// The pointer named `key` must be a mocap body whose geoms the world made non-colliding (pointer
+// 0 through LoadOptions::pointer_body, the others through more_pointer_bodies).
+int FindPointerBody(const world::World& world, const std::string& key, const std::string& body,
+                    bool tool) {
+  const int id = world.FindBody(body);
+  if (id < 0 || !(world.body(id).is_mocap || tool)) {
+    throw SceneError(
+        fmt::format("{} = '{}' is not a mocap body of the scene; add <body name=\"{}\" "
+                    "mocap=\"true\"> or name the right body",
+                    key, body, body));
+  }
+  return id;
+}
+
+void CheckLanePointer(const world::World& world, int i, int body) {
+  for (int g : world.body(body).geoms) {
+    if (world.geom(g).collides) {
+      throw SceneError(
+          fmt::format("pointers[{}].body = '{}' still collides inside MuJoCo; load the world with "
+                      "world::LoadOptions::more_pointer_bodies naming it (session::LoadWorld does)",
+                      i, world.body(body).name));
+    }
+  }
+}
+
 }  // namespace
 
-EngineState::EngineState(world::World w, std::unique_ptr<device::Device> d,
-                         const device::Calibration& c, const EngineSettings& s)
+PointerLane::PointerLane(std::unique_ptr<device::Device> d, const device::Calibration& c)
+    : device(std::move(d)), calibration(c), reports(kReportRingPeriods) {}
+
+EngineState::EngineState(world::World w, std::vector<std::unique_ptr<device::Device>> devices,
+                         const std::vector<device::Calibration>& calibrations,
+                         const EngineSettings& s)
     : settings(s),
       world(std::move(w)),
-      device(std::move(d)),
-      calibration(c),
       reports(kReportRingPeriods),
       tick_records(kTickRecordCapacity),
       body_poses(InitialBodyPoses(world)) {
   settings.Validate();
-  pointer_body = world.FindBody(settings.pointer.body);
-  // virtual-coupling's tool is the pointer made a free body (world::LoadOptions::dynamic_pointer).
-  const bool tool = settings.method == "virtual-coupling" && pointer_body == world.pointer_body();
-  if (pointer_body < 0 || !(world.body(pointer_body).is_mocap || tool)) {
-    throw SceneError(fmt::format(
-        "pointer.body = '{}' is not a mocap body of the scene; add <body name=\"{}\" "
-        "mocap=\"true\"> or name the right body",
-        settings.pointer.body, settings.pointer.body));
+  const int n = settings.num_pointers();
+  if (static_cast<int>(devices.size()) != n || static_cast<int>(calibrations.size()) != n) {
+    throw InvalidArgument(fmt::format(
+        "engine: {} pointer(s) but {} device(s) and {} calibration(s); give one of each per "
+        "pointer (session::MakeEngine(session) builds them; the viewer and the Python module "
+        "drive one pointer: keep one element in `pointers`)",
+        n, devices.size(), calibrations.size()));
   }
-  pointer_radius = PointerRadius(world, pointer_body, settings);
+  for (const auto& d : devices) {
+    if (!d) throw InvalidArgument("engine: no device given");
+  }
+  if (n >= 2) {
+    settings.pointer = settings.pointers[0].pointer;
+    settings.rendering = settings.pointers[0].rendering;
+  }
+  device = std::move(devices[0]);
+  calibration = calibrations[0];
+  // virtual-coupling's tool is the pointer made a free body (world::LoadOptions::dynamic_pointer).
+  const bool tool = settings.method == "virtual-coupling" &&
+                    world.FindBody(settings.pointer.body) == world.pointer_body();
+  pointer_body = FindPointerBody(world, n >= 2 ? "pointers[0].body" : "pointer.body",
+                                 settings.pointer.body, tool);
+  pointer_radius = PointerRadius(world, pointer_body, settings.pointer);
+  for (int i = 1; i < n; ++i) {
+    auto lane = std::make_unique<PointerLane>(std::move(devices[static_cast<std::size_t>(i)]),
+                                              calibrations[static_cast<std::size_t>(i)]);
+    const PointerSettings& p = settings.pointers[static_cast<std::size_t>(i)].pointer;
+    lane->pointer_body = FindPointerBody(world, fmt::format("pointers[{}].body", i), p.body, false);
+    CheckLanePointer(world, i, lane->pointer_body);
+    lane->pointer_radius = PointerRadius(world, lane->pointer_body, p);
+    lanes.push_back(std::move(lane));
+  }
   MakeMethodForSettings();
   if (settings.safety.watchdog_timeout <= 2.0 * settings.physics_dt) {
     throw InvalidArgument(fmt::format(
@@ -61,16 +112,49 @@ EngineState::EngineState(world::World w, std::unique_ptr<device::Device> d,
         settings.safety.watchdog_timeout, 2.0 * settings.physics_dt));
   }
   ticks_per_step = settings.ticks_per_step();
+  MakeLaneMethods();
   haptic.emplace(method.haptic.get(), device.get(), calibration, settings.safety, ticks_per_step,
                  settings.haptic_dt,
                  HapticSide::Exchange{&snapshots, &reports, &tick_records});
+  for (std::size_t i = 0; i < lanes.size(); ++i) {
+    PointerLane& lane = *lanes[i];
+    lane.haptic.emplace(lane.haptic_method.get(), lane.device.get(), lane.calibration,
+                        settings.safety, ticks_per_step, settings.haptic_dt,
+                        HapticSide::Exchange{&lane.snapshots, &lane.reports, &tick_records,
+                                             static_cast<int>(i) + 1});
+  }
 }
+
+namespace {
+std::vector<std::unique_ptr<device::Device>> OneDevice(std::unique_ptr<device::Device> device) {
+  std::vector<std::unique_ptr<device::Device>> devices;
+  devices.push_back(std::move(device));
+  return devices;
+}
+}  // namespace
+
+EngineState::EngineState(world::World w, std::unique_ptr<device::Device> d,
+                         const device::Calibration& c, const EngineSettings& s)
+    : EngineState(std::move(w), OneDevice(std::move(d)), std::vector{c}, s) {}
 
 void EngineState::MakeMethodForSettings() {
   MethodContext context{&world, &settings, pointer_body, pointer_radius,
                         device->specifications().max_force};
+  if (!lanes.empty()) {
+    context.pointers.push_back({pointer_body, pointer_radius, &settings.pointers[0].rendering});
+    for (std::size_t i = 0; i < lanes.size(); ++i) {
+      context.pointers.push_back(
+          {lanes[i]->pointer_body, lanes[i]->pointer_radius, &settings.pointers[i + 1].rendering});
+    }
+  }
   world.set_timestep(settings.physics_dt);
   method = MakeMethod(settings.method, context);
+  if (!lanes.empty() && !method.multi_pointer) {
+    throw InvalidArgument(fmt::format(
+        "pointers lists {} pointers, but method = \"{}\" renders one; use \"single-rate\", "
+        "\"impulse\" or \"local-dynamics\" (contact local model), or keep one pointer",
+        lanes.size() + 1, settings.method));
+  }
   if (method.single_rate && settings.physics_dt != settings.haptic_dt) {
     // The single-rate baseline steps the world at the haptic rate whatever physics_dt says.
     settings.physics_dt = settings.haptic_dt;
@@ -79,14 +163,90 @@ void EngineState::MakeMethodForSettings() {
   }
 }
 
+// Each further pointer's haptic half: the one the factory linked to pointer 0's, or else its
+// method built for that pointer alone (its body, radius and rendering), whose physics half is
+// dropped, as pointer 0's serves all.
+void EngineState::MakeLaneMethods() {
+  if (method.more_haptic.size() == lanes.size() && !lanes.empty()) {
+    for (std::size_t i = 0; i < lanes.size(); ++i) {
+      lanes[i]->haptic_method = std::move(method.more_haptic[i]);
+    }
+    return;
+  }
+  for (std::size_t i = 0; i < lanes.size(); ++i) {
+    PointerLane& lane = *lanes[i];
+    lane.settings = settings;
+    lane.settings.pointer = settings.pointers[i + 1].pointer;
+    lane.settings.rendering = settings.pointers[i + 1].rendering;
+    lane.settings.pointers.clear();
+    MethodContext context{&world, &lane.settings, lane.pointer_body, lane.pointer_radius,
+                          lane.device->specifications().max_force};
+    try {
+      lane.haptic_method = MakeMethod(settings.method, context).haptic;
+    } catch (const InvalidArgument& e) {
+      throw InvalidArgument(fmt::format("pointers[{}]: {}", i + 1, e.what()));
+    } catch (const SceneError& e) {
+      throw SceneError(fmt::format("pointers[{}]: {}", i + 1, e.what()));
+    }
+  }
+}
+
+void EngineState::TickAll(double t) noexcept {
+  haptic->Tick(t);
+  for (const auto& lane : lanes) lane->haptic->Tick(t);
+}
+
+void EngineState::StopAll() noexcept {
+  haptic->Stop();
+  for (const auto& lane : lanes) lane->haptic->Stop();
+}
+
+void EngineState::OpenDevices() {
+  device->Open();
+  for (const auto& lane : lanes) lane->device->Open();
+}
+
+void EngineState::CloseDevices() {
+  device->Close();
+  for (const auto& lane : lanes) lane->device->Close();
+}
+
+void StartPhysics(EngineState& state, PhysicsSide& physics) {
+  std::vector<ir::HapticReport> more;
+  more.reserve(state.lanes.size());
+  for (const auto& lane : state.lanes) more.push_back(lane->haptic->InitialReport(0.0));
+  physics.Start(state.haptic->InitialReport(0.0), more);
+}
+
 }  // namespace internal
 
 Engine::Engine(world::World world, std::unique_ptr<device::Device> device,
                const device::Calibration& calibration, const EngineSettings& settings) {
   if (!device) throw InvalidArgument("engine: no device given");
+  std::vector<std::unique_ptr<device::Device>> devices;
+  devices.push_back(std::move(device));
   impl_ = std::make_unique<Impl>();
-  impl_->state = std::make_unique<internal::EngineState>(std::move(world), std::move(device),
-                                                         calibration, settings);
+  impl_->state = std::make_unique<internal::EngineState>(std::move(world), std::move(devices),
+                                                         std::vector{calibration}, settings);
+}
+
+Engine::Engine(world::World world, std::vector<std::unique_ptr<device::Device>> devices,
+               const std::vector<device::Calibration>& calibrations,
+               const EngineSettings& settings) {
+  impl_ = std::make_unique<Impl>();
+  impl_->state = std::make_unique<internal::EngineState>(std::move(world), std::move(devices),
+                                                         calibrations, settings);
+}
+
+int Engine::num_pointers() const {
+  return 1 + static_cast<int>(impl_->state->lanes.size());
+}
+
+std::vector<std::string> Engine::pointer_names() const {
+  const internal::EngineState& s = *impl_->state;
+  std::vector<std::string> names{s.world.body(s.pointer_body).name};
+  for (const auto& lane : s.lanes) names.push_back(s.world.body(lane->pointer_body).name);
+  return names;
 }
 
 Engine::~Engine() = default;
@@ -123,6 +283,7 @@ void Engine::SetDisplayGain(double gain) {
         gain));
   }
   impl_->state->haptic->SetDisplayGain(gain);
+  for (const auto& lane : impl_->state->lanes) lane->haptic->SetDisplayGain(gain);
 }
 
 double Engine::display_gain() const { return impl_->state->haptic->display_gain(); }
@@ -133,10 +294,10 @@ RunStats Engine::Run(Recorder* recorder, const ProgressFn& progress) {
     throw RuntimeError("Engine::Run called twice; build a new engine for another run");
   }
   s.has_run = true;
-  s.device->Open();
+  s.OpenDevices();
   RunStats stats = s.settings.mode == Mode::kLockstep ? internal::RunLockstep(s, recorder, progress)
                                                       : internal::RunRealtime(s, recorder, progress);
-  s.device->Close();
+  s.CloseDevices();
   return stats;
 }
 

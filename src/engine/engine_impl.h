@@ -26,10 +26,40 @@ using physics::PhysicsSide;
 /// Everything a run owns. The physics half (world, method.physics, recorder) and the haptic
 /// half (HapticSide over method.haptic) touch disjoint members; they meet only in the exchange
 /// buffers.
+/// Pointer i >= 1 of a several-pointer run (issue 35): its own device, haptic half, safety
+/// layer and exchange buffers. Pointer 0 lives in EngineState itself.
+struct PointerLane {
+  PointerLane(std::unique_ptr<device::Device> device, const device::Calibration& calibration);
+
+  EngineSettings settings;  ///< the engine's, with this pointer's body and rendering
+  std::unique_ptr<device::Device> device;
+  device::Calibration calibration;
+  std::unique_ptr<haptic::MethodHaptic> haptic_method;
+  int pointer_body = -1;
+  double pointer_radius = 0.0;
+  TripleBuffer<ir::PhysicsSnapshot> snapshots;
+  SpscRing<ir::HapticReport> reports;
+  std::optional<HapticSide> haptic;
+};
+
 struct EngineState {
+  /// devices[i] and calibrations[i] drive pointer i (one of each for one pointer).
+  EngineState(world::World world, std::vector<std::unique_ptr<device::Device>> devices,
+              const std::vector<device::Calibration>& calibrations, const EngineSettings& settings);
+  /// One pointer.
   EngineState(world::World world, std::unique_ptr<device::Device> device,
               const device::Calibration& calibration, const EngineSettings& settings);
   void MakeMethodForSettings();
+  /// Builds pointers 1, 2, ...'s haptic halves (after MakeMethodForSettings).
+  void MakeLaneMethods();
+
+  /// One haptic tick of every pointer, pointer 0 first. RT-safe.
+  void TickAll(double t) noexcept;
+  /// Stops every pointer's haptic side. RT-safe.
+  void StopAll() noexcept;
+  /// Opens / closes every device.
+  void OpenDevices();
+  void CloseDevices();
 
   /// A physics side over this state's world, method and exchange.
   PhysicsSide MakePhysicsSide(Recorder* recorder);
@@ -51,6 +81,8 @@ struct EngineState {
   SpscRing<ir::HapticReport> reports;
   SpscRing<TickRecord> tick_records;
   std::optional<HapticSide> haptic;
+  /// Pointers 1, 2, ... (empty with one pointer).
+  std::vector<std::unique_ptr<PointerLane>> lanes;
   /// physics side → Engine::ReadBodyPoses (one reader thread), written by body_pose_tap, which
   /// every physics side records through first.
   TripleBuffer<BodyPoses> body_poses;
@@ -61,6 +93,9 @@ struct EngineState {
 /// thread) for the end of haptic period k, exchange, record; returns once `done` is set and no
 /// report is pending.
 void RunPhysicsThread(PhysicsSide& physics, const std::atomic<bool>& done);
+
+/// Starts the physics side from every pointer's initial device reading.
+void StartPhysics(EngineState& state, PhysicsSide& physics);
 
 /// The statistics tail common to every scheduler: the physics side's and the haptic counters'
 /// share, the method's status bits, the method, mode and time steps, sim_time and wall_time (s),

@@ -25,13 +25,13 @@ RunStats RunLockstep(EngineState& state, Recorder* recorder, const Engine::Progr
   const std::int64_t periods = (total_ticks + n - 1) / n;
 
   PhysicsSide physics = state.MakePhysicsSide(recorder);
-  physics.Start(state.haptic->InitialReport(0.0));
+  StartPhysics(state, physics);
   auto last_progress = wall0;
   std::int64_t tick = 0;
   for (std::int64_t k = 0; k < periods && !state.stop_requested.load(std::memory_order_relaxed);
        ++k) {
     physics.Step(k);
-    for (int j = 0; j < n; ++j, ++tick) state.haptic->Tick(static_cast<double>(tick) * dt);
+    for (int j = 0; j < n; ++j, ++tick) state.TickAll(static_cast<double>(tick) * dt);
     physics.TakeReports();  // S_{k+1}: period k's report for step k+1 ...
     physics.Publish();      // ... and step k's snapshot for period k+1.
     physics.RecordStep();
@@ -41,7 +41,7 @@ RunStats RunLockstep(EngineState& state, Recorder* recorder, const Engine::Progr
       last_progress = now;
     }
   }
-  state.haptic->Stop();
+  state.StopAll();
 
   RunStats stats;
   const double sim_time = static_cast<double>(tick) * dt;

@@ -38,11 +38,13 @@ namespace {
 // from plain parameters: they share no object.
 Method PointPenalty(const MethodContext& c, bool single_rate) {
   const RenderingSettings& r = c.settings->rendering;
-  return Method{single_rate ? "single-rate" : "impulse", single_rate,
+  return Method{single_rate ? "single-rate" : "impulse",
+                single_rate,
                 physics::MakePointPenaltyPhysics(c),
                 haptic::MakePointPenaltyHaptic(physics::PointerRadiusFor3Dof(c), r.stiffness,
-                                               r.damping),
-                {}};
+                                               r.damping, r.friction),
+                {},
+                /*multi_pointer=*/true};
 }
 
 Method SingleRate(const MethodContext& c) { return PointPenalty(c, true); }
@@ -89,10 +91,39 @@ Method ContactVolume(const MethodContext& c) {
 // or the thesis' "perturbation".
 Method LocalDynamics(const MethodContext& c) {
   const RenderingSettings& r = c.settings->rendering;
+  if (physics::UsesContactLocalModel(c) && c.pointers.size() >= 2) {
+    // Several pointers (issue 35): one island, every pointer's reaction in the same tick.
+    std::vector<haptic::PointerGains> gains;
+    for (const physics::PointerContext& p : c.pointers) {
+      gains.push_back(
+          {p.radius, p.rendering->stiffness, p.rendering->damping, p.rendering->friction});
+    }
+    if (gains[0].radius <= 0.0) gains[0].radius = physics::PointerRadiusFor3Dof(c);
+    for (std::size_t i = 1; i < gains.size(); ++i) {
+      if (gains[i].radius > 0.0) continue;
+      throw SceneError(fmt::format(
+          "pointers[{}].body = '{}' has no sphere geom and pointers[{}].radius is not set, which "
+          "method 'local-dynamics' (3-DOF) needs; set the radius (m)",
+          i, c.world->body(c.pointers[i].body).name, i));
+    }
+    std::vector<std::unique_ptr<haptic::MethodHaptic>> group =
+        haptic::MakeLocalContactHapticGroup(gains);
+    Method method{"local-dynamics",
+                  false,
+                  physics::MakeLocalContactPhysics(c),
+                  std::move(group[0]),
+                  {"local_dynamics.local_body_fault"},
+                  true};
+    for (std::size_t i = 1; i < group.size(); ++i)
+      method.more_haptic.push_back(std::move(group[i]));
+    return method;
+  }
   if (physics::UsesContactLocalModel(c)) {
-    return Method{"local-dynamics", false, physics::MakeLocalContactPhysics(c),
+    return Method{"local-dynamics",
+                  false,
+                  physics::MakeLocalContactPhysics(c),
                   haptic::MakeLocalContactHaptic(physics::PointerRadiusFor3Dof(c), r.stiffness,
-                                                 r.damping),
+                                                 r.damping, r.friction),
                   {"local_dynamics.local_body_fault"}};  // haptic::LocalDynamicsStatusBits
   }
   return Method{"local-dynamics", false, physics::MakeLocalDynamicsPhysics(c),

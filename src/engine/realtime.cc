@@ -45,9 +45,9 @@ void HapticLoop(EngineState& s, HapticTiming* timing, std::atomic<bool>* done,
         s.stop_requested.load(std::memory_order_relaxed)) {
       break;
     }
-    s.haptic->Tick(static_cast<double>(wake.deadline_ns - clock.start_ns()) / kNsPerS);
+    s.TickAll(static_cast<double>(wake.deadline_ns - clock.start_ns()) / kNsPerS);
   }
-  s.haptic->Stop();
+  s.StopAll();
   done->store(true, std::memory_order_release);
 }
 
@@ -97,7 +97,7 @@ RunStats RunRealtime(EngineState& s, Recorder* recorder, const Engine::ProgressF
   timing.jitter_us.resize(static_cast<std::size_t>(s.settings.duration / s.settings.haptic_dt) +
                           kJitterSlack);
   PhysicsSide physics = s.MakePhysicsSide(recorder);
-  physics.Start(s.haptic->InitialReport(0.0));
+  StartPhysics(s, physics);
   std::atomic<bool> fifo_ok{false};
   const std::int64_t wall0 = NowNs();
   try {

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // What every scheduler shares: the physics thread's loop and the statistics tail of a run.
+#include <algorithm>
 #include <string>
 #include <utility>
 
@@ -10,8 +11,12 @@ namespace mrh::engine::internal {
 
 PhysicsSide EngineState::MakePhysicsSide(Recorder* recorder) {
   body_pose_tap.set_next(recorder);
-  return PhysicsSide(method.physics.get(), &world,
-                     PhysicsSide::Exchange{&snapshots, &reports, &tick_records}, &body_pose_tap,
+  PhysicsSide::Exchange exchange{&snapshots, &reports, &tick_records};
+  for (const auto& lane : lanes) {
+    exchange.more_snapshots.push_back(&lane->snapshots);
+    exchange.more_reports.push_back(&lane->reports);
+  }
+  return PhysicsSide(method.physics.get(), &world, exchange, &body_pose_tap,
                      settings.safety.max_body_speed);
 }
 
@@ -74,6 +79,44 @@ void FillPhysicsStats(PhysicsSide& physics, RunStats* stats) {
   stats->impulses = std::move(p.impulses);
 }
 
+PointerRunStats PointerStats(const HapticCounters& c, const std::string& body,
+                             const device::Device& device) {
+  PointerRunStats p;
+  p.body = body;
+  p.max_force = c.max_force;
+  p.max_torque = c.max_torque;
+  p.mean_force = c.ticks > 0 ? c.sum_force / static_cast<double>(c.ticks) : 0.0;
+  p.force_clamped = c.force_clamped;
+  p.torque_clamped = c.torque_clamped;
+  p.watchdog_ticks = c.watchdog_ticks;
+  p.fault_nonfinite_wrench = c.nonfinite_wrench;
+  p.fault_nonfinite_device = c.nonfinite_device;
+  p.final_wrench = c.last_displayed;
+  p.device = device.counters();
+  return p;
+}
+
+// Several pointers: the totals count every pointer (the tick count stays pointer 0's: one tick
+// renders all pointers), and each pointer gets its own block.
+void FillPointerStats(EngineState& state, RunStats* stats) {
+  stats->pointers.push_back(PointerStats(state.haptic->counters(),
+                                         state.world.body(state.pointer_body).name, *state.device));
+  for (const auto& lane : state.lanes) {
+    const HapticCounters& c = lane->haptic->counters();
+    stats->pointers.push_back(
+        PointerStats(c, state.world.body(lane->pointer_body).name, *lane->device));
+    stats->max_force = std::max(stats->max_force, c.max_force);
+    stats->max_torque = std::max(stats->max_torque, c.max_torque);
+    stats->fault_nonfinite_wrench += c.nonfinite_wrench;
+    stats->fault_nonfinite_device += c.nonfinite_device;
+    stats->force_clamped += c.force_clamped;
+    stats->torque_clamped += c.torque_clamped;
+    stats->watchdog_ticks += c.watchdog_ticks;
+    stats->dropped_tick_records += c.dropped_tick_records;
+    stats->dropped_reports += c.dropped_reports;
+  }
+}
+
 }  // namespace
 
 void FillRunStats(EngineState& state, PhysicsSide& physics, Mode mode, double sim_time,
@@ -81,6 +124,7 @@ void FillRunStats(EngineState& state, PhysicsSide& physics, Mode mode, double si
   FillPhysicsStats(physics, stats);
   FillHapticStats(state.haptic->counters(), stats);
   FillMethodStatus(state.haptic->counters(), state.method, stats);
+  if (!state.lanes.empty()) FillPointerStats(state, stats);
   stats->method = state.method.name;
   stats->device = state.device->counters();
   stats->mode = mode;

@@ -62,6 +62,10 @@ constexpr Entry kExperiments[] = {
     {"t4.push",
      "pushing resting boxes across a floor with friction: force and trajectory vs single-rate",
      internal::RunT4Push},
+    {"grasp",
+     "two fingertips squeeze a box, lift it 5 cm, hold it and put it down (issue 35): "
+     "local-dynamics and impulse at 20 ms vs single-rate at 1 ms",
+     internal::RunGrasp},
     {"d1",
      "demo D1: a simulated hand sweeps through 80 boxes, spheres, capsules and meshes on a table "
      "in real time (local-dynamics): haptic rate, overruns, step times, peak memory; --full: 60 s",

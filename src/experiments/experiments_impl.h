@@ -246,6 +246,37 @@ std::vector<std::vector<PushResult>> RunPushCases(const std::filesystem::path& o
 int RunT4Push(const std::filesystem::path& out, bool quiet);
 int RunT4Push(const std::filesystem::path& out, bool quiet, const PushOptions& options);
 
+/// One run of the grasp experiment (issue 35): a method at its physics step.
+struct GraspRun {
+  std::string method = "single-rate";
+  double physics_dt = 0.001;  ///< s
+};
+
+/// What a grasp run measured over the hold (both fingers still, box lifted).
+struct GraspResult {
+  double hold_height = 0.0;           ///< box COM's mean rise above its start (m)
+  double mean_force[2] = {0.0, 0.0};  ///< each finger's mean |displayed force| (N)
+  double sd_force[2] = {0.0, 0.0};    ///< and its standard deviation (N)
+  double mean_lift_force = 0.0;       ///< −Σ fingers' mean f_z: the weight they carry (N)
+  double box_mass = 0.0;              ///< kg (the scene's)
+};
+
+/// Runs scenes/two_finger_grasp.xml with two simulated hands on a device::PinchKeyframes pinch
+/// (close, lift 5 cm, hold, lower, open); writes runs/<method>_{force,box}.csv under `out` when
+/// `out` is not empty.
+GraspResult RunGraspCase(const std::filesystem::path& out, const GraspRun& run);
+
+/// The issue's bars for a grasp run against the reference: hold height within 5 mm, each
+/// finger's mean force within 5 % and its standard deviation at most 2x the reference's.
+bool MeetsBars(const GraspResult& r, const GraspResult& reference);
+
+/// grasp: single-rate at 1 ms (the reference) against local-dynamics (checked against the
+/// issue's bars) and impulse (reported) at 20 ms. Writes grasp.csv,
+/// grasp.md, grasp.png and summary.json; returns 0 if the reference lifts and holds the box (rise
+/// within 5 mm of 5 cm, the fingers carrying its weight within 5 %) and local-dynamics meets the
+/// bars.
+int RunGrasp(const std::filesystem::path& out, bool quiet);
+
 /// Demo D1 (thesis §4.6.4, issue 36 item 3): scenes/d1.json, a simulated hand sweeping through
 /// 80 objects of four shapes on a table with local-dynamics. First a lockstep run with the hand
 /// held above the table (the objects must stay at rest), then the session itself, then (by

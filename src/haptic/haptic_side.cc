@@ -86,6 +86,7 @@ void HapticSide::Record(double t, const TickOutput& out, const Wrench& displayed
                         std::uint32_t safety_bits) noexcept {
   TickRecord record;
   record.tick = counters_.ticks;
+  record.pointer = exchange_.pointer;
   record.t = t;
   record.X_WP = X_WP_;
   record.X_WQ = out.X_WQ;
@@ -116,6 +117,7 @@ void HapticSide::EndPeriod(double t) noexcept {
 void HapticSide::Count(const Wrench& displayed, std::uint32_t bits) noexcept {
   counters_.last_displayed = displayed;
   counters_.max_force = std::max(counters_.max_force, displayed.f.norm());
+  counters_.sum_force += displayed.f.norm();
   counters_.max_torque = std::max(counters_.max_torque, displayed.tau.norm());
   if (bits & device::kSafetyNonFiniteWrench) ++counters_.nonfinite_wrench;
   if (bits & device::kSafetyNonFiniteDevice) ++counters_.nonfinite_device;

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 
+#include "mrh/render/point_friction.h"
 #include "mrh/render/point_penalty.h"
 
 namespace mrh::haptic::internal {
@@ -20,15 +21,25 @@ LocalContactHaptic::LocalContactHaptic(double radius, double stiffness, double d
 void LocalContactHaptic::Adopt(const ir::PhysicsSnapshot& snapshot) noexcept {
   CarryRenderedNormals(snapshot, snapshot_, rendered_n_, &previous_n_);
   snapshot_ = snapshot;
-  solver_.Adopt(snapshot_.local_model);
-  for (std::size_t m = 0; m < snapshot_.bodies.size(); ++m) {
-    local_of_motion_[m] = solver_.FindMotion(static_cast<int>(m));
+  if (owner_ == nullptr) {
+    solver_.Adopt(snapshot_.local_model);
+    adopted_step_ = snapshot_.step;
   }
+  MapMotions();
   for (std::size_t i = 0; i < snapshot_.contacts.size(); ++i) {
     const ir::PointContact& c = snapshot_.contacts[i];
     n_B_[i] = snapshot_.bodies[static_cast<std::size_t>(c.motion)].X_WB.q.conjugate() * c.n_W;
     rendered_n_[i] = previous_n_[i];
   }
+}
+
+void LocalContactHaptic::MapMotions() noexcept {
+  const std::int64_t island_step = owner_ ? owner_->adopted_step_ : adopted_step_;
+  const bool current = island_step == snapshot_.step;
+  for (std::size_t m = 0; m < snapshot_.bodies.size(); ++m) {
+    local_of_motion_[m] = current ? island().FindMotion(static_cast<int>(m)) : -1;
+  }
+  mapped_step_ = current ? island_step : -2;
 }
 
 namespace {
@@ -58,9 +69,12 @@ void LocalContactHaptic::HapticTick(const TickInput& in, TickOutput* out) noexce
   out->contacts = 0;
   out->status = 0;
   for (ir::BodyImpulse& entry : period_.impulses) entry.last_force = Vec3::Zero();
+  // A follower whose snapshot and the island's model came a tick apart catches up here.
+  if (owner_ != nullptr && mapped_step_ != snapshot_.step) MapMotions();
   RenderContacts(in, alpha, out);
+  if (friction_ > 0.0) ReleaseUntouchedAnchors();
   render::AddTransientForce(in.dt, &transients_, &out->w_W.f);
-  if (!solver_.Step(in.dt)) {
+  if (steps_ && !island().Step(in.dt)) {
     ++counters_.local_faults;
     out->status |= kLocalBodyFault;
   }
@@ -73,20 +87,21 @@ void LocalContactHaptic::RenderContacts(const TickInput& in, double alpha,
                                         TickOutput* out) noexcept {
   for (std::size_t i = 0; i < snapshot_.contacts.size(); ++i) {
     const ir::PointContact& c = snapshot_.contacts[i];
-    // The geom's material, or rendering.* (3-DOF contacts have no friction).
-    const ir::ContactGains g = ir::GainsOf(c.material, {stiffness_, damping_, 0.0});
+    // The geom's material, or rendering.*.
+    const ir::ContactGains g = ir::GainsOf(c.material, {stiffness_, damping_, friction_});
     const auto motion = static_cast<std::size_t>(c.motion);
     const ir::BodyMotion& body = snapshot_.bodies[motion];
     const int local = local_of_motion_[motion];
     Vec3 n_W, p_WO, v_WO, p_WCm;
+    render::LocalContactSolver& solver = island();
     if (local >= 0) {
       const auto l = static_cast<std::size_t>(local);
-      const Pose X_WB = solver_.X_WB(l);
+      const Pose X_WB = solver.X_WB(l);
       n_W = X_WB.q * n_B_[i];
       p_WO = X_WB * c.p_BC;
       if (c.r > 0.0) RoundPlane(X_WB, c, in.X_WP.p, &n_W, &p_WO);
-      v_WO = solver_.PointVelocity(l, p_WO);
-      p_WCm = solver_.p_WCm(l);
+      v_WO = solver.PointVelocity(l, p_WO);
+      p_WCm = solver.p_WCm(l);
     } else {
       n_W = render::BlendNormal(previous_n_[i], c.n_W, alpha);
       const render::BlendedPoint o = render::BlendBodyPoint(body, c.p_BC, alpha);
@@ -98,25 +113,67 @@ void LocalContactHaptic::RenderContacts(const TickInput& in, double alpha,
     const render::SphereContact contact = render::TouchSpherePlane(
         p_WO, v_WO, n_W, in.X_WP.p, in.V_WP, radius_, g.stiffness, g.damping);
     if (contact.result.magnitude <= 0.0) continue;
-    const Vec3& f_d = contact.result.f_W;
+    Vec3 f_d = contact.result.f_W;
     ++out->contacts;
     transients_.Touch(c.geom, contact.state.n_W, render::ApproachSpeed(contact),
                       c.material.vibration);
-    const Wrench w = render::PointerWrench(contact, in.X_WP.p);
+    Wrench w = render::PointerWrench(contact, in.X_WP.p);
+    if (friction_ > 0.0 && g.friction > 0.0) {
+      const Pose X_WB = local >= 0 ? solver.X_WB(static_cast<std::size_t>(local))
+                                   : Interpolate(body.X_WB_prev, body.X_WB, alpha);
+      const Vec3 f_t = Friction(c.geom, X_WB, contact.state.p_WC, contact.state.n_W, g.stiffness,
+                                g.friction, contact.result.magnitude);
+      f_d += f_t;
+      w.f += f_t;
+      w.tau += (contact.state.p_WC - in.X_WP.p).cross(f_t);
+    }
     out->w_W.f += w.f;
     out->w_W.tau += w.tau;
     if (body.is_static) continue;
-    if (local >= 0) solver_.AddForce(static_cast<std::size_t>(local), -f_d, p_WO);
+    if (local >= 0) solver.AddForce(static_cast<std::size_t>(local), -f_d, p_WO);
     period_.AddImpulse(body.body, -f_d * in.dt, (p_WO - p_WCm).cross(-f_d) * in.dt, -f_d);
   }
+}
+
+// As PointPenaltyHaptic::Friction: the contact's anchor (made where the pointer's contact point
+// first touched), then Coulomb's cone on the tangential spring toward it.
+Vec3 LocalContactHaptic::Friction(int geom, const Pose& X_WB, const Vec3& p_WC, const Vec3& n,
+                                  double k, double mu, double f_n) noexcept {
+  Anchor* anchor = nullptr;
+  for (std::size_t a = 0; a < num_anchors_; ++a) {
+    if (anchors_[a].geom == geom) anchor = &anchors_[a];
+  }
+  if (anchor == nullptr) {
+    if (num_anchors_ == anchors_.size()) return Vec3::Zero();
+    anchor = &anchors_[num_anchors_++];
+    anchor->geom = geom;
+    anchor->p_BA = X_WB.Inverse() * p_WC;
+  }
+  anchor->touched = true;
+  const render::PointFrictionResult r =
+      render::RenderPointFriction(X_WB * anchor->p_BA, p_WC, n, k, mu, f_n);
+  anchor->p_BA = X_WB.Inverse() * r.p_WA;
+  return r.f_W;
+}
+
+void LocalContactHaptic::ReleaseUntouchedAnchors() noexcept {
+  std::size_t kept = 0;
+  for (std::size_t a = 0; a < num_anchors_; ++a) {
+    if (!anchors_[a].touched) continue;
+    anchors_[kept] = anchors_[a];
+    anchors_[kept++].touched = false;
+  }
+  num_anchors_ = kept;
 }
 
 void LocalContactHaptic::EndPeriod(ir::HapticReport* report) noexcept {
   report->impulses = period_.impulses;
   report->local_states.Clear();
-  for (std::size_t i = 0; i < solver_.size(); ++i) {
+  // Several pointers: the half that steps the island reports its end states, once.
+  const render::LocalContactSolver& solver = island();
+  for (std::size_t i = 0; steps_ && i < solver.size(); ++i) {
     if (!report->local_states.PushBack(
-            ir::LocalBodyState{solver_.world_body(i), solver_.X_WB(i), solver_.V_WCm(i)})) {
+            ir::LocalBodyState{solver.world_body(i), solver.X_WB(i), solver.V_WCm(i)})) {
       period_.status |= ir::kStatusBodiesFull;
     }
   }

@@ -41,17 +41,58 @@ class LocalContactHaptic final : public MethodHaptic {
 
   const LocalContactHapticCounters& counters() const { return counters_; }
 
+  /// Several pointers (issue 35): this half renders its own pointer against `owner`'s island
+  /// (null: its own, it is the owner): the owner (pointer 0, ticked first) adopts the island,
+  /// every pointer adds its reactions to it, and the half with `steps` (the last pointer, ticked
+  /// last) steps it once per tick with all of them and reports its end states. The owner must
+  /// outlive the others. Setup only.
+  /// Coulomb friction μ at every contact (issue 35; 0, the default: frictionless), as
+  /// PointPenaltyHaptic renders it: a stick point per contact on the object, a tangential spring
+  /// of the contact's stiffness toward it limited to μ f_n; its reaction goes to the island body
+  /// in the same tick. Setup only.
+  void SetFriction(double friction) noexcept { friction_ = friction; }
+
+  void ShareIsland(LocalContactHaptic* owner, bool steps) noexcept {
+    owner_ = owner;
+    steps_ = steps;
+  }
+
   /// The haptic side's island (haptic thread; tests read it between ticks).
   const render::LocalContactSolver& solver() const noexcept { return solver_; }
 
  private:
   void RenderContacts(const TickInput& in, double alpha, TickOutput* out) noexcept;
 
+  render::LocalContactSolver& island() noexcept { return owner_ ? owner_->solver_ : solver_; }
+
+  /// Maps the snapshot's motions to the island's bodies, or to none while the island holds
+  /// another step's model (a follower's snapshot arrived a tick apart from the owner's).
+  void MapMotions() noexcept;
+
+  // A contact's stick point, body frame of its object, kept while the geom stays in contact.
+  struct Anchor {
+    int geom = -1;
+    Vec3 p_BA = Vec3::Zero();
+    bool touched = false;
+  };
+
+  /// The friction force on the pointer for contact `c` (updating its anchor). RT-safe.
+  Vec3 Friction(int geom, const Pose& X_WB, const Vec3& p_WC, const Vec3& n, double k, double mu,
+                double f_n) noexcept;
+  void ReleaseUntouchedAnchors() noexcept;
+
   double radius_;
   double stiffness_;
   double damping_;
+  double friction_ = 0.0;
+  std::array<Anchor, ir::kMaxPointContacts> anchors_{};
+  std::size_t num_anchors_ = 0;
   ir::PhysicsSnapshot snapshot_;
   render::LocalContactSolver solver_;
+  LocalContactHaptic* owner_ = nullptr;  ///< several pointers: the island's owner
+  bool steps_ = true;                    ///< this half steps the island each tick
+  std::int64_t adopted_step_ = -2;       ///< snapshot step of the island's model (owner)
+  std::int64_t mapped_step_ = -2;        ///< island step local_of_motion_ was mapped against
   std::array<int, ir::kMaxNeighborBodies> local_of_motion_{};
   std::array<Vec3, ir::kMaxPointContacts> n_B_{};  // contact normals in the body frame
   ContactNormals previous_n_{};

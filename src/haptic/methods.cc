@@ -14,8 +14,8 @@
 namespace mrh::haptic {
 
 std::unique_ptr<MethodHaptic> MakePointPenaltyHaptic(double radius, double stiffness,
-                                                     double damping) {
-  return std::make_unique<internal::PointPenaltyHaptic>(radius, stiffness, damping);
+                                                     double damping, double friction) {
+  return std::make_unique<internal::PointPenaltyHaptic>(radius, stiffness, damping, friction);
 }
 
 std::unique_ptr<MethodHaptic> MakeProxyHaptic(const render::ProxyRendererSettings& settings) {
@@ -40,8 +40,25 @@ std::unique_ptr<MethodHaptic> MakeLocalDynamicsHaptic(double radius, double stif
 }
 
 std::unique_ptr<MethodHaptic> MakeLocalContactHaptic(double radius, double stiffness,
-                                                     double damping) {
-  return std::make_unique<internal::LocalContactHaptic>(radius, stiffness, damping);
+                                                     double damping, double friction) {
+  auto half = std::make_unique<internal::LocalContactHaptic>(radius, stiffness, damping);
+  half->SetFriction(friction);
+  return half;
+}
+
+std::vector<std::unique_ptr<MethodHaptic>> MakeLocalContactHapticGroup(
+    const std::vector<PointerGains>& pointers) {
+  std::vector<std::unique_ptr<MethodHaptic>> group;
+  internal::LocalContactHaptic* owner = nullptr;
+  for (std::size_t i = 0; i < pointers.size(); ++i) {
+    auto half = std::make_unique<internal::LocalContactHaptic>(
+        pointers[i].radius, pointers[i].stiffness, pointers[i].damping);
+    half->SetFriction(pointers[i].friction);
+    half->ShareIsland(owner, i + 1 == pointers.size());
+    if (owner == nullptr) owner = half.get();
+    group.push_back(std::move(half));
+  }
+  return group;
 }
 
 std::unique_ptr<MethodHaptic> MakeLocalDynamics6dofHaptic(

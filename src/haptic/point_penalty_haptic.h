@@ -16,18 +16,36 @@ namespace mrh::haptic::internal {
 /// physics::internal::PointPenaltyPhysics.
 class PointPenaltyHaptic final : public MethodHaptic {
  public:
-  /// radius (m), stiffness k (N/m), damping d (N·s/m) of eq. 4.11.
-  PointPenaltyHaptic(double radius, double stiffness, double damping)
-      : radius_(radius), stiffness_(stiffness), damping_(damping) {}
+  /// radius (m), stiffness k (N/m), damping d (N·s/m) of eq. 4.11; friction μ (>= 0, issue 35):
+  /// 0 renders no friction at all (whatever the materials say), > 0 a Coulomb cone per contact
+  /// through a stick anchor (render::RenderPointFriction), μ from the geom's material if it has
+  /// one, else `friction`, with the contact's normal stiffness as the tangential spring.
+  PointPenaltyHaptic(double radius, double stiffness, double damping, double friction = 0.0)
+      : radius_(radius), stiffness_(stiffness), damping_(damping), friction_(friction) {}
 
   void Adopt(const ir::PhysicsSnapshot& snapshot) noexcept override;
   void HapticTick(const TickInput& in, TickOutput* out) noexcept override;
   void EndPeriod(ir::HapticReport* report) noexcept override;
 
  private:
+  // A contact's stick point, body frame of its object, kept while the geom stays in contact.
+  struct Anchor {
+    int geom = -1;
+    Vec3 p_BA = Vec3::Zero();
+    bool touched = false;
+  };
+
+  /// The friction force on the pointer for contact `c` (updating its anchor). RT-safe.
+  Vec3 Friction(const ir::PointContact& c, const Pose& X_WB, const Vec3& p_WC, const Vec3& n,
+                double k, double mu, double f_n) noexcept;
+  void ReleaseUntouchedAnchors() noexcept;
+
   double radius_;
   double stiffness_;
   double damping_;
+  double friction_;
+  std::array<Anchor, ir::kMaxPointContacts> anchors_{};
+  std::size_t num_anchors_ = 0;
   ir::PhysicsSnapshot snapshot_;
   ContactNormals previous_n_{};
   ContactNormals rendered_n_{};

@@ -20,6 +20,106 @@ LocalContactPhysics::LocalContactPhysics(const MethodContext& context)
   const auto capacity = static_cast<std::size_t>(world_->num_bodies());
   seeds_.reserve(capacity);
   motions_.reserve(capacity);
+  builders_.reserve(context.pointers.size());
+  for (const PointerContext& pointer : context.pointers) {
+    pointer_bodies_.push_back(pointer.body);
+    builders_.emplace_back(*world_, pointer.body, pointer.radius, *pointer.rendering);
+  }
+  remap_.resize(ir::kMaxNeighborBodies);
+}
+
+void LocalContactPhysics::PhysicsStartPointers(std::span<const ir::HapticReport* const> initial,
+                                               std::span<ir::PhysicsSnapshot* const> out) {
+  for (std::size_t i = 0; i < builders_.size(); ++i) {
+    world_->SetMocapPose(pointer_bodies_[i], initial[i]->X_WP);
+    builders_[i].CapturePreviousPoses(*world_);
+  }
+  BuildPointers(initial, out);
+  for (ir::PhysicsSnapshot* o : out) {
+    o->step = -1;
+    o->t = world_->time();
+    o->physics_dt = physics_dt_;
+  }
+}
+
+void LocalContactPhysics::PhysicsStepPointers(std::span<const ir::HapticReport* const> reports,
+                                              std::span<ir::PhysicsSnapshot* const> out) {
+  auto t0 = std::chrono::steady_clock::now();
+  // The island's end states from the half that stepped it; every pointer's reaction.
+  merged_ = *reports.back();
+  for (std::size_t i = 0; i + 1 < reports.size(); ++i) {
+    for (const ir::BodyImpulse& impulse : reports[i]->impulses) {
+      merged_.AddImpulse(impulse.body, impulse.linear, impulse.angular, impulse.last_force);
+    }
+  }
+  sync_.Overwrite(merged_);
+  phases_.sync_ms = MsSince(t0);
+  t0 = std::chrono::steady_clock::now();
+  for (std::size_t i = 0; i < builders_.size(); ++i) {
+    world_->SetMocapPose(pointer_bodies_[i], reports[i]->X_WP);
+    builders_[i].CapturePreviousPoses(*world_);
+  }
+  world_->Step();
+  sync_.HoldOwned(0.0);
+  phases_.world_step_ms = MsSince(t0);
+  t0 = std::chrono::steady_clock::now();
+  BuildPointers(reports, out);
+  phases_.model_ms = MsSince(t0);
+  for (ir::PhysicsSnapshot* o : out) {
+    o->t = world_->time();
+    o->physics_dt = physics_dt_;
+  }
+  sync_.CountStep();
+}
+
+// Pointer 0's snapshot collects the union of the neighbor bodies; each other pointer's contacts
+// are renumbered into it. The island is exported once, from every pointer's contacts, and the
+// bodies and island are copied into every snapshot.
+void LocalContactPhysics::BuildPointers(std::span<const ir::HapticReport* const> reports,
+                                        std::span<ir::PhysicsSnapshot* const> out) {
+  ir::PhysicsSnapshot& all = *out[0];
+  builders_[0].Build(*world_, reports[0]->X_WP, &all);
+  for (std::size_t i = 1; i < builders_.size(); ++i) {
+    ir::PhysicsSnapshot& own = *out[i];
+    builders_[i].Build(*world_, reports[i]->X_WP, &own);
+    for (std::size_t m = 0; m < own.bodies.size(); ++m) {
+      int found = -1;
+      for (std::size_t u = 0; u < all.bodies.size() && found < 0; ++u) {
+        if (all.bodies[u].body == own.bodies[m].body) found = static_cast<int>(u);
+      }
+      if (found < 0 && all.bodies.PushBack(own.bodies[m])) {
+        found = static_cast<int>(all.bodies.size()) - 1;
+      }
+      if (found < 0) all.status |= ir::kStatusBodiesFull;
+      remap_[m] = found;
+    }
+    // A contact whose body did not fit the union is dropped (and the overflow flagged).
+    kept_.Clear();
+    for (ir::PointContact c : own.contacts) {
+      c.motion = remap_[static_cast<std::size_t>(c.motion)];
+      if (c.motion >= 0) (void)kept_.PushBack(c);
+    }
+    own.contacts = kept_;
+  }
+  seeds_.clear();
+  motions_.clear();
+  for (const ir::PhysicsSnapshot* o : out) {
+    for (const ir::PointContact& c : o->contacts) {
+      if (c.motion < 0) continue;
+      const ir::BodyMotion& m = all.bodies[static_cast<std::size_t>(c.motion)];
+      if (m.is_static || std::find(seeds_.begin(), seeds_.end(), m.body) != seeds_.end()) {
+        continue;
+      }
+      seeds_.push_back(m.body);
+      motions_.push_back(c.motion);
+    }
+  }
+  all.status |= sync_.Export(exporter_, seeds_, motions_, &all);
+  for (std::size_t i = 1; i < out.size(); ++i) {
+    out[i]->bodies = all.bodies;
+    out[i]->local_model = all.local_model;
+    out[i]->status |= all.status;
+  }
 }
 
 void LocalContactPhysics::PhysicsStart(const ir::HapticReport& initial, ir::PhysicsSnapshot* out) {

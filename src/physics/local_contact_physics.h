@@ -5,10 +5,11 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <vector>
 
-#include "mrh/physics/method_physics.h"
 #include "island_sync.h"
+#include "mrh/physics/method_physics.h"
 #include "mrh/world/contact_export.h"
 #include "point_ir_builder.h"
 
@@ -33,12 +34,29 @@ class LocalContactPhysics final : public MethodPhysics {
   void PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot* out) override;
   /// sync_ms: the overwrite (0); world_step_ms: the global step (1); ir_ms: the plane IR (2);
   /// model_ms: the island export (3).
+  /// Several pointers (MethodContext::pointers, issue 35): one world step and ONE island for
+  /// all pointers. Every pointer's snapshot carries the union of their neighbor bodies (the same
+  /// array, so the same motion indices) and the one island exported from every pointer's
+  /// contacts, and only its own contacts. The overwrite takes the island's end states from the
+  /// last pointer's report (the haptic half that steps the island) and every pointer's impulses.
+  void PhysicsStartPointers(std::span<const ir::HapticReport* const> initial,
+                            std::span<ir::PhysicsSnapshot* const> out) override;
+  void PhysicsStepPointers(std::span<const ir::HapticReport* const> reports,
+                           std::span<ir::PhysicsSnapshot* const> out) override;
   PhaseTimes last_phases() const noexcept override { return phases_; }
 
   const LocalContactCounters& counters() const { return sync_.counters(); }
 
  private:
   void Export(ir::PhysicsSnapshot* out);
+  /// Several pointers: builds every pointer's IR, merges the bodies and exports the island.
+  void BuildPointers(std::span<const ir::HapticReport* const> reports,
+                     std::span<ir::PhysicsSnapshot* const> out);
+  std::vector<int> pointer_bodies_;
+  std::vector<PointIrBuilder> builders_;
+  std::vector<int> remap_;
+  FixedVector<ir::PointContact, ir::kMaxPointContacts> kept_;
+  ir::HapticReport merged_;
 
   world::World* world_;
   int pointer_body_;

@@ -1,14 +1,16 @@
 // SPDX-License-Identifier: Apache-2.0
 // The physics side of a run: one global step per call, exchange bookkeeping and statistics.
+#include "mrh/physics/physics_side.h"
+
 #include <algorithm>
-#include <cmath>
 #include <chrono>
+#include <cmath>
 #include <string>
 #include <utility>
 
+#include "mrh/core/assert.h"
 #include "mrh/core/error.h"
 #include "mrh/core/stats.h"
-#include "mrh/physics/physics_side.h"
 #include "mrh/world/world.h"
 
 namespace mrh::physics {
@@ -19,17 +21,49 @@ PhysicsSide::PhysicsSide(MethodPhysics* method, world::World* world, const Excha
       world_(world),
       exchange_(exchange),
       recorder_(recorder),
-      max_body_speed_(max_body_speed) {}
+      max_body_speed_(max_body_speed) {
+  MRH_DEMAND(exchange_.more_snapshots.size() == exchange_.more_reports.size());
+  more_input_.resize(exchange_.more_reports.size());
+  inputs_.resize(more_input_.size() + 1);
+  outputs_.resize(more_input_.size() + 1);
+}
 
-void PhysicsSide::Start(const ir::HapticReport& initial) {
+// Several pointers: every lane's report in and write slot out, pointer 0 first.
+void PhysicsSide::GatherLanes() {
+  inputs_[0] = &input_;
+  outputs_[0] = &exchange_.snapshots->write_slot();
+  for (std::size_t i = 0; i < more_input_.size(); ++i) {
+    inputs_[i + 1] = &more_input_[i];
+    outputs_[i + 1] = &exchange_.more_snapshots[i]->write_slot();
+  }
+  for (ir::PhysicsSnapshot* out : outputs_) out->status = ir::kStatusOk;
+}
+
+void PhysicsSide::Start(const ir::HapticReport& initial, std::span<const ir::HapticReport> more) {
+  MRH_DEMAND(more.size() == more_input_.size());
   input_ = initial;
+  for (std::size_t i = 0; i < more.size(); ++i) more_input_[i] = more[i];
   ir::PhysicsSnapshot& out = exchange_.snapshots->write_slot();
   out.status = ir::kStatusOk;
-  method_->PhysicsStart(input_, &out);
+  if (more_input_.empty()) {
+    method_->PhysicsStart(input_, &out);
+  } else {
+    GatherLanes();
+    method_->PhysicsStartPointers(inputs_, outputs_);
+    for (std::size_t i = 1; i < outputs_.size(); ++i) {
+      outputs_[i]->step = -1;
+      ir_status_ |= outputs_[i]->status;
+    }
+  }
   out.step = -1;
   ir_status_ |= out.status;
   if (recorder_ != nullptr) recorder_->OnSnapshot(out);
+  Publish();
+}
+
+void PhysicsSide::Publish() {
   exchange_.snapshots->Publish();
+  for (TripleBuffer<ir::PhysicsSnapshot>* lane : exchange_.more_snapshots) lane->Publish();
 }
 
 void PhysicsSide::AddToTotals(const ir::HapticReport& report) {
@@ -48,13 +82,24 @@ void PhysicsSide::Step(std::int64_t k) {
   ir::PhysicsSnapshot& out = exchange_.snapshots->write_slot();
   out.status = ir::kStatusOk;
   const auto t0 = std::chrono::steady_clock::now();
-  method_->PhysicsStep(input_, &out);
+  if (more_input_.empty()) {
+    method_->PhysicsStep(input_, &out);
+  } else {
+    for (const ir::HapticReport& lane : more_input_) ir_status_ |= lane.status;
+    GatherLanes();
+    method_->PhysicsStepPointers(inputs_, outputs_);
+  }
   const auto t1 = std::chrono::steady_clock::now();
   if (std::string diverged = world_->FindDivergence(max_body_speed_); !diverged.empty()) {
     throw RuntimeError(std::move(diverged));
   }
   const ir::HapticReport* applied = method_->applied_reaction();
   AddToTotals(applied != nullptr ? *applied : input_);
+  for (std::size_t i = 0; i < more_input_.size(); ++i) {
+    AddToTotals(more_input_[i]);
+    outputs_[i + 1]->step = k;
+    ir_status_ |= outputs_[i + 1]->status;
+  }
   out.step = k;
   ir_status_ |= out.status;
   if (recorder_ != nullptr) recorder_->OnSnapshot(out);
@@ -79,15 +124,28 @@ void PhysicsSide::Step(std::int64_t k) {
   ++steps_;
 }
 
-int PhysicsSide::TakeReports() {
+int PhysicsSide::TakeLaneReports(SpscRing<ir::HapticReport>* ring, ir::HapticReport* input) {
   int count = 0;
-  input_.impulses.Clear();
-  input_.ticks = 0;
-  input_.status = ir::kStatusOk;
-  while (exchange_.reports->TryPop(&popped_)) {
-    input_.MergeLater(popped_);
+  input->impulses.Clear();
+  input->ticks = 0;
+  input->status = ir::kStatusOk;
+  while (ring->TryPop(&popped_)) {
+    input->MergeLater(popped_);
     ++count;
   }
+  return count;
+}
+
+int PhysicsSide::TakeReports() {
+  if (more_input_.empty()) return TakeLaneReports(exchange_.reports, &input_);
+  // The haptic loop ends its period for pointer 0 first and the last pointer last: popping the
+  // last lane first means that when it has a report, every other lane's of that period is
+  // already pushed (its push happened before, in the haptic thread's order).
+  const int count = TakeLaneReports(exchange_.more_reports.back(), &more_input_.back());
+  for (std::size_t i = 0; i + 1 < more_input_.size(); ++i) {
+    TakeLaneReports(exchange_.more_reports[i], &more_input_[i]);
+  }
+  TakeLaneReports(exchange_.reports, &input_);
   return count;
 }
 
@@ -108,6 +166,7 @@ void PhysicsSide::Finish(PhysicsStats* stats) {
   // the method applies its own reaction instead of the reports').
   TakeReports();
   if (method_->applied_reaction() == nullptr) AddToTotals(input_);
+  for (const ir::HapticReport& lane : more_input_) AddToTotals(lane);
   DrainTickRecords();
   stats->steps = steps_;
   stats->step_ms_p50 = Percentile(step_ms_, 50.0);

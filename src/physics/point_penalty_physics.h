@@ -3,6 +3,7 @@
 #pragma once
 
 #include <optional>
+#include <vector>
 
 #include "mrh/physics/method_physics.h"
 #include "point_ir_builder.h"
@@ -19,6 +20,12 @@ class PointPenaltyPhysics final : public MethodPhysics {
 
   void PhysicsStart(const ir::HapticReport& initial, ir::PhysicsSnapshot* out) override;
   void PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot* out) override;
+  /// Several pointers (MethodContext::pointers): every pointer's reaction is applied, every
+  /// pointer's mocap body moved, the world stepped once, and each pointer gets its own plane IR.
+  void PhysicsStartPointers(std::span<const ir::HapticReport* const> initial,
+                            std::span<ir::PhysicsSnapshot* const> out) override;
+  void PhysicsStepPointers(std::span<const ir::HapticReport* const> reports,
+                           std::span<ir::PhysicsSnapshot* const> out) override;
   PhaseTimes last_phases() const noexcept override { return phases_; }
 
  private:
@@ -27,6 +34,8 @@ class PointPenaltyPhysics final : public MethodPhysics {
   double physics_dt_;
   PhaseTimes phases_;
   std::optional<PointIrBuilder> builder_;
+  std::vector<int> pointer_bodies_;       ///< several pointers only
+  std::vector<PointIrBuilder> builders_;  ///< one per pointer (several pointers only)
 };
 
 }  // namespace mrh::physics::internal

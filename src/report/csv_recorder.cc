@@ -8,6 +8,7 @@
 #include <string>
 #include <string_view>
 #include <system_error>
+#include <vector>
 
 #include "mrh/core/error.h"
 #include "mrh/report/column_recorder.h"
@@ -123,20 +124,30 @@ std::filesystem::path CreateDir(const std::filesystem::path& dir) {
   return dir;
 }
 
+// ticks.csv's header: with several pointers a last column names each row's pointer.
+std::string TickHeader(bool several_pointers) {
+  std::string header = Header(kTickColumns);
+  if (several_pointers) header.insert(header.size() - 1, ",pointer");
+  return header;
+}
+
 }  // namespace
 
 struct CsvRecorder::Impl {
-  explicit Impl(const std::filesystem::path& dir)
-      : ticks(CreateDir(dir) / "ticks.csv", Header(kTickColumns)),
+  Impl(const std::filesystem::path& dir, std::vector<std::string> names)
+      : pointer_names(names.size() >= 2 ? std::move(names) : std::vector<std::string>{}),
+        ticks(CreateDir(dir) / "ticks.csv", TickHeader(!pointer_names.empty())),
         bodies(dir / "bodies.csv", Header(kBodyColumns)),
         steps(dir / "steps.csv", Header(kStepColumns)) {}
 
+  std::vector<std::string> pointer_names;  ///< empty with one pointer
   BufferedFile ticks;
   BufferedFile bodies;
   BufferedFile steps;
 };
 
-CsvRecorder::CsvRecorder(const std::filesystem::path& dir) : impl_(std::make_unique<Impl>(dir)) {}
+CsvRecorder::CsvRecorder(const std::filesystem::path& dir, std::vector<std::string> pointer_names)
+    : impl_(std::make_unique<Impl>(dir, std::move(pointer_names))) {}
 
 CsvRecorder::~CsvRecorder() = default;
 
@@ -147,7 +158,17 @@ void CsvRecorder::OnTick(const engine::TickRecord& tick) {
   AppendQuat(out, tick.X_WP.q);
   AppendVec(out, tick.displayed_W.f);
   AppendVec(out, tick.displayed_W.tau);
-  fmt::format_to(std::back_inserter(out), ",{},{}\n", tick.contacts, tick.safety_bits);
+  fmt::format_to(std::back_inserter(out), ",{},{}", tick.contacts, tick.safety_bits);
+  if (!impl_->pointer_names.empty()) {
+    const auto i = static_cast<std::size_t>(tick.pointer);
+    out.push_back(',');
+    if (i < impl_->pointer_names.size()) {
+      AppendName(out, impl_->pointer_names[i], tick.pointer);
+    } else {
+      fmt::format_to(std::back_inserter(out), "pointer{}", tick.pointer);
+    }
+  }
+  out.push_back('\n');
   impl_->ticks.MaybeFlush();
 }
 

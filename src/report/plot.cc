@@ -192,6 +192,9 @@ bool PlotRunReport(const std::filesystem::path& dir, const std::filesystem::path
   const bool three_dof = stats.method == "single-rate" || stats.method == "impulse" ||
                          stats.method == "local-dynamics";
   ReportOptions options{.six_dof = !three_dof};
+  for (const engine::PointerRunStats& pointer : stats.pointers) {
+    options.pointers.push_back(pointer.body);
+  }
   for (const engine::BodyImpulseTotal& impulse : stats.impulses) {
     if (impulse.linear.norm() > 0.0 || impulse.angular.norm() > 0.0) {
       options.touched_bodies.push_back(impulse.name);

@@ -86,6 +86,37 @@ std::string ForcePanel(const TickScan& ticks) {
   return out + "\n";
 }
 
+// Several pointers: ticks.csv's rows cycle through the pointers, so `every n::i` picks pointer
+// i's rows; one colour (linetype) per pointer.
+std::string PointerForcePanel(const TickScan& ticks, const std::vector<std::string>& names) {
+  std::string out = "set ylabel 'force |f| (N)'\n";
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    out += fmt::format(
+        "{}'ticks.csv' every {}::{} using 1:(fnorm($9, $10, $11)) with lines "
+        "lt {} title {}",
+        i == 0 ? "plot " : ", \\\n     ", names.size(), i, i + 1, Quote("|f| " + names[i]));
+  }
+  if (ticks.clamped > 0) {
+    out += fmt::format(
+        ", \\\n     '' using 1:((int($16) & {}) != 0 ? fnorm($9, $10, $11) : NaN) with points "
+        "pt 2 ps 0.6 lc rgb 'red' title 'clamped ({} ticks)'",
+        kClampBits, ticks.clamped);
+  }
+  return out + "\n";
+}
+
+std::string PointerPositionPanel(const std::vector<std::string>& names) {
+  std::string out = "set ylabel 'pointer position (m)'\n";
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    for (int axis = 0; axis < 3; ++axis) {
+      out += fmt::format("{}'ticks.csv' every {}::{} using 1:{} with lines lt {} dt {} title {}",
+                         i == 0 && axis == 0 ? "plot " : ", \\\n     ", names.size(), i, 2 + axis,
+                         i + 1, axis + 1, Quote(names[i] + " " + std::string(1, "xyz"[axis])));
+    }
+  }
+  return out + "\n";
+}
+
 std::string TorquePanel() {
   return "set ylabel 'torque (N m)'\n"
          "plot 'ticks.csv' using 1:12 with lines title 'tau_x', \\\n"
@@ -229,9 +260,10 @@ set multiplot layout {},1 title {}
 )",
       kWidthPx, kPanelHeightPx * panels + 40, t_begin, t_end > t_begin ? t_end : t_begin + 1.0,
       panels, Quote(title));
-  out += ForcePanel(ticks);
+  const bool several = options.pointers.size() >= 2;
+  out += several ? PointerForcePanel(ticks, options.pointers) : ForcePanel(ticks);
   if (options.six_dof) out += TorquePanel();
-  out += PositionPanel();
+  out += several ? PointerPositionPanel(options.pointers) : PositionPanel();
   if (options.six_dof) out += OrientationPanel();
   if (objects) out += ObjectsPanel(bodies, BodiesToDraw(bodies, options));
   out += "unset multiplot\n";

@@ -49,10 +49,38 @@ json MethodStatus(const engine::RunStats& s) {
   return out;
 }
 
+json DeviceCounters(const device::DeviceCounters& d) {
+  return json{{"poses_received", d.poses_received}, {"wrenches_sent", d.wrenches_sent},
+              {"pose_timeouts", d.pose_timeouts},   {"packets_malformed", d.packets_malformed},
+              {"vendor_errors", d.vendor_errors},   {"torque_dropped", d.torque_dropped}};
+}
+
+// Several pointers (issue 35): one block per pointer, in pointer order.
+json Pointers(const engine::RunStats& s) {
+  json out = json::array();
+  for (const engine::PointerRunStats& p : s.pointers) {
+    out.push_back(
+        json{{"body", p.body},
+             {"max_force", p.max_force},
+             {"mean_force", p.mean_force},
+             {"max_torque", p.max_torque},
+             {"faults",
+              {{"nonfinite_wrench", p.fault_nonfinite_wrench},
+               {"nonfinite_device", p.fault_nonfinite_device},
+               {"force_clamped", p.force_clamped},
+               {"torque_clamped", p.torque_clamped},
+               {"watchdog_ticks", p.watchdog_ticks}}},
+             {"final_wrench",
+              {{"force", ToJson(p.final_wrench.f)}, {"torque", ToJson(p.final_wrench.tau)}}},
+             {"device", DeviceCounters(p.device)}});
+  }
+  return out;
+}
+
 // Keys mirror the RunStats fields; the three percentile groups are nested objects so that
 // scripts read e.g. summary["jitter_us"]["p99"].
 json ToJson(const engine::RunStats& s, const std::string& session, const std::string& scene) {
-  return json{
+  json out{
       {"session", session},
       {"scene", scene},
       {"method", s.method},
@@ -72,7 +100,8 @@ json ToJson(const engine::RunStats& s, const std::string& session, const std::st
       {"max_torque", s.max_torque},
       {"faults", Faults(s)},
       {"final_wrench",
-       {{"force", ToJson(s.final_wrench.f)}, {"torque", ToJson(s.final_wrench.tau)},
+       {{"force", ToJson(s.final_wrench.f)},
+        {"torque", ToJson(s.final_wrench.tau)},
         {"stopped", s.stopped}}},
       {"realtime_priority", s.realtime_priority},
       {"device",
@@ -90,6 +119,9 @@ json ToJson(const engine::RunStats& s, const std::string& session, const std::st
         {"model", s.phase_ms.model_ms},
         {"sync", s.phase_ms.sync_ms}}},
       {"warnings", s.warnings}};
+  // Only with several pointers, so that one-pointer summaries keep their keys.
+  if (!s.pointers.empty()) out["pointers"] = Pointers(s);
+  return out;
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // Session → world and engine. Kept apart from the parser so parsing links without them.
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "mrh/core/error.h"
 #include "mrh/engine/engine.h"
@@ -36,6 +37,15 @@ auto WithFile(const Session& session, Build&& build) {
   }
 }
 
+// Pointers 1, 2, ... of a several-pointer session.
+std::vector<std::string> MorePointerBodies(const Session& session) {
+  std::vector<std::string> bodies;
+  for (std::size_t i = 1; i < session.engine.pointers.size(); ++i) {
+    bodies.push_back(session.engine.pointers[i].pointer.body);
+  }
+  return bodies;
+}
+
 }  // namespace
 
 // The timestep is left to the engine: it sets physics_dt, or haptic_dt for single-rate methods.
@@ -46,6 +56,7 @@ world::World LoadWorld(const Session& session) {
   world::World world = world::World::LoadFile(
       session.scene,
       world::LoadOptions{.pointer_body = session.engine.pointer.body,
+                         .more_pointer_bodies = MorePointerBodies(session),
                          .dynamic_pointer = tool,
                          .tool_mass = r.tool_mass,
                          .tool_inertia = r.tool_inertia.value_or(Vec3::Zero()),
@@ -57,6 +68,21 @@ world::World LoadWorld(const Session& session) {
 }
 
 std::unique_ptr<engine::Engine> MakeEngine(const Session& session) {
+  if (!session.pointer_devices.empty()) {
+    std::vector<std::unique_ptr<device::Device>> devices;
+    std::vector<device::Calibration> calibrations;
+    for (std::size_t i = 0; i < session.pointer_devices.size(); ++i) {
+      devices.push_back(WithFile(session, [&] {
+        return MakePointerDevice(session, static_cast<int>(i));
+      }));
+      calibrations.push_back(session.pointer_devices[i].calibration);
+    }
+    world::World world = LoadWorld(session);
+    return WithFile(session, [&] {
+      return std::make_unique<engine::Engine>(std::move(world), std::move(devices), calibrations,
+                                              session.engine);
+    });
+  }
   std::unique_ptr<device::Device> device = WithFile(session, [&] {
     return MakeDevice(session);
   });

@@ -11,25 +11,26 @@ namespace mrh::session {
 namespace {
 
 // The scripted target: inline keyframes, or the CSV file the session names.
-std::vector<device::Keyframe> TargetKeyframes(const Session& session) {
-  const DeviceConfig& config = session.device;
+std::vector<device::Keyframe> TargetKeyframes(const Session& session, const DeviceConfig& config,
+                                              const std::string& key) {
   if (config.trajectory.empty()) return config.keyframes;
   try {
     return device::LoadKeyframesCsv(config.trajectory);
   } catch (const InvalidArgument& e) {
     throw InvalidArgument(
-        fmt::format("{}: device.trajectory: {}", session.file.string(), e.what()));
+        fmt::format("{}: {}.trajectory: {}", session.file.string(), key, e.what()));
   }
 }
 
-std::unique_ptr<device::Device> MakeConfiguredDevice(const Session& session) {
-  const DeviceConfig& config = session.device;
+std::unique_ptr<device::Device> MakeConfiguredDevice(const Session& session,
+                                                     const DeviceConfig& config,
+                                                     const std::string& key) {
   if (config.type == "fixed") return device::MakeFixedDevice(config.pose, config.specs);
   if (config.type == "scripted") {
-    return device::MakeScriptedDevice(TargetKeyframes(session), config.specs);
+    return device::MakeScriptedDevice(TargetKeyframes(session, config, key), config.specs);
   }
   if (config.type == "hand") {
-    return device::MakeHandDevice(TargetKeyframes(session), config.hand, config.specs);
+    return device::MakeHandDevice(TargetKeyframes(session, config, key), config.hand, config.specs);
   }
   if (config.type == "replay") return device::MakeReplayDevice(config.replay, config.specs);
   if (config.type == "external") return std::make_unique<device::ExternalDevice>(config.specs);
@@ -41,23 +42,31 @@ std::unique_ptr<device::Device> MakeConfiguredDevice(const Session& session) {
   }
   if (config.type == "udp") return device::MakeUdpDevice(config.udp, config.specs);
   throw InvalidArgument(
-      fmt::format("{}: device.type: unknown device type \"{}\"; expected \"fixed\", "
+      fmt::format("{}: {}.type: unknown device type \"{}\"; expected \"fixed\", "
                   "\"scripted\", \"hand\", \"replay\", \"external\", \"forcedimension\", "
                   "\"openhaptics\" or \"udp\"",
-                  session.file.string(), config.type));
+                  session.file.string(), key, config.type));
 }
 
 }  // namespace
 
 std::unique_ptr<device::Device> MakeDevice(const Session& session) {
+  return MakePointerDevice(session, 0);
+}
+
+std::unique_ptr<device::Device> MakePointerDevice(const Session& session, int i) {
+  const bool several = !session.pointer_devices.empty();
+  const DeviceConfig& config =
+      several ? session.pointer_devices.at(static_cast<std::size_t>(i)) : session.device;
+  const std::string key = several ? fmt::format("pointers[{}].device", i) : "device";
   try {
-    return MakeConfiguredDevice(session);
+    return MakeConfiguredDevice(session, config, key);
   } catch (const InvalidArgument& e) {
     const std::string message = e.what();
     // Errors already located in the session pass through; others get the session and device.
     if (message.rfind(session.file.string() + ":", 0) == 0) throw;
     throw InvalidArgument(
-        fmt::format("{}: device ({}): {}", session.file.string(), session.device.type, message));
+        fmt::format("{}: {} ({}): {}", session.file.string(), key, config.type, message));
   }
 }
 

@@ -136,8 +136,8 @@ inline constexpr std::array<Field<device::Specifications>, 3> kLimitFields{{
 
 /// Keys the parser handles itself (not plain fields), top level. `psychophysics` is read and
 /// validated by mrh::psychophysics::LoadStudy (docs/psychophysics.md); sessions ignore it.
-inline constexpr std::array<std::string_view, 7> kTopLevelSpecialKeys{
-    {"scene", "mode", "keyframe", "gravity", "device", "psychophysics", "materials"}};
+inline constexpr std::array<std::string_view, 8> kTopLevelSpecialKeys{
+    {"scene", "mode", "keyframe", "gravity", "device", "psychophysics", "materials", "pointers"}};
 
 /// Top-level blocks made only of fields (kPointerFields, kRenderingFields, kSafetyFields).
 inline constexpr std::array<std::string_view, 3> kTopLevelBlocks{

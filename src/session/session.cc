@@ -104,6 +104,83 @@ void ReadMaterials(const Node& root, engine::RenderingSettings* out) {
   }
 }
 
+// A real device answers in wall-clock time, and lockstep runs the simulation as fast as it can
+// without waiting for it (8 s of simulation in 0.02 s, no packet answered): such a session runs
+// in real time unless it says otherwise, and saying "lockstep" is an error.
+void RequireRealtimeForRealDevice(const Node& root, const std::string& type,
+                                  engine::EngineSettings* engine) {
+  if (type != "forcedimension" && type != "openhaptics" && type != "udp") return;
+  const auto mode = root.Find("mode");
+  if (!mode) {
+    engine->mode = engine::Mode::kRealtime;
+  } else if (engine->mode != engine::Mode::kRealtime) {
+    mode->Fail(
+        fmt::format("\"{}\" with the real device \"{}\"", engine::ModeName(engine->mode), type),
+        "\"realtime\" (lockstep never waits for the device; drop the key, set "
+        "\"mode\": \"realtime\" or run with --mode realtime)");
+  }
+}
+
+// One element of `pointers`: body (required), radius, device (required) and rendering overrides
+// on top of the session's `rendering`.
+engine::PointerLaneSettings ReadPointerElement(const Node& element,
+                                               const engine::RenderingSettings& base,
+                                               DeviceConfig* device) {
+  element.ExpectObject({"body", "radius", "device", "rendering"},
+                       "an object with \"body\", \"device\" and optional \"radius\" and "
+                       "\"rendering\"");
+  engine::PointerLaneSettings lane;
+  lane.pointer.body = element.Require("body", "the pointer's mocap body (string)").String();
+  if (const auto radius = element.Find("radius")) lane.pointer.radius = radius->Number("m");
+  lane.rendering = base;
+  ReadRendering(element, &lane.rendering);
+  *device = internal::ParseDevice(
+      element.Require("device", "an object with at least \"type\" (see docs/session-format.md)"));
+  if (device->stiffness_limit_stated && lane.rendering.stiffness > device->specs.max_stiffness) {
+    element.Fail(fmt::format("rendering.stiffness = {} N/m exceeds device.limits.max_stiffness = "
+                             "{} N/m",
+                             lane.rendering.stiffness, device->specs.max_stiffness),
+                 "rendering.stiffness <= device.limits.max_stiffness for this pointer");
+  }
+  return lane;
+}
+
+// `pointers` (issue 35): a list of pointers, each with its own device; one element is the
+// single `pointer` + `device` form. The two forms do not mix.
+void ReadPointers(const Node& root, const Node& pointers, Session* session) {
+  for (const char* key : {"pointer", "device"}) {
+    if (root.Find(key)) {
+      pointers.Fail(fmt::format("given together with \"{}\"", key),
+                    "either \"pointers\": [...] (each element with its own body and device) or "
+                    "\"pointer\" + \"device\", not both");
+    }
+  }
+  const std::vector<Node> elements =
+      pointers.Elements("an array of pointers [{\"body\": ..., \"device\": {...}}, ...]");
+  if (elements.empty()) pointers.Fail("an empty array", "at least one pointer");
+  std::vector<engine::PointerLaneSettings> lanes;
+  std::vector<DeviceConfig> devices(elements.size());
+  for (std::size_t i = 0; i < elements.size(); ++i) {
+    lanes.push_back(ReadPointerElement(elements[i], session->engine.rendering, &devices[i]));
+    for (std::size_t j = 0; j < i; ++j) {
+      if (lanes[j].pointer.body == lanes[i].pointer.body) {
+        elements[i]
+            .Require("body", "")
+            .Fail(fmt::format("\"{}\" is also pointers[{}].body", lanes[i].pointer.body, j),
+                  "a distinct mocap body per pointer");
+      }
+    }
+  }
+  session->engine.pointer = lanes[0].pointer;
+  session->device = devices[0];
+  if (lanes.size() == 1) {
+    session->engine.rendering = lanes[0].rendering;
+    return;
+  }
+  session->engine.pointers = std::move(lanes);
+  session->pointer_devices = std::move(devices);
+}
+
 // Keys that fill Session itself or the engine settings, then the blocks.
 Session ParseDocument(const nlohmann::json& document, const Context& context) {
   const Node root(context, document, "");
@@ -128,26 +205,22 @@ Session ParseDocument(const nlohmann::json& document, const Context& context) {
                     "components in [-1000, 1000] m/s^2 (100 g)");
     }
   }
-  internal::ReadBlock(root, "pointer", internal::kPointerFields, &session.engine.pointer);
   ReadRendering(root, &session.engine.rendering);
   ReadMaterials(root, &session.engine.rendering);
   internal::ReadBlock(root, "safety", internal::kSafetyFields, &session.engine.safety);
-  session.device = internal::ParseDevice(
-      root.Require("device", "an object with at least \"type\" (see docs/session-format.md)"));
-  internal::CheckStiffnessLimit(root, session.device, session.engine.rendering.stiffness);
-  // A real device answers in wall-clock time, and lockstep runs the simulation as fast as it can
-  // without waiting for it (8 s of simulation in 0.02 s, no packet answered): such a session
-  // runs in real time unless it says otherwise, and saying "lockstep" is an error.
-  const std::string& type = session.device.type;
-  if (type == "forcedimension" || type == "openhaptics" || type == "udp") {
-    const auto mode = root.Find("mode");
-    if (!mode) {
-      session.engine.mode = engine::Mode::kRealtime;
-    } else if (session.engine.mode != engine::Mode::kRealtime) {
-      mode->Fail(fmt::format("\"{}\" with the real device \"{}\"",
-                             engine::ModeName(session.engine.mode), type),
-                 "\"realtime\" (lockstep never waits for the device; drop the key, set "
-                 "\"mode\": \"realtime\" or run with --mode realtime)");
+  if (const auto pointers = root.Find("pointers")) {
+    ReadPointers(root, *pointers, &session);
+  } else {
+    internal::ReadBlock(root, "pointer", internal::kPointerFields, &session.engine.pointer);
+    session.device = internal::ParseDevice(
+        root.Require("device", "an object with at least \"type\" (see docs/session-format.md)"));
+    internal::CheckStiffnessLimit(root, session.device, session.engine.rendering.stiffness);
+  }
+  if (session.pointer_devices.empty()) {
+    RequireRealtimeForRealDevice(root, session.device.type, &session.engine);
+  } else {
+    for (const DeviceConfig& device : session.pointer_devices) {
+      RequireRealtimeForRealDevice(root, device.type, &session.engine);
     }
   }
   return session;
@@ -159,6 +232,14 @@ void ValidateSettings(const Session& session, const Context& context) {
   try {
     session.engine.Validate();
     if (session.device.type == "hand") session.device.hand.Validate();
+    for (std::size_t i = 0; i < session.pointer_devices.size(); ++i) {
+      if (session.pointer_devices[i].type != "hand") continue;
+      try {
+        session.pointer_devices[i].hand.Validate();
+      } catch (const InvalidArgument& e) {
+        throw InvalidArgument(fmt::format("pointers[{}].{}", i, e.what()));
+      }
+    }
   } catch (const InvalidArgument& e) {
     throw InvalidArgument(fmt::format("{}: {}", context.origin(), e.what()));
   }

@@ -165,6 +165,15 @@ void EngineSettings::Validate() const {
   ValidateRendering(rendering);
   internal::ValidateMaterials(rendering, haptic_dt);
   safety.Validate();
+  // Several pointers: each one's own radius and gains, named by its element.
+  for (std::size_t i = 0; i < pointers.size(); ++i) {
+    try {
+      RequireNonNegative(pointers[i].pointer.radius, "radius", "m", kMaxPointerRadius);
+      ValidateRendering(pointers[i].rendering);
+    } catch (const InvalidArgument& e) {
+      throw InvalidArgument(fmt::format("pointers[{}].{}", i, e.what()));
+    }
+  }
 }
 
 }  // namespace mrh::engine

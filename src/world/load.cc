@@ -229,14 +229,15 @@ std::string PointerFix(const std::string& name) {
 // The pointer must be a mocap body. Its geoms stop colliding inside MuJoCo: the haptic rendering
 // owns the pointer's contacts.
 int SetUpPointer(mjModel* m, const std::string& origin, const LoadOptions& options,
-                 std::vector<BodyInfo>* bodies, std::vector<GeomInfo>* geoms) {
-  const std::string& name = options.pointer_body;
+                 const std::string& name, std::vector<BodyInfo>* bodies,
+                 std::vector<GeomInfo>* geoms) {
   if (name.empty()) return -1;
   const int body = mj_name2id(m, mjOBJ_BODY, name.c_str());
   if (body < 0) {
     throw SceneError(origin + ": pointer body '" + name + "' not found; " + PointerFix(name));
   }
-  if (options.dynamic_pointer) {  // a tool that collides inside MuJoCo (virtual-coupling)
+  // A tool that collides inside MuJoCo (virtual-coupling); only the first pointer can be one.
+  if (options.dynamic_pointer && name == options.pointer_body) {
     internal::SetUpDynamicPointer(m, body, options, origin,
                                   &(*bodies)[static_cast<std::size_t>(body)]);
     return body;
@@ -352,7 +353,12 @@ void InitializeState(ModelPtr model, const std::string& origin, const LoadOption
   CheckSceneNumbers(*model, origin);
   impl->load_warnings = SceneWarnings(*model, origin);
   DescribeModel(*model, origin, &impl->bodies, &impl->geoms);
-  impl->pointer_body = SetUpPointer(model.get(), origin, options, &impl->bodies, &impl->geoms);
+  impl->pointer_body =
+      SetUpPointer(model.get(), origin, options, options.pointer_body, &impl->bodies, &impl->geoms);
+  // Further pointers (issue 35) stop colliding inside MuJoCo too: pointers never touch.
+  for (const std::string& name : options.more_pointer_bodies) {
+    SetUpPointer(model.get(), origin, options, name, &impl->bodies, &impl->geoms);
+  }
   try {
     impl->data.reset(mj_makeData(model.get()));
   } catch (const RuntimeError&) {

@@ -16,7 +16,7 @@ namespace mrh::engine::testing {
 template <typename OnTick>
 std::int64_t HapticAllocations(internal::EngineState& state, int periods, OnTick&& on_tick) {
   internal::PhysicsSide physics = state.MakePhysicsSide(nullptr);
-  physics.Start(state.haptic->InitialReport(0.0));
+  internal::StartPhysics(state, physics);
   std::int64_t allocations = 0;
   std::int64_t tick = 0;
   for (int k = 0; k < periods; ++k) {
@@ -25,7 +25,7 @@ std::int64_t HapticAllocations(internal::EngineState& state, int periods, OnTick
       std::int64_t count = 0;
       {
         const mrh::testing::AllocGuard guard;
-        state.haptic->Tick(static_cast<double>(tick) * state.settings.haptic_dt);
+        state.TickAll(static_cast<double>(tick) * state.settings.haptic_dt);
         count = guard.count();
       }
       allocations += count;

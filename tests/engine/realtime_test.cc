@@ -3,9 +3,11 @@
 // No assertion here depends on wall-clock timing.
 #include <gtest/gtest.h>
 
+#include <string>
 #include <vector>
 
 #include "engine_test_util.h"
+#include "mrh/device/simulated.h"
 
 namespace mrh::engine::testing {
 namespace {
@@ -37,6 +39,56 @@ TEST(RealtimeTest, RunsBothThreadsAndRecordsInOrder) {
   }
   EXPECT_EQ(stats.fault_nonfinite_wrench, 0);
   EXPECT_GE(stats.jitter_max_us, stats.jitter_p50_us);
+}
+
+class PointerRecorder final : public Recorder {
+ public:
+  void OnTick(const TickRecord& t) override { ticks.push_back({t.tick, t.pointer}); }
+
+  void OnStep(const StepRecord&, const world::World&) override {}
+
+  std::vector<std::pair<std::int64_t, int>> ticks;
+};
+
+// Several pointers in real time (issue 35): the haptic thread ticks both pointers each tick, the
+// physics thread steps one world with both pointers' reports; both pointers' box gets pushed.
+TEST(RealtimeTest, TwoPointersRunOnOneHapticThread) {
+  EngineSettings s;
+  s.method = "impulse";
+  s.mode = Mode::kRealtime;
+  s.physics_dt = 0.02;
+  s.duration = 0.4;
+  s.safety.ramp = false;
+  s.realtime_priority = false;
+  s.pointer.body = "f0";
+  s.pointers = {PointerLaneSettings{PointerSettings{"f0", 0.0}, s.rendering},
+                PointerLaneSettings{PointerSettings{"f1", 0.0}, s.rendering}};
+  std::vector<std::unique_ptr<device::Device>> devices;
+  // scenes/two_pointers.xml: f0 2 mm into box_a, f1 5 mm into box_b.
+  devices.push_back(device::MakeFixedDevice(Pose{Vec3(-0.242, 0, 0), Quat::Identity()}));
+  devices.push_back(device::MakeFixedDevice(Pose{Vec3(0.245, 0, 0), Quat::Identity()}));
+  Engine engine(world::World::LoadFile(
+                    std::string(MRH_SOURCE_DIR) + "/scenes/two_pointers.xml",
+                    world::LoadOptions{.pointer_body = "f0", .more_pointer_bodies = {"f1"}}),
+                std::move(devices), std::vector<device::Calibration>(2), s);
+  PointerRecorder recorder;
+  const RunStats stats = engine.Run(&recorder);
+  ASSERT_GT(stats.ticks, 0);
+  ASSERT_EQ(static_cast<std::int64_t>(recorder.ticks.size()), 2 * stats.ticks);
+  for (std::size_t i = 0; i < recorder.ticks.size(); ++i) {
+    ASSERT_EQ(recorder.ticks[i].first, static_cast<std::int64_t>(i / 2));
+    ASSERT_EQ(recorder.ticks[i].second, static_cast<int>(i % 2));
+  }
+  EXPECT_EQ(stats.dropped_reports, 0);
+  ASSERT_EQ(stats.pointers.size(), 2u);
+  EXPECT_GT(stats.pointers[0].max_force, 0.0);
+  EXPECT_GT(stats.pointers[1].max_force, 0.0);
+  int pushed = 0;
+  for (const BodyImpulseTotal& impulse : stats.impulses) {
+    if (impulse.name == "box_a" && impulse.linear.x() < 0.0) ++pushed;
+    if (impulse.name == "box_b" && impulse.linear.x() > 0.0) ++pushed;
+  }
+  EXPECT_EQ(pushed, 2);
 }
 
 TEST(RealtimeTest, ContactDeliversImpulseToCube) {

@@ -56,9 +56,18 @@ Session LoadExample(const std::string& text, int index) {
   fs::create_directories(folder);
   const nlohmann::json document = nlohmann::json::parse(text);
   Touch(folder / document.at("scene").get<std::string>());
-  const nlohmann::json& device = document.at("device");
-  for (const char* key : {"trajectory", "replay"}) {
-    if (device.contains(key)) Touch(folder / device.at(key).get<std::string>());
+  // One `device`, or one per element of `pointers`.
+  std::vector<nlohmann::json> devices;
+  if (document.contains("pointers")) {
+    for (const nlohmann::json& pointer : document.at("pointers"))
+      devices.push_back(pointer.at("device"));
+  } else {
+    devices.push_back(document.at("device"));
+  }
+  for (const nlohmann::json& device : devices) {
+    for (const char* key : {"trajectory", "replay"}) {
+      if (device.contains(key)) Touch(folder / device.at(key).get<std::string>());
+    }
   }
   std::ofstream(folder / "session.json") << text;
   return LoadSession(folder / "session.json");

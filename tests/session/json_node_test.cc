@@ -28,7 +28,8 @@ TEST(SessionKeysTest, UnknownTopLevelKeyListsTheAllowedKeysAndTheClosestOne) {
       },
       ThrowsInvalidExactly(
           "session.json: phyiscs_dt: unknown key; expected one of: scene, mode, keyframe, "
-          "gravity, device, psychophysics, materials, method, physics_dt, haptic_dt, duration, "
+          "gravity, device, psychophysics, materials, pointers, method, physics_dt, haptic_dt, "
+          "duration, "
           "realtime_priority, "
           "pointer, rendering, safety (did you mean \"physics_dt\"?)"));
 }

@@ -30,6 +30,18 @@ using physics::BodyImpulseTotal;
 using physics::Recorder;
 using physics::StepRecord;
 
+/// One pointer's share of a run with several pointers (issue 35; RunStats::pointers).
+struct PointerRunStats {
+  std::string body;                          ///< the pointer's mocap body
+  double max_force = 0.0;                    ///< N, displayed
+  double max_torque = 0.0;                   ///< N·m, displayed
+  double mean_force = 0.0;                   ///< N, mean |displayed force| over the ticks
+  std::int64_t force_clamped = 0, torque_clamped = 0, watchdog_ticks = 0;
+  std::int64_t fault_nonfinite_wrench = 0, fault_nonfinite_device = 0;
+  Wrench final_wrench;                       ///< world frame
+  device::DeviceCounters device;             ///< this pointer's device's counters
+};
+
 /// What a run did. Filled by Engine::Run.
 struct RunStats {
   std::string method;
@@ -64,6 +76,10 @@ struct RunStats {
   device::DeviceCounters device;
   std::vector<BodyImpulseTotal> impulses;
   std::vector<std::string> warnings;
+  /// Several pointers (issue 35): one entry per pointer, in order; the fields above then sum
+  /// the pointers' counters and take the largest force and pointer 0's device and final
+  /// wrench. Empty with one pointer.
+  std::vector<PointerRunStats> pointers;
 };
 
 /// Runs a session: owns the world, the method and the device.
@@ -73,6 +89,11 @@ class Engine {
   /// scene lacks the pointer body or the pointer radius cannot be determined.
   Engine(world::World world, std::unique_ptr<device::Device> device,
          const device::Calibration& calibration, const EngineSettings& settings);
+  /// Several pointers (issue 35): devices[i] and calibrations[i] drive settings.pointers[i]
+  /// (one each; a single device is the one-pointer engine above). @throws as above, and
+  /// mrh::InvalidArgument when the counts differ or the method renders only one pointer.
+  Engine(world::World world, std::vector<std::unique_ptr<device::Device>> devices,
+         const std::vector<device::Calibration>& calibrations, const EngineSettings& settings);
   ~Engine();
   Engine(const Engine&) = delete;
   Engine& operator=(const Engine&) = delete;
@@ -132,6 +153,9 @@ class Engine {
   const world::World& world() const;
   const EngineSettings& settings() const;
   double pointer_radius() const;
+  /// Number of pointers (1 unless settings.pointers lists several) and their body names.
+  int num_pointers() const;
+  std::vector<std::string> pointer_names() const;
 
   /// The method's two halves, for observers (experiments, tests) that read a method's own
   /// details through the public accessors of mrh/haptic/methods.h and mrh/physics/*.h. Read the

@@ -5,6 +5,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "mrh/core/spatial.h"
 #include "mrh/device/safety.h"
@@ -77,6 +78,8 @@ struct RenderingSettings {
   /// Multiplier on the unit-mass inertia when rotation_weight is empty (dimensionless, > 0).
   double rotation_weight_scale = 1.0;
   /// Coulomb friction coefficient μ of the friction cones (eq. 3.9–3.10), static = kinetic.
+  /// Also single-rate, impulse and local-dynamics (issue 35): a stick point per contact, 0
+  /// frictionless.
   double friction = 0.0;
   /// Proxy solver: "active-set" (exact dual active-set method, the converged answer of the
   /// LCP in a few steps) or "pgs" (the thesis' projected Gauss–Seidel, eq. 3.6, which converges
@@ -124,6 +127,13 @@ struct RenderingSettings {
   std::map<std::string, MaterialSettings> materials;
 };
 
+/// One pointer of a session with several (session key `pointers[i]`, issue 35): its body and
+/// radius, and its rendering (the session's `rendering` with the element's overrides applied).
+struct PointerLaneSettings {
+  PointerSettings pointer;
+  RenderingSettings rendering;
+};
+
 /// Everything the engine needs besides the world and the device.
 struct EngineSettings {
   std::string method = "impulse";
@@ -133,6 +143,10 @@ struct EngineSettings {
   double duration = 10.0;     ///< s of simulated (lockstep) or wall (realtime) time
   PointerSettings pointer;
   RenderingSettings rendering;
+  /// Several pointers (issue 35): every pointer, in order, when there are at least two; their
+  /// bodies are distinct mocap bodies and pointers[0] repeats `pointer`. Empty: one pointer,
+  /// `pointer` rendered with `rendering`. Pointers never touch each other.
+  std::vector<PointerLaneSettings> pointers;
   device::SafetySettings safety;
   /// Ask for SCHED_FIFO + mlockall in real-time mode (a warning, once, if refused).
   bool realtime_priority = true;
@@ -142,6 +156,8 @@ struct EngineSettings {
   void Validate() const;
   /// Haptic ticks per physics step, n = physics_dt / haptic_dt (rounded).
   int ticks_per_step() const;
+  /// Number of pointers: pointers.size() when at least two, else 1.
+  int num_pointers() const { return pointers.size() >= 2 ? static_cast<int>(pointers.size()) : 1; }
 };
 
 }  // namespace mrh::engine

@@ -24,6 +24,7 @@ struct HapticCounters {
   std::int64_t periods = 0;
   double max_force = 0.0;
   double max_torque = 0.0;
+  double sum_force = 0.0;  ///< Σ |displayed force| over the ticks (N), for the mean
   std::int64_t nonfinite_wrench = 0, nonfinite_device = 0;
   std::int64_t force_clamped = 0, torque_clamped = 0, watchdog_ticks = 0;
   std::int64_t dropped_tick_records = 0, dropped_reports = 0;
@@ -41,6 +42,7 @@ class HapticSide {
     TripleBuffer<ir::PhysicsSnapshot>* snapshots;  ///< physics → haptic
     SpscRing<ir::HapticReport>* reports;           ///< haptic → physics
     SpscRing<TickRecord>* tick_records;            ///< haptic → recorder
+    int pointer = 0;  ///< the pointer index written into this side's TickRecords
   };
 
   HapticSide(MethodHaptic* method, device::Device* device, const device::Calibration& calibration,

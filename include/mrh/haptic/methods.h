@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "mrh/haptic/method_haptic.h"
 #include "mrh/render/local_contact_solver.h"
@@ -20,9 +21,11 @@ enum LocalDynamicsStatusBits : std::uint32_t {
 };
 
 /// Haptic half of "single-rate" and "impulse": 3-DOF penalty (eq. 4.11) with a pointer sphere
-/// of `radius` (m), stiffness k (N/m) and damping d (N·s/m). Not RT-safe (allocates once).
+/// of `radius` (m), stiffness k (N/m) and damping d (N·s/m), and Coulomb friction μ at each
+/// contact when `friction` > 0 (issue 35; 0: frictionless, as before). Not RT-safe (allocates
+/// once).
 std::unique_ptr<MethodHaptic> MakePointPenaltyHaptic(double radius, double stiffness,
-                                                     double damping);
+                                                     double damping, double friction = 0.0);
 
 /// Haptic half of "proxy-6dof": the 6-DOF proxy with `settings` (physics::ProxySettingsFor).
 std::unique_ptr<MethodHaptic> MakeProxyHaptic(const render::ProxyRendererSettings& settings);
@@ -54,7 +57,22 @@ std::unique_ptr<MethodHaptic> MakeLocalDynamicsHaptic(double radius, double stif
 /// simulated at the haptic rate (render/local_contact_solver.h) under the pointer's penalty
 /// force (radius m, stiffness N/m, damping N·s/m). RT-safe after construction.
 std::unique_ptr<MethodHaptic> MakeLocalContactHaptic(double radius, double stiffness,
-                                                     double damping);
+                                                     double damping, double friction = 0.0);
+
+/// One pointer's gains for a group of haptic halves (radius m, stiffness N/m, damping N·s/m).
+struct PointerGains {
+  double radius = 0.0;
+  double stiffness = 0.0;
+  double damping = 0.0;
+  double friction = 0.0;  ///< Coulomb μ (0: frictionless)
+};
+
+/// Several pointers (issue 35): one haptic half of "local-dynamics" (contact local model) per
+/// pointer, in pointer order, all rendering against one island: pointer 0's half adopts it, each
+/// adds its reactions, and the last one (ticked last) steps it once per tick with every
+/// pointer's force. Keep them alive together, pointer 0's last. Not RT-safe (allocates once).
+std::vector<std::unique_ptr<MethodHaptic>> MakeLocalContactHapticGroup(
+    const std::vector<PointerGains>& pointers);
 
 /// Haptic half of "local-dynamics-6dof" (issue 14): the 6-DOF proxy with `settings`
 /// (physics::ProxySettingsFor) against planes riding on the snapshot's contact island, simulated

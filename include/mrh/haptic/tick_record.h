@@ -12,6 +12,9 @@ namespace mrh::haptic {
 /// ring, read by the physics thread (or the lockstep loop), which hands it to the Recorder.
 struct TickRecord {
   std::int64_t tick = 0;
+  /// Index of the pointer this row belongs to (engine::EngineSettings::pointers); 0 with one
+  /// pointer. With several, each tick has one record per pointer, in pointer order.
+  int pointer = 0;
   double t = 0.0;                 ///< s
   Pose X_WP;                      ///< pointer (device tool) pose
   Pose X_WQ;                      ///< proxy pose; equals X_WP when the method has no proxy

@@ -4,6 +4,8 @@
 
 #include <chrono>
 #include <limits>
+#include <span>
+#include <vector>
 
 #include "mrh/engine/settings.h"
 #include "mrh/ir/snapshot.h"
@@ -14,6 +16,13 @@ class World;
 
 namespace mrh::physics {
 
+/// One pointer of a several-pointer run (issue 35), for the methods that support them.
+struct PointerContext {
+  int body = -1;                                  ///< world body id of the mocap pointer
+  double radius = 0.0;                            ///< m (3-DOF methods)
+  const engine::RenderingSettings* rendering = nullptr;  ///< the pointer's own gains
+};
+
 /// What a method is built from (setup thread).
 struct MethodContext {
   world::World* world = nullptr;  ///< owned by the engine; used only by the physics half
@@ -23,6 +32,9 @@ struct MethodContext {
   /// N, the most force one contact pair of a 6-DOF proxy may carry: the device's max_force
   /// (what the user can be shown). Infinite: unbounded.
   double max_pair_force = std::numeric_limits<double>::infinity();
+  /// Every pointer when there are at least two (pointers[0] is pointer_body); empty with one.
+  /// Only a method registered as supporting several pointers is built with more than one.
+  std::vector<PointerContext> pointers = {};
 };
 
 /// The pointer radius a 3-DOF method needs (m, > 0): pointer.radius, else the pointer body's
@@ -60,6 +72,18 @@ class MethodPhysics {
   /// Physics step k: consumes the merged report of haptic period k-1 and fills the snapshot for
   /// period k+1.
   virtual void PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot* out) = 0;
+
+  /// Several pointers (issue 35): the same as PhysicsStart / PhysicsStep with one report in and
+  /// one snapshot out per pointer, in pointer order, over one world step. Only methods built
+  /// with MethodContext::pointers override them; the defaults serve pointer 0 alone.
+  virtual void PhysicsStartPointers(std::span<const ir::HapticReport* const> initial,
+                                    std::span<ir::PhysicsSnapshot* const> out) {
+    PhysicsStart(*initial[0], out[0]);
+  }
+  virtual void PhysicsStepPointers(std::span<const ir::HapticReport* const> reports,
+                                   std::span<ir::PhysicsSnapshot* const> out) {
+    PhysicsStep(*reports[0], out[0]);
+  }
 
   /// The phases of the latest PhysicsStep (or PhysicsStart). Default: none measured.
   virtual PhaseTimes last_phases() const noexcept { return {}; }

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <map>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,10 @@ class PhysicsSide {
     TripleBuffer<ir::PhysicsSnapshot>* snapshots;   ///< physics → haptic
     SpscRing<ir::HapticReport>* reports;            ///< haptic → physics
     SpscRing<haptic::TickRecord>* tick_records;     ///< haptic → recorder
+    /// Several pointers (issue 35): pointers 1, 2, ...'s own snapshot buffers and report rings
+    /// (pointer 0 uses the two above). Empty with one pointer.
+    std::vector<TripleBuffer<ir::PhysicsSnapshot>*> more_snapshots = {};
+    std::vector<SpscRing<ir::HapticReport>*> more_reports = {};
   };
 
   /// `recorder` may be null. `max_body_speed` (m/s) is the divergence guard of Step (see
@@ -47,16 +52,17 @@ class PhysicsSide {
               Recorder* recorder, double max_body_speed);
 
   /// Publishes the snapshot of the initial state (for haptic period 0); `initial` carries the
-  /// pointer's initial pose.
-  void Start(const ir::HapticReport& initial);
+  /// pointer's initial pose, and `more` those of pointers 1, 2, ... (one per
+  /// Exchange::more_reports; empty with one pointer).
+  void Start(const ir::HapticReport& initial, std::span<const ir::HapticReport> more = {});
   /// Runs physics step k with `input` (the merged report of period k−1) into the write slot.
   /// @throws mrh::RuntimeError (one line naming the scene, body, time and likely causes) when
   /// the simulation has diverged: the run ends as a fault, never goes on from a reset state.
   void Step(std::int64_t k);
   /// Pops every pending report into the next step's input; returns how many there were.
   int TakeReports();
-  /// Makes the finished step's snapshot current for the haptic side.
-  void Publish() { exchange_.snapshots->Publish(); }
+  /// Makes the finished step's snapshots current for the haptic side.
+  void Publish();
   /// Writes the finished step and all pending tick records to the recorder.
   void RecordStep();
   void DrainTickRecords();
@@ -67,13 +73,20 @@ class PhysicsSide {
 
  private:
   void AddToTotals(const ir::HapticReport& report);
+  void GatherLanes();
 
   MethodPhysics* method_;
   world::World* world_;
   Exchange exchange_;
   Recorder* recorder_;
   double max_body_speed_;
+  /// Pops lane `lane`'s pending reports into `input` (cleared first); returns how many.
+  int TakeLaneReports(SpscRing<ir::HapticReport>* ring, ir::HapticReport* input);
+
   ir::HapticReport input_;
+  std::vector<ir::HapticReport> more_input_;  ///< pointers 1, 2, ... (sized at construction)
+  std::vector<const ir::HapticReport*> inputs_;
+  std::vector<ir::PhysicsSnapshot*> outputs_;
   ir::HapticReport popped_;
   StepRecord last_step_;
   std::int64_t steps_ = 0;

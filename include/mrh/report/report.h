@@ -21,8 +21,12 @@ namespace mrh::report {
 /// mass's position (m, world frame).
 class CsvRecorder : public engine::Recorder {
  public:
-  /// Creates `dir` if needed. @throws mrh::RuntimeError if a file cannot be opened.
-  explicit CsvRecorder(const std::filesystem::path& dir);
+  /// Creates `dir` if needed. With two or more `pointer_names` (the pointers' body names, in
+  /// pointer order) ticks.csv gains a last column `pointer` naming each row's pointer (one row
+  /// per pointer per tick); with one or none it is unchanged.
+  /// @throws mrh::RuntimeError if a file cannot be opened.
+  explicit CsvRecorder(const std::filesystem::path& dir,
+                       std::vector<std::string> pointer_names = {});
   ~CsvRecorder() override;
   void OnTick(const engine::TickRecord& tick) override;
   void OnStep(const engine::StepRecord& step, const world::World& world) override;
@@ -56,6 +60,11 @@ struct ReportOptions {
   /// At most this many bodies get a line and a legend entry in the objects panel; beyond it the
   /// panel's title says how many are left out. >= 1.
   int max_legend_bodies = 8;
+  /// The pointers' body names of a run with several pointers (RunStats::pointers), in pointer
+  /// order: with two or more, the force panel draws each pointer's |f| and the position panel
+  /// each pointer's x, y, z, one colour per pointer (ticks.csv has one row per pointer per tick,
+  /// in this order). Empty: one pointer.
+  std::vector<std::string> pointers = {};
 };
 
 /// Writes dir/report.gp and runs gnuplot on it to draw dir/report.png from dir/ticks.csv and

@@ -56,6 +56,9 @@ struct Session {
   std::optional<Vec3> gravity;              ///< m/s², overrides the scene's
   engine::EngineSettings engine;
   DeviceConfig device;
+  /// Several pointers (session key `pointers`, issue 35): each pointer's device, in the order
+  /// of engine.pointers; pointer_devices[0] equals `device`. Empty with one pointer.
+  std::vector<DeviceConfig> pointer_devices;
 };
 
 /// Reads, overrides and validates a session file. `overrides` are "dotted.key=value" strings
@@ -77,6 +80,9 @@ world::World LoadWorld(const Session& session);
 
 /// Builds the configured device. @throws mrh::InvalidArgument (e.g. unreadable trajectory).
 std::unique_ptr<device::Device> MakeDevice(const Session& session);
+/// Builds pointer i's device (`device` when the session has one pointer).
+/// @throws mrh::InvalidArgument naming `pointers[i].device`.
+std::unique_ptr<device::Device> MakePointerDevice(const Session& session, int i);
 
 /// LoadWorld + MakeDevice + engine construction. Every error starts with the file to edit (the
 /// session's, unless it names the scene or a data file).

@@ -19,6 +19,10 @@ struct LoadOptions {
   /// Name of the mocap body that is the haptic pointer. Its geoms are made non-colliding inside
   /// MuJoCo (the haptic rendering handles the pointer's contacts). Empty: no pointer.
   std::string pointer_body = "pointer";
+  /// Further pointer bodies (issue 35's several pointers): each must be a mocap body, and its
+  /// geoms are made non-colliding inside MuJoCo as pointer_body's are, so pointers never touch
+  /// each other. Empty: one pointer.
+  std::vector<std::string> more_pointer_bodies = {};
   /// Virtual coupling (B3): the pointer becomes a dynamic tool. Its mocap="true" is dropped from
   /// the scene text and a <freejoint/> added, and its geoms keep colliding inside MuJoCo. The
   /// rewritten text is loaded as by LoadString (relative asset paths resolve against the working

@@ -1,0 +1,134 @@
+// SPDX-License-Identifier: Apache-2.0
+// Issue 35: one haptic tick of 10 pointers (impulse method, 3-DOF) with 500 contacts in total:
+// each pointer, a 0.1 m sphere, is 5 mm deep in 50 small free spheres spread over its surface.
+// 2000 ticks of all pointers (devices read, rendered, safety, records) are timed one by one;
+// the physics step runs once at setup and its snapshots stay current (physics_dt spans the
+// ticks). Counters tick_p50_us / tick_p99_us give the tick's percentiles.
+// Run with: mrh_bench --benchmark_filter=MultiPointer
+// MRH_BENCH_SMOKE=1 (the CI smoke run) runs 2 pointers with 10 contacts each.
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <memory>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "engine/engine_impl.h"
+#include "mrh/core/stats.h"
+#include "mrh/device/simulated.h"
+#include "mrh/world/world.h"
+
+namespace mrh::engine {
+namespace {
+
+constexpr double kPointerRadius = 0.1;  // m
+constexpr double kBallRadius = 0.01;    // m
+constexpr double kDepth = 0.005;        // m
+constexpr double kSpacing = 0.5;        // m between pointers
+
+bool Smoke() {
+  const char* smoke = std::getenv("MRH_BENCH_SMOKE");
+  return smoke != nullptr && std::string(smoke) != "0";
+}
+
+Vec3 PointerCentre(int i) {
+  return Vec3(kSpacing * i, 0.0, 1.0);
+}
+
+// `balls` points spread evenly over the unit sphere (the Fibonacci lattice).
+Vec3 FibonacciPoint(int k, int balls) {
+  const double z = 1.0 - 2.0 * (k + 0.5) / balls;
+  const double r = std::sqrt(1.0 - z * z);
+  const double phi = k * std::numbers::pi * (3.0 - std::sqrt(5.0));
+  return Vec3(r * std::cos(phi), r * std::sin(phi), z);
+}
+
+std::string SceneXml(int pointers, int balls) {
+  std::string bodies;
+  for (int i = 0; i < pointers; ++i) {
+    for (int k = 0; k < balls; ++k) {
+      const Vec3 p =
+          PointerCentre(i) + (kPointerRadius + kBallRadius - kDepth) * FibonacciPoint(k, balls);
+      bodies += "<body pos=\"" + std::to_string(p.x()) + " " + std::to_string(p.y()) + " " +
+                std::to_string(p.z()) +
+                "\"><freejoint/><geom type=\"sphere\" size=\"0.01\" mass=\"0.01\"/></body>";
+    }
+    bodies += "<body name=\"p" + std::to_string(i) + "\" mocap=\"true\" pos=\"" +
+              std::to_string(PointerCentre(i).x()) +
+              " 0 1\"><geom type=\"sphere\" size=\"0.1\"/></body>";
+  }
+  return "<mujoco><option timestep=\"1\" gravity=\"0 0 0\"/><worldbody>" + bodies +
+         "</worldbody></mujoco>";
+}
+
+// Counts the contacts the pointers rendered in the latest tick (checks the scene's 500).
+class ContactCount final : public Recorder {
+ public:
+  void OnTick(const TickRecord& tick) override {
+    if (tick.tick != tick_) contacts = 0;
+    tick_ = tick.tick;
+    contacts += tick.contacts;
+  }
+
+  void OnStep(const StepRecord&, const world::World&) override {}
+
+  int contacts = 0;
+
+ private:
+  std::int64_t tick_ = -1;
+};
+
+void BM_MultiPointerTick(benchmark::State& bench) {
+  const int pointers = Smoke() ? 2 : 10;
+  const int balls = Smoke() ? 10 : 50;
+  world::LoadOptions options{.pointer_body = "p0"};
+  EngineSettings s;
+  s.method = "impulse";
+  s.haptic_dt = 0.001;
+  s.physics_dt = 1.0;  // one physics step for the whole benchmark
+  s.duration = 1.0;
+  s.safety.ramp = false;
+  s.safety.watchdog_timeout = 10.0;  // above 2 × physics_dt: the one snapshot stays fresh
+  s.realtime_priority = false;
+  std::vector<std::unique_ptr<device::Device>> devices;
+  for (int i = 0; i < pointers; ++i) {
+    const std::string body = "p" + std::to_string(i);
+    if (i > 0) options.more_pointer_bodies.push_back(body);
+    s.pointers.push_back(PointerLaneSettings{PointerSettings{body, 0.0}, s.rendering});
+    devices.push_back(device::MakeFixedDevice(Pose{PointerCentre(i), Quat::Identity()}));
+  }
+  internal::EngineState state(world::World::LoadString(SceneXml(pointers, balls), options),
+                              std::move(devices), std::vector<device::Calibration>(pointers), s);
+  ContactCount count;
+  physics::PhysicsSide physics = state.MakePhysicsSide(&count);
+  internal::StartPhysics(state, physics);
+  physics.Step(0);
+  physics.Publish();
+  constexpr int kTicks = 2000;
+  std::vector<double> tick_us(kTicks);
+  for (auto _ : bench) {
+    double total = 0.0;
+    for (int k = 0; k < kTicks; ++k) {
+      const auto t0 = std::chrono::steady_clock::now();
+      state.TickAll(k * s.haptic_dt);
+      const auto t1 = std::chrono::steady_clock::now();
+      tick_us[static_cast<std::size_t>(k)] =
+          std::chrono::duration<double, std::micro>(t1 - t0).count();
+      total += tick_us[static_cast<std::size_t>(k)];
+      physics.DrainTickRecords();
+    }
+    bench.SetIterationTime(total * 1e-6 / kTicks);
+  }
+  bench.counters["pointers"] = pointers;
+  bench.counters["contacts"] = count.contacts;
+  bench.counters["tick_p50_us"] = Percentile(tick_us, 50.0);
+  bench.counters["tick_p99_us"] = Percentile(tick_us, 99.0);
+}
+
+BENCHMARK(BM_MultiPointerTick)->Unit(benchmark::kMicrosecond)->UseManualTime()->Iterations(1);
+
+}  // namespace
+}  // namespace mrh::engine
