@@ -5,7 +5,6 @@
 
 #include <algorithm>
 
-#include "mrh/render/point_friction.h"
 #include "mrh/render/point_penalty.h"
 
 namespace mrh::haptic::internal {
@@ -72,7 +71,7 @@ void LocalContactHaptic::HapticTick(const TickInput& in, TickOutput* out) noexce
   // A follower whose snapshot and the island's model came a tick apart catches up here.
   if (owner_ != nullptr && mapped_step_ != snapshot_.step) MapMotions();
   RenderContacts(in, alpha, out);
-  if (friction_ > 0.0) ReleaseUntouchedAnchors();
+  if (friction_ > 0.0) anchors_.ReleaseUntouched();
   render::AddTransientForce(in.dt, &transients_, &out->w_W.f);
   if (steps_ && !island().Step(in.dt)) {
     ++counters_.local_faults;
@@ -121,8 +120,8 @@ void LocalContactHaptic::RenderContacts(const TickInput& in, double alpha,
     if (friction_ > 0.0 && g.friction > 0.0) {
       const Pose X_WB = local >= 0 ? solver.X_WB(static_cast<std::size_t>(local))
                                    : Interpolate(body.X_WB_prev, body.X_WB, alpha);
-      const Vec3 f_t = Friction(c.geom, X_WB, contact.state.p_WC, contact.state.n_W, g.stiffness,
-                                g.friction, contact.result.magnitude);
+      const Vec3 f_t = anchors_.Friction(c.geom, X_WB, contact.state.p_WC, contact.state.n_W,
+                                         g.stiffness, g.friction, contact.result.magnitude);
       f_d += f_t;
       w.f += f_t;
       w.tau += (contact.state.p_WC - in.X_WP.p).cross(f_t);
@@ -133,37 +132,6 @@ void LocalContactHaptic::RenderContacts(const TickInput& in, double alpha,
     if (local >= 0) solver.AddForce(static_cast<std::size_t>(local), -f_d, p_WO);
     period_.AddImpulse(body.body, -f_d * in.dt, (p_WO - p_WCm).cross(-f_d) * in.dt, -f_d);
   }
-}
-
-// As PointPenaltyHaptic::Friction: the contact's anchor (made where the pointer's contact point
-// first touched), then Coulomb's cone on the tangential spring toward it.
-Vec3 LocalContactHaptic::Friction(int geom, const Pose& X_WB, const Vec3& p_WC, const Vec3& n,
-                                  double k, double mu, double f_n) noexcept {
-  Anchor* anchor = nullptr;
-  for (std::size_t a = 0; a < num_anchors_; ++a) {
-    if (anchors_[a].geom == geom) anchor = &anchors_[a];
-  }
-  if (anchor == nullptr) {
-    if (num_anchors_ == anchors_.size()) return Vec3::Zero();
-    anchor = &anchors_[num_anchors_++];
-    anchor->geom = geom;
-    anchor->p_BA = X_WB.Inverse() * p_WC;
-  }
-  anchor->touched = true;
-  const render::PointFrictionResult r =
-      render::RenderPointFriction(X_WB * anchor->p_BA, p_WC, n, k, mu, f_n);
-  anchor->p_BA = X_WB.Inverse() * r.p_WA;
-  return r.f_W;
-}
-
-void LocalContactHaptic::ReleaseUntouchedAnchors() noexcept {
-  std::size_t kept = 0;
-  for (std::size_t a = 0; a < num_anchors_; ++a) {
-    if (!anchors_[a].touched) continue;
-    anchors_[kept] = anchors_[a];
-    anchors_[kept++].touched = false;
-  }
-  num_anchors_ = kept;
 }
 
 void LocalContactHaptic::EndPeriod(ir::HapticReport* report) noexcept {

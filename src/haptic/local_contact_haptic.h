@@ -6,9 +6,10 @@
 #include <cstdint>
 
 #include "mrh/haptic/method_haptic.h"
-#include "mrh/render/contact_transients.h"
 #include "mrh/haptic/methods.h"
+#include "mrh/render/contact_transients.h"
 #include "mrh/render/local_contact_solver.h"
+#include "mrh/render/point_friction.h"
 #include "normal_carry.h"
 
 namespace mrh::haptic::internal {
@@ -69,24 +70,11 @@ class LocalContactHaptic final : public MethodHaptic {
   /// another step's model (a follower's snapshot arrived a tick apart from the owner's).
   void MapMotions() noexcept;
 
-  // A contact's stick point, body frame of its object, kept while the geom stays in contact.
-  struct Anchor {
-    int geom = -1;
-    Vec3 p_BA = Vec3::Zero();
-    bool touched = false;
-  };
-
-  /// The friction force on the pointer for contact `c` (updating its anchor). RT-safe.
-  Vec3 Friction(int geom, const Pose& X_WB, const Vec3& p_WC, const Vec3& n, double k, double mu,
-                double f_n) noexcept;
-  void ReleaseUntouchedAnchors() noexcept;
-
   double radius_;
   double stiffness_;
   double damping_;
   double friction_ = 0.0;
-  std::array<Anchor, ir::kMaxPointContacts> anchors_{};
-  std::size_t num_anchors_ = 0;
+  render::PointFrictionAnchors<ir::kMaxPointContacts> anchors_;
   ir::PhysicsSnapshot snapshot_;
   render::LocalContactSolver solver_;
   LocalContactHaptic* owner_ = nullptr;  ///< several pointers: the island's owner

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 
-#include "mrh/render/point_friction.h"
 #include "mrh/render/point_penalty.h"
 #include "normal_carry.h"
 
@@ -45,8 +44,8 @@ void PointPenaltyHaptic::HapticTick(const TickInput& in, TickOutput* out) noexce
     Vec3 f_W = contact.result.f_W;
     if (friction_ > 0.0 && g.friction > 0.0) {
       const Pose X_WB = Interpolate(body.X_WB_prev, body.X_WB, alpha);
-      const Vec3 f_t = Friction(c, X_WB, contact.state.p_WC, contact.state.n_W, g.stiffness,
-                                g.friction, contact.result.magnitude);
+      const Vec3 f_t = anchors_.Friction(c.geom, X_WB, contact.state.p_WC, contact.state.n_W,
+                                         g.stiffness, g.friction, contact.result.magnitude);
       f_W += f_t;
       w.f += f_t;
       w.tau += (contact.state.p_WC - in.X_WP.p).cross(f_t);
@@ -59,7 +58,7 @@ void PointPenaltyHaptic::HapticTick(const TickInput& in, TickOutput* out) noexce
       tick_torque_[motion] += (o.p_WO - o.p_WCm).cross(-f_W);
     }
   }
-  if (friction_ > 0.0) ReleaseUntouchedAnchors();
+  if (friction_ > 0.0) anchors_.ReleaseUntouched();
   render::AddTransientForce(in.dt, &transients_, &out->w_W.f);
   for (ir::BodyImpulse& entry : period_.impulses) entry.last_force = Vec3::Zero();
   for (std::size_t b = 0; b < snapshot_.bodies.size(); ++b) {
@@ -67,38 +66,6 @@ void PointPenaltyHaptic::HapticTick(const TickInput& in, TickOutput* out) noexce
     period_.AddImpulse(snapshot_.bodies[b].body, tick_force_[b] * in.dt, tick_torque_[b] * in.dt,
                        tick_force_[b]);
   }
-}
-
-// The contact's anchor (made where the pointer's contact point first touched), then Coulomb's
-// cone on the tangential spring toward it; the anchor follows the object between ticks.
-Vec3 PointPenaltyHaptic::Friction(const ir::PointContact& c, const Pose& X_WB, const Vec3& p_WC,
-                                  const Vec3& n, double k, double mu, double f_n) noexcept {
-  Anchor* anchor = nullptr;
-  for (std::size_t a = 0; a < num_anchors_; ++a) {
-    if (anchors_[a].geom == c.geom) anchor = &anchors_[a];
-  }
-  if (anchor == nullptr) {
-    if (num_anchors_ == anchors_.size()) return Vec3::Zero();
-    anchor = &anchors_[num_anchors_++];
-    anchor->geom = c.geom;
-    anchor->p_BA = X_WB.Inverse() * p_WC;
-  }
-  anchor->touched = true;
-  const render::PointFrictionResult r =
-      render::RenderPointFriction(X_WB * anchor->p_BA, p_WC, n, k, mu, f_n);
-  anchor->p_BA = X_WB.Inverse() * r.p_WA;
-  return r.f_W;
-}
-
-// A geom that left contact forgets its anchor: touching it again sticks anew.
-void PointPenaltyHaptic::ReleaseUntouchedAnchors() noexcept {
-  std::size_t kept = 0;
-  for (std::size_t a = 0; a < num_anchors_; ++a) {
-    if (!anchors_[a].touched) continue;
-    anchors_[kept] = anchors_[a];
-    anchors_[kept++].touched = false;
-  }
-  num_anchors_ = kept;
 }
 
 void PointPenaltyHaptic::EndPeriod(ir::HapticReport* report) noexcept {

@@ -6,6 +6,7 @@
 
 #include "mrh/haptic/method_haptic.h"
 #include "mrh/render/contact_transients.h"
+#include "mrh/render/point_friction.h"
 #include "normal_carry.h"
 
 namespace mrh::haptic::internal {
@@ -28,24 +29,11 @@ class PointPenaltyHaptic final : public MethodHaptic {
   void EndPeriod(ir::HapticReport* report) noexcept override;
 
  private:
-  // A contact's stick point, body frame of its object, kept while the geom stays in contact.
-  struct Anchor {
-    int geom = -1;
-    Vec3 p_BA = Vec3::Zero();
-    bool touched = false;
-  };
-
-  /// The friction force on the pointer for contact `c` (updating its anchor). RT-safe.
-  Vec3 Friction(const ir::PointContact& c, const Pose& X_WB, const Vec3& p_WC, const Vec3& n,
-                double k, double mu, double f_n) noexcept;
-  void ReleaseUntouchedAnchors() noexcept;
-
   double radius_;
   double stiffness_;
   double damping_;
   double friction_;
-  std::array<Anchor, ir::kMaxPointContacts> anchors_{};
-  std::size_t num_anchors_ = 0;
+  render::PointFrictionAnchors<ir::kMaxPointContacts> anchors_;
   ir::PhysicsSnapshot snapshot_;
   ContactNormals previous_n_{};
   ContactNormals rendered_n_{};

@@ -15,9 +15,9 @@ namespace {
 
 constexpr double kMass = 0.5, kHalf = 0.05, kMu = 0.5, kG = 9.81, kDt = 0.001;
 
-// A 10 cm box resting on the floor z = 0: four corner rows, MuJoCo's contact frame (n = z,
-// t1 = y, as MuJoCo makes it for the floor).
-ir::LocalContactModel BoxOnFloor(bool pyramidal) {
+// A box (half sizes h) resting on the floor z = 0: four corner rows, MuJoCo's contact frame
+// (n = z, t1 = y, as MuJoCo makes it for the floor).
+ir::LocalContactModel BoxOnFloor(bool pyramidal, const Vec3& h = Vec3::Constant(kHalf)) {
   ir::LocalContactModel m;
   m.valid = true;
   m.gravity = Vec3(0, 0, -kG);
@@ -25,15 +25,17 @@ ir::LocalContactModel BoxOnFloor(bool pyramidal) {
   b.body = 1;
   b.motion = 0;
   b.mass = kMass;
-  b.inertia_B = Mat3::Identity() * (kMass * (2 * kHalf) * (2 * kHalf) / 6.0);
-  b.X_WB = Pose{Vec3(0, 0, kHalf), Quat::Identity()};
+  b.inertia_B = (kMass / 3.0) * Vec3(h.y() * h.y() + h.z() * h.z(), h.x() * h.x() + h.z() * h.z(),
+                                     h.x() * h.x() + h.y() * h.y())
+                                    .asDiagonal();
+  b.X_WB = Pose{Vec3(0, 0, h.z()), Quat::Identity()};
   EXPECT_TRUE(m.bodies.PushBack(b));
   for (const double sx : {-1.0, 1.0}) {
     for (const double sy : {-1.0, 1.0}) {
       ir::LocalContactRow r;
       r.a = 0;
-      r.p_A = Vec3(sx * kHalf, sy * kHalf, -kHalf);
-      r.p_B = Vec3(sx * kHalf, sy * kHalf, 0.0);
+      r.p_A = Vec3(sx * h.x(), sy * h.y(), -h.z());
+      r.p_B = Vec3(sx * h.x(), sy * h.y(), 0.0);
       r.n_B = Vec3::UnitZ();
       r.t_B = Vec3::UnitY();
       r.mu = kMu;
@@ -77,38 +79,14 @@ TEST(LocalContactSolverFriction, PyramidHoldsAlongItsAxesAndSlidesAlongTheDiagon
   EXPECT_NEAR(v, kSlide, 0.1 * kSlide);
 }
 
-// A 10 × 4 cm box (5 cm tall) resting on four corner rows, elliptic cone, then thrown along a
+// A 10 × 4 cm box (5 cm tall) resting on its four corner rows, elliptic cone, then thrown along a
 // diagonal of the floor. Sliding, each corner's friction opposes its slip (maximum dissipation),
 // so the box decelerates at μ g along its own track and does not start to spin. Its corners'
 // tangents differ in effective mass (the lever arms to x and y differ), which is where a radial
 // projection of the two friction impulses in the impulse metric turns friction off the slip.
 TEST(LocalContactSolverFriction, EllipticConeOpposesTheSlipOfAnOblongBox) {
-  constexpr double kA = 0.05, kB = 0.02, kC = 0.025;  // half sizes (m)
-  ir::LocalContactModel m;
-  m.valid = true;
-  m.gravity = Vec3(0, 0, -kG);
-  ir::LocalIslandBody b;
-  b.body = 1;
-  b.motion = 0;
-  b.mass = kMass;
-  b.inertia_B =
-      (kMass / 3.0) * Vec3(kB * kB + kC * kC, kA * kA + kC * kC, kA * kA + kB * kB).asDiagonal();
-  b.X_WB = Pose{Vec3(0, 0, kC), Quat::Identity()};
-  ASSERT_TRUE(m.bodies.PushBack(b));
-  for (const double sx : {-1.0, 1.0}) {
-    for (const double sy : {-1.0, 1.0}) {
-      ir::LocalContactRow r;
-      r.a = 0;
-      r.p_A = Vec3(sx * kA, sy * kB, -kC);
-      r.p_B = Vec3(sx * kA, sy * kB, 0.0);
-      r.n_B = Vec3::UnitZ();
-      r.t_B = Vec3::UnitX();
-      r.mu = kMu;
-      ASSERT_TRUE(m.contacts.PushBack(r));
-    }
-  }
   LocalContactSolver solver;
-  solver.Adopt(m);
+  solver.Adopt(BoxOnFloor(false, Vec3(0.05, 0.02, 0.025)));
   for (int k = 0; k < 300; ++k) ASSERT_TRUE(solver.Step(kDt));
   const Vec3 dir = Vec3(1.0, 2.0, 0.0).normalized();
   constexpr double kV0 = 0.5;  // m/s

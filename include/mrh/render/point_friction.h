@@ -2,6 +2,9 @@
 // Coulomb friction of a 3-DOF point contact through a stick anchor on the object (issue 35).
 #pragma once
 
+#include <array>
+#include <cstddef>
+
 #include "mrh/core/spatial.h"
 
 namespace mrh::render {
@@ -36,5 +39,55 @@ inline PointFrictionResult RenderPointFriction(const Vec3& p_WA, const Vec3& p_W
   r.slipping = true;
   return r;
 }
+
+/// The stick anchors of one 3-DOF pointer's contacts, one per touched geom, fixed capacity N.
+/// An anchor is made where the pointer's contact point first touched the geom, is kept in the
+/// object's body frame (so it follows the object between ticks) and is forgotten once the geom
+/// leaves contact (touching it again sticks anew). RT-safe; one thread.
+template <std::size_t N>
+class PointFrictionAnchors {
+ public:
+  /// The friction force on the pointer (N, world) at contact point p_WC on `geom` of a body at
+  /// X_WB (normal n unit; k, mu, f_n as RenderPointFriction), moving the geom's anchor. Zero
+  /// when N anchors are held already.
+  Vec3 Friction(int geom, const Pose& X_WB, const Vec3& p_WC, const Vec3& n, double k, double mu,
+                double f_n) noexcept {
+    Anchor* anchor = nullptr;
+    for (std::size_t a = 0; a < count_; ++a) {
+      if (anchors_[a].geom == geom) anchor = &anchors_[a];
+    }
+    if (anchor == nullptr) {
+      if (count_ == N) return Vec3::Zero();
+      anchor = &anchors_[count_++];
+      anchor->geom = geom;
+      anchor->p_BA = X_WB.Inverse() * p_WC;
+    }
+    anchor->touched = true;
+    const PointFrictionResult r = RenderPointFriction(X_WB * anchor->p_BA, p_WC, n, k, mu, f_n);
+    anchor->p_BA = X_WB.Inverse() * r.p_WA;
+    return r.f_W;
+  }
+
+  /// Forgets the anchors of geoms not touched since the previous call.
+  void ReleaseUntouched() noexcept {
+    std::size_t kept = 0;
+    for (std::size_t a = 0; a < count_; ++a) {
+      if (!anchors_[a].touched) continue;
+      anchors_[kept] = anchors_[a];
+      anchors_[kept++].touched = false;
+    }
+    count_ = kept;
+  }
+
+ private:
+  struct Anchor {
+    int geom = -1;
+    Vec3 p_BA = Vec3::Zero();  ///< body frame of the geom's object
+    bool touched = false;
+  };
+
+  std::array<Anchor, N> anchors_{};
+  std::size_t count_ = 0;
+};
 
 }  // namespace mrh::render
