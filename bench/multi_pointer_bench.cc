@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Issue 35: one haptic tick of 10 pointers (impulse method, 3-DOF) with 500 contacts in total:
+// One haptic tick of 10 pointers (impulse method, 3-DOF) with 500 contacts in total:
 // each pointer, a 0.1 m sphere, is 5 mm deep in 50 small free spheres spread over its surface.
 // 2000 ticks of all pointers (devices read, rendered, safety, records) are timed one by one;
 // the physics step runs once at setup and its snapshots stay current (physics_dt spans the

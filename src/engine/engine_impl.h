@@ -26,7 +26,7 @@ using physics::PhysicsSide;
 /// Everything a run owns. The physics half (world, method.physics, recorder) and the haptic
 /// half (HapticSide over method.haptic) touch disjoint members; they meet only in the exchange
 /// buffers.
-/// Pointer i >= 1 of a several-pointer run (issue 35): its own device, haptic half, safety
+/// Pointer i >= 1 of a several-pointer run: its own device, haptic half, safety
 /// layer and exchange buffers. Pointer 0 lives in EngineState itself.
 struct PointerLane {
   PointerLane(std::unique_ptr<device::Device> device, const device::Calibration& calibration);

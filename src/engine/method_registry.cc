@@ -92,7 +92,7 @@ Method ContactVolume(const MethodContext& c) {
 Method LocalDynamics(const MethodContext& c) {
   const RenderingSettings& r = c.settings->rendering;
   if (physics::UsesContactLocalModel(c) && c.pointers.size() >= 2) {
-    // Several pointers (issue 35): one island, every pointer's reaction in the same tick.
+    // Several pointers: one island, every pointer's reaction in the same tick.
     std::vector<haptic::PointerGains> gains;
     for (const physics::PointerContext& p : c.pointers) {
       gains.push_back(

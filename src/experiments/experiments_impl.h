@@ -246,7 +246,7 @@ std::vector<std::vector<PushResult>> RunPushCases(const std::filesystem::path& o
 int RunT4Push(const std::filesystem::path& out, bool quiet);
 int RunT4Push(const std::filesystem::path& out, bool quiet, const PushOptions& options);
 
-/// One run of the grasp experiment (issue 35): a method at its physics step.
+/// One run of the grasp experiment: a method at its physics step.
 struct GraspRun {
   std::string method = "single-rate";
   double physics_dt = 0.001;  ///< s

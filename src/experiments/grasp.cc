@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Experiment grasp (issue 35): two simulated fingertips pinch a box, lift it 5 cm, hold it and
+// Experiment grasp: two simulated fingertips pinch a box, lift it 5 cm, hold it and
 // put it down; 20 ms methods against single-rate at 1 ms (the reference).
 #include <fmt/format.h>
 

@@ -44,10 +44,9 @@ inline constexpr Case kCases[] = {
     {"tip", "t3_6_tip.xml", 0.0, 0.085, kDuration, true, 0.0, 1.0, false, true},
     {"wall", "t3_6_wall.xml", 0.0, 0.05, 2.6, true, 0.0, 0.5},
     {"row", "t3_6_row.xml", 0.0, 0.05, kDuration, true, 0.5, 0.5},
-    // The pointer's inner edge on the box's centre line (y 0–0.06 m): a bifurcation. A 1 mm
-    // offset decides whether the box turns (the reference holds it straight at 2.9 cm and turns
-    // it −43° at 3.0 cm; local-dynamics-6dof turns from 2.9 cm, proxy-6dof at 1 ms from 3.2 cm),
-    // so one trajectory is no reference: reported, not checked (docs/theory.md).
+    // The pointer's inner edge on the box's centre line (y 0–0.06 m): a bifurcation, where a
+    // millimetre decides whether the box turns, so one trajectory is no reference: reported, not
+    // checked (docs/theory.md has the scan).
     {"centreline", "t3_6_push.xml", 0.03, 0.05, kDuration, false, 0.0, 0.5, true},
     // The pointer centred on the box's side edge, half its face overhanging.
     {"edge", "t3_6_push.xml", 0.05, 0.05, kDuration, false, 0.0, 0.5, true}};

@@ -42,12 +42,12 @@ class LocalContactHaptic final : public MethodHaptic {
 
   const LocalContactHapticCounters& counters() const { return counters_; }
 
-  /// Several pointers (issue 35): this half renders its own pointer against `owner`'s island
+  /// Several pointers: this half renders its own pointer against `owner`'s island
   /// (null: its own, it is the owner): the owner (pointer 0, ticked first) adopts the island,
   /// every pointer adds its reactions to it, and the half with `steps` (the last pointer, ticked
   /// last) steps it once per tick with all of them and reports its end states. The owner must
   /// outlive the others. Setup only.
-  /// Coulomb friction μ at every contact (issue 35; 0, the default: frictionless), as
+  /// Coulomb friction μ at every contact (0, the default: frictionless), as
   /// PointPenaltyHaptic renders it: a stick point per contact on the object, a tangential spring
   /// of the contact's stiffness toward it limited to μ f_n; its reaction goes to the island body
   /// in the same tick. Setup only.

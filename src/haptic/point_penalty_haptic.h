@@ -17,7 +17,7 @@ namespace mrh::haptic::internal {
 /// physics::internal::PointPenaltyPhysics.
 class PointPenaltyHaptic final : public MethodHaptic {
  public:
-  /// radius (m), stiffness k (N/m), damping d (N·s/m) of eq. 4.11; friction μ (>= 0, issue 35):
+  /// radius (m), stiffness k (N/m), damping d (N·s/m) of eq. 4.11; friction μ (>= 0):
   /// 0 renders no friction at all (whatever the materials say), > 0 a Coulomb cone per contact
   /// through a stick anchor (render::RenderPointFriction), μ from the geom's material if it has
   /// one, else `friction`, with the contact's normal stiffness as the tangential spring.

@@ -34,7 +34,7 @@ class LocalContactPhysics final : public MethodPhysics {
   void PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot* out) override;
   /// sync_ms: the overwrite (0); world_step_ms: the global step (1); ir_ms: the plane IR (2);
   /// model_ms: the island export (3).
-  /// Several pointers (MethodContext::pointers, issue 35): one world step and ONE island for
+  /// Several pointers (MethodContext::pointers): one world step and ONE island for
   /// all pointers. Every pointer's snapshot carries the union of their neighbor bodies (the same
   /// array, so the same motion indices) and the one island exported from every pointer's
   /// contacts, and only its own contacts. The overwrite takes the island's end states from the

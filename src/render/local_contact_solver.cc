@@ -62,9 +62,8 @@ void ProjectOnDisc(double limit, double* l1, double* l2) {
 // |x| = limit, ν found by Newton's method on |x(ν)|² − limit², which is convex and decreasing
 // in ν, so the iterates approach the root from below without overshooting. This is the friction
 // the maximum-dissipation principle gives: opposite the sliding velocity in M's metric.
-// Projecting the unconstrained x radially instead (the Euclidean metric) turns the friction of a
-// corner whose tangents differ in effective mass away from the slip, so a box slid and turned on
-// a floor turned half as fast as MuJoCo's exact cone lets it.
+// Projecting the unconstrained x radially instead (the Euclidean metric) would turn the friction
+// of a corner whose tangents differ in effective mass away from the slip.
 void SolveDisc(double m11, double m12, double m22, double b1, double b2, double limit, double* x1,
                double* x2) {
   if (!(limit > 0.0)) {

@@ -55,7 +55,7 @@ json DeviceCounters(const device::DeviceCounters& d) {
               {"vendor_errors", d.vendor_errors},   {"torque_dropped", d.torque_dropped}};
 }
 
-// Several pointers (issue 35): one block per pointer, in pointer order.
+// Several pointers: one block per pointer, in pointer order.
 json Pointers(const engine::RunStats& s) {
   json out = json::array();
   for (const engine::PointerRunStats& p : s.pointers) {

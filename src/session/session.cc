@@ -145,7 +145,7 @@ engine::PointerLaneSettings ReadPointerElement(const Node& element,
   return lane;
 }
 
-// `pointers` (issue 35): a list of pointers, each with its own device; one element is the
+// `pointers`: a list of pointers, each with its own device; one element is the
 // single `pointer` + `device` form. The two forms do not mix.
 void ReadPointers(const Node& root, const Node& pointers, Session* session) {
   for (const char* key : {"pointer", "device"}) {

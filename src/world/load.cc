@@ -355,7 +355,7 @@ void InitializeState(ModelPtr model, const std::string& origin, const LoadOption
   DescribeModel(*model, origin, &impl->bodies, &impl->geoms);
   impl->pointer_body =
       SetUpPointer(model.get(), origin, options, options.pointer_body, &impl->bodies, &impl->geoms);
-  // Further pointers (issue 35) stop colliding inside MuJoCo too: pointers never touch.
+  // Further pointers stop colliding inside MuJoCo too: pointers never touch.
   for (const std::string& name : options.more_pointer_bodies) {
     SetUpPointer(model.get(), origin, options, name, &impl->bodies, &impl->geoms);
   }

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// local-dynamics with several pointers (issue 35): a box squeezed between two fingertips is one
+// local-dynamics with several pointers: a box squeezed between two fingertips is one
 // body of one island that takes both fingers' reactions in the same tick.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

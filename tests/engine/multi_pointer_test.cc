@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Several pointers in one world (issue 35): independent forces, action = reaction on a shared
+// Several pointers in one world: independent forces, action = reaction on a shared
 // object, refusals, and an allocation-free tick of all pointers.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

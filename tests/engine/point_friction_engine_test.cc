@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// 3-DOF friction of single-rate, impulse and local-dynamics (issue 35): a fingertip pressed into
+// 3-DOF friction of single-rate, impulse and local-dynamics: a fingertip pressed into
 // the floor and dragged along it feels Coulomb's μ f_n once it slides, and nothing tangential with
 // μ = 0.
 #include <gtest/gtest.h>

@@ -50,7 +50,7 @@ class PointerRecorder final : public Recorder {
   std::vector<std::pair<std::int64_t, int>> ticks;
 };
 
-// Several pointers in real time (issue 35): the haptic thread ticks both pointers each tick, the
+// Several pointers in real time: the haptic thread ticks both pointers each tick, the
 // physics thread steps one world with both pointers' reports; both pointers' box gets pushed.
 TEST(RealtimeTest, TwoPointersRunOnOneHapticThread) {
   EngineSettings s;

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// grasp (issue 35): two simulated fingertips with 3-DOF friction pinch a 0.2 kg box, lift it
+// grasp: two simulated fingertips with 3-DOF friction pinch a 0.2 kg box, lift it
 // 5 cm and hold it; the hold is checked against mechanics, not against another run.
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Several pointers in the outputs (issue 35): ticks.csv's `pointer` column and summary.json's
+// Several pointers in the outputs: ticks.csv's `pointer` column and summary.json's
 // per-pointer blocks appear with two or more pointers only.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

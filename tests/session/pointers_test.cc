@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The `pointers` form of a session (issue 35): values, the one-element form, element errors.
+// The `pointers` form of a session: values, the one-element form, element errors.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 

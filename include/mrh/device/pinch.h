@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// A two-finger pinch trajectory for the simulated hand (issue 35): close, lift, hold, lower, open.
+// A two-finger pinch trajectory for the simulated hand: close, lift, hold, lower, open.
 #pragma once
 
 #include <vector>

@@ -30,7 +30,7 @@ using physics::BodyImpulseTotal;
 using physics::Recorder;
 using physics::StepRecord;
 
-/// One pointer's share of a run with several pointers (issue 35; RunStats::pointers).
+/// One pointer's share of a run with several pointers (RunStats::pointers).
 struct PointerRunStats {
   std::string body;                          ///< the pointer's mocap body
   double max_force = 0.0;                    ///< N, displayed
@@ -76,7 +76,7 @@ struct RunStats {
   device::DeviceCounters device;
   std::vector<BodyImpulseTotal> impulses;
   std::vector<std::string> warnings;
-  /// Several pointers (issue 35): one entry per pointer, in order; the fields above then sum
+  /// Several pointers: one entry per pointer, in order; the fields above then sum
   /// the pointers' counters and take the largest force and pointer 0's device and final
   /// wrench. Empty with one pointer.
   std::vector<PointerRunStats> pointers;
@@ -89,7 +89,7 @@ class Engine {
   /// scene lacks the pointer body or the pointer radius cannot be determined.
   Engine(world::World world, std::unique_ptr<device::Device> device,
          const device::Calibration& calibration, const EngineSettings& settings);
-  /// Several pointers (issue 35): devices[i] and calibrations[i] drive settings.pointers[i]
+  /// Several pointers: devices[i] and calibrations[i] drive settings.pointers[i]
   /// (one each; a single device is the one-pointer engine above). @throws as above, and
   /// mrh::InvalidArgument when the counts differ or the method renders only one pointer.
   Engine(world::World world, std::vector<std::unique_ptr<device::Device>> devices,

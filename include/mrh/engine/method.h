@@ -32,7 +32,7 @@ struct Method {
   /// namespaced by the method ("proxy.rows_full"); empty names are unused bits. They reach
   /// RunStats::method_status and summary.json.
   std::vector<std::string> status_bits;
-  /// True if the method renders several pointers in one world (issue 35): its physics half
+  /// True if the method renders several pointers in one world: its physics half
   /// implements MethodPhysics::PhysicsStepPointers and each pointer gets its own haptic half.
   bool multi_pointer = false;
   /// The haptic halves of pointers 1, 2, ... when the factory links them to `haptic` (several

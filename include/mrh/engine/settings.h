@@ -78,7 +78,7 @@ struct RenderingSettings {
   /// Multiplier on the unit-mass inertia when rotation_weight is empty (dimensionless, > 0).
   double rotation_weight_scale = 1.0;
   /// Coulomb friction coefficient μ of the friction cones (eq. 3.9–3.10), static = kinetic.
-  /// Also single-rate, impulse and local-dynamics (issue 35): a stick point per contact, 0
+  /// Also single-rate, impulse and local-dynamics: a stick point per contact, 0
   /// frictionless.
   double friction = 0.0;
   /// Proxy solver: "active-set" (exact dual active-set method, the converged answer of the
@@ -127,7 +127,7 @@ struct RenderingSettings {
   std::map<std::string, MaterialSettings> materials;
 };
 
-/// One pointer of a session with several (session key `pointers[i]`, issue 35): its body and
+/// One pointer of a session with several (session key `pointers[i]`): its body and
 /// radius, and its rendering (the session's `rendering` with the element's overrides applied).
 struct PointerLaneSettings {
   PointerSettings pointer;
@@ -143,7 +143,7 @@ struct EngineSettings {
   double duration = 10.0;     ///< s of simulated (lockstep) or wall (realtime) time
   PointerSettings pointer;
   RenderingSettings rendering;
-  /// Several pointers (issue 35): every pointer, in order, when there are at least two; their
+  /// Several pointers: every pointer, in order, when there are at least two; their
   /// bodies are distinct mocap bodies and pointers[0] repeats `pointer`. Empty: one pointer,
   /// `pointer` rendered with `rendering`. Pointers never touch each other.
   std::vector<PointerLaneSettings> pointers;

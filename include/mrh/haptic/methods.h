@@ -22,7 +22,7 @@ enum LocalDynamicsStatusBits : std::uint32_t {
 
 /// Haptic half of "single-rate" and "impulse": 3-DOF penalty (eq. 4.11) with a pointer sphere
 /// of `radius` (m), stiffness k (N/m) and damping d (N·s/m), and Coulomb friction μ at each
-/// contact when `friction` > 0 (issue 35; 0: frictionless, as before). Not RT-safe (allocates
+/// contact when `friction` > 0 (0: frictionless). Not RT-safe (allocates
 /// once).
 std::unique_ptr<MethodHaptic> MakePointPenaltyHaptic(double radius, double stiffness,
                                                      double damping, double friction = 0.0);
@@ -67,7 +67,7 @@ struct PointerGains {
   double friction = 0.0;  ///< Coulomb μ (0: frictionless)
 };
 
-/// Several pointers (issue 35): one haptic half of "local-dynamics" (contact local model) per
+/// Several pointers: one haptic half of "local-dynamics" (contact local model) per
 /// pointer, in pointer order, all rendering against one island: pointer 0's half adopts it, each
 /// adds its reactions, and the last one (ticked last) steps it once per tick with every
 /// pointer's force. Keep them alive together, pointer 0's last. Not RT-safe (allocates once).

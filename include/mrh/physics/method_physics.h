@@ -16,7 +16,7 @@ class World;
 
 namespace mrh::physics {
 
-/// One pointer of a several-pointer run (issue 35), for the methods that support them.
+/// One pointer of a several-pointer run, for the methods that support them.
 struct PointerContext {
   int body = -1;                                  ///< world body id of the mocap pointer
   double radius = 0.0;                            ///< m (3-DOF methods)
@@ -73,7 +73,7 @@ class MethodPhysics {
   /// period k+1.
   virtual void PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot* out) = 0;
 
-  /// Several pointers (issue 35): the same as PhysicsStart / PhysicsStep with one report in and
+  /// Several pointers: the same as PhysicsStart / PhysicsStep with one report in and
   /// one snapshot out per pointer, in pointer order, over one world step. Only methods built
   /// with MethodContext::pointers override them; the defaults serve pointer 0 alone.
   virtual void PhysicsStartPointers(std::span<const ir::HapticReport* const> initial,

@@ -40,7 +40,7 @@ class PhysicsSide {
     TripleBuffer<ir::PhysicsSnapshot>* snapshots;   ///< physics → haptic
     SpscRing<ir::HapticReport>* reports;            ///< haptic → physics
     SpscRing<haptic::TickRecord>* tick_records;     ///< haptic → recorder
-    /// Several pointers (issue 35): pointers 1, 2, ...'s own snapshot buffers and report rings
+    /// Several pointers: pointers 1, 2, ...'s own snapshot buffers and report rings
     /// (pointer 0 uses the two above). Empty with one pointer.
     std::vector<TripleBuffer<ir::PhysicsSnapshot>*> more_snapshots = {};
     std::vector<SpscRing<ir::HapticReport>*> more_reports = {};

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Coulomb friction of a 3-DOF point contact through a stick anchor on the object (issue 35).
+// Coulomb friction of a 3-DOF point contact through a stick anchor on the object.
 #pragma once
 
 #include <array>

@@ -56,7 +56,7 @@ struct Session {
   std::optional<Vec3> gravity;              ///< m/s², overrides the scene's
   engine::EngineSettings engine;
   DeviceConfig device;
-  /// Several pointers (session key `pointers`, issue 35): each pointer's device, in the order
+  /// Several pointers (session key `pointers`): each pointer's device, in the order
   /// of engine.pointers; pointer_devices[0] equals `device`. Empty with one pointer.
   std::vector<DeviceConfig> pointer_devices;
 };

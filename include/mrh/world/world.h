@@ -19,7 +19,7 @@ struct LoadOptions {
   /// Name of the mocap body that is the haptic pointer. Its geoms are made non-colliding inside
   /// MuJoCo (the haptic rendering handles the pointer's contacts). Empty: no pointer.
   std::string pointer_body = "pointer";
-  /// Further pointer bodies (issue 35's several pointers): each must be a mocap body, and its
+  /// Further pointer bodies (several pointers): each must be a mocap body, and its
   /// geoms are made non-colliding inside MuJoCo as pointer_body's are, so pointers never touch
   /// each other. Empty: one pointer.
   std::vector<std::string> more_pointer_bodies = {};
