@@ -77,31 +77,26 @@ void SolveDisc(double m11, double m12, double m22, double b1, double b2, double 
     ProjectOnDisc(limit, x1, x2);
     return;
   }
-  const auto solve = [&](double nu, double* y1, double* y2) {
+  // y = (M + ν I)⁻¹ r
+  const auto apply_inverse = [&](double nu, double r1, double r2, double* y1, double* y2) {
     const double a = m11 + nu, c = m22 + nu;
     const double det = a * c - m12 * m12;
-    *y1 = (c * b1 - m12 * b2) / det;
-    *y2 = (a * b2 - m12 * b1) / det;
+    *y1 = (c * r1 - m12 * r2) / det;
+    *y2 = (a * r2 - m12 * r1) / det;
   };
-  solve(0.0, x1, x2);
+  apply_inverse(0.0, b1, b2, x1, x2);
   const double limit2 = limit * limit;
   if (*x1 * *x1 + *x2 * *x2 <= limit2) return;
   double nu = 0.0;
   for (int it = 0; it < 30; ++it) {
     const double f = *x1 * *x1 + *x2 * *x2 - limit2;
     if (f <= 1e-12 * limit2) break;
-    // d|x|²/dν = −2 xᵀ (M + ν I)⁻¹ x
-    double z1, z2;
-    {
-      const double a = m11 + nu, c = m22 + nu;
-      const double det = a * c - m12 * m12;
-      z1 = (c * *x1 - m12 * *x2) / det;
-      z2 = (a * *x2 - m12 * *x1) / det;
-    }
+    double z1, z2;  // d|x|²/dν = −2 xᵀ (M + ν I)⁻¹ x
+    apply_inverse(nu, *x1, *x2, &z1, &z2);
     const double slope = -2.0 * (*x1 * z1 + *x2 * z2);
     if (!(slope < 0.0)) break;
     nu -= f / slope;
-    solve(nu, x1, x2);
+    apply_inverse(nu, b1, b2, x1, x2);
   }
   ProjectOnDisc(limit, x1, x2);  // rounding
 }
