@@ -17,9 +17,13 @@ namespace mrh::render {
 //  - normal load N_i = n_i · Σ_normal k_t f_k a_k; friction force F_t,i = Σ_friction k_t f_k a_k,
 //    scaled by s_i = min(1, μ N_i / |F_t,i|) into the pair's Coulomb cone (the LCP bounds each
 //    friction row's offset by μ δ, not its multiplier by μ f_n);
-//  - the damper d_t of eq. 3.7 acts on the pair's load: every force of the pair is scaled by
-//    max(0, 1 + (d_i / k_i) (N_i − N_i,prev) / (dt N_i)), which keeps its centre of pressure and
-//    its cone and never pulls. On the first tick after a start or reset the damper is at rest;
+//  - the damper d_t of eq. 3.7 acts on the total load N = Σ_i N_i: every force of pair i is
+//    scaled by max(0, 1 + (d_i / k_i) (N − N_prev) / (dt N)), which keeps centres of pressure and
+//    cones and never pulls. Not on each pair's own load: where rows are redundant (a face on
+//    several coplanar objects) the split of N among the pairs is not unique and the active set
+//    may move load between pairs from one tick to the next with N unchanged; a per-pair rate
+//    turned that into a felt force jumping by half its size every tick. On the first tick after
+//    a start or reset the damper is at rest;
 //  - if a pair's force exceeds max_pair_force, every pair's force is scaled by one factor so
 //    the largest equals it (nearly contradictory rows: a proxy wedged between overlapping
 //    objects); cones, centres of pressure and action = reaction are kept.
@@ -28,12 +32,17 @@ namespace mrh::render {
 void ProxyRenderer::ComputeContactForces(const TickIr& ir, const Pose& X_WP, double dt,
                                          ProxyOutput* out) noexcept {
   AddRowForces();
+  double total_load = 0.0;
+  for (std::size_t i = 0; i < ir.pairs.size(); ++i) {
+    normal_load_[i] = std::max(0.0, ir.pairs[i].n_W.dot(force_pair_[i]));
+    total_load += normal_load_[i];
+  }
+  const double rate = has_previous_ ? (total_load - previous_total_load_) / dt : 0.0;
   double largest = 0.0;
   for (std::size_t i = 0; i < ir.pairs.size(); ++i) {
     dr_pair_[i].setZero();
     dtheta_pair_[i].setZero();
-    const double load = std::max(0.0, ir.pairs[i].n_W.dot(force_pair_[i]));
-    normal_load_[i] = load;
+    const double load = normal_load_[i];
     if (!(load > 0.0)) {
       force_pair_[i].setZero();
       torque_pair_[i].setZero();
@@ -43,8 +52,7 @@ void ProxyRenderer::ComputeContactForces(const TickIr& ir, const Pose& X_WP, dou
     const double friction = friction_force_[i].norm();
     const double limit = gains_[i].friction * load;
     const double cone = friction > limit ? limit / friction : 1.0;
-    const double rate = has_previous_ ? (load - previous_load_[i]) / dt : 0.0;
-    const double scale = std::max(0.0, 1.0 + tau_d * rate / load);
+    const double scale = std::max(0.0, 1.0 + tau_d * rate / total_load);
     force_pair_[i] = scale * (force_pair_[i] + cone * friction_force_[i]);
     torque_pair_[i] = scale * (torque_pair_[i] + cone * friction_torque_[i]);
     largest = std::max(largest, force_pair_[i].norm());

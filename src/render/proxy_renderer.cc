@@ -142,7 +142,6 @@ void ProxyRenderer::CarryPreviousProxy(const TickIr& ir, const Pose& X_WP) noexc
     }
     previous_dr_pair_[i] = memory != nullptr ? memory->dr_pair : Vec3::Zero();
     previous_dtheta_pair_[i] = memory != nullptr ? memory->dtheta_pair : Vec3::Zero();
-    previous_load_[i] = memory != nullptr && memory->in_contact ? memory->normal_load : 0.0;
     first_tick_[i] = !(has_previous_ && memory != nullptr && memory->in_contact);
     const Pose carried =
         first_tick_[i] ? X_WP : pair.X_WB * (memory->X_WB.Inverse() * previous_X_WQ_);
@@ -223,9 +222,10 @@ void ProxyRenderer::Remember(const TickIr& ir, const ProxyOutput& out) noexcept 
   memory_count_ = ir.pairs.size();
   for (std::size_t i = 0; i < memory_count_; ++i) {
     const TickPair& pair = ir.pairs[i];
-    memory_[i] = PairMemory{pair.key,        pair.X_WB,          pair_rows_[i] > 0,
-                            dr_pair_[i],     dtheta_pair_[i],    normal_load_[i]};
+    memory_[i] = PairMemory{pair.key, pair.X_WB, pair_rows_[i] > 0, dr_pair_[i], dtheta_pair_[i]};
   }
+  previous_total_load_ = 0.0;
+  for (std::size_t i = 0; i < memory_count_; ++i) previous_total_load_ += normal_load_[i];
   has_previous_ = true;
   previous_X_WQ_ = out.X_WQ;
   previous_dr_ = out.dr;

@@ -108,6 +108,46 @@ TEST(ProxyContactModelTest, FaceOnTheFloorFeelsKtTimesDepthLikeTheThesisModel) {
   EXPECT_LT(out.w_W.tau.norm(), kForceTol);
 }
 
+TEST(ProxyContactModelTest, LoadMovingBetweenCoplanarObjectsDoesNotShakeTheFeltForce) {
+  // A face pressed kDepth into four moving boxes, one under each corner, whose tops are level
+  // to within eps: the diagonal pairs take turns being eps higher. Four coplanar points make
+  // the rows redundant (rank 3), so the split of the load among the boxes is not unique: each
+  // tick the active set may carry it on either diagonal. The proxy itself moves by about eps,
+  // so the felt force must stay within k_t eps plus the damper's d_t 2 eps / dt of k_t kDepth.
+  ProxyRendererSettings settings = Contact(0.0);
+  settings.d_t = 10.0;
+  Rig rig(settings);
+  constexpr double kEps = 1e-7;
+  const std::vector<Vec3> corners = {Vec3(kHalf, kHalf, -kHalf), Vec3(-kHalf, kHalf, -kHalf),
+                                     Vec3(-kHalf, -kHalf, -kHalf), Vec3(kHalf, -kHalf, -kHalf)};
+  const auto specs = [&](int tick) {
+    std::vector<PairSpec> boxes;
+    for (int i = 0; i < 4; ++i) {
+      const double lift = (i + tick) % 2 == 0 ? kEps : 0.0;
+      PairSpec box = Box(5 + i, Pose{Vec3(0, 0, lift), Quat::Identity()});
+      box.key = static_cast<std::uint64_t>(20 + i);
+      box.points_P = {corners[static_cast<std::size_t>(i)]};
+      boxes.push_back(box);
+    }
+    return boxes;
+  };
+  const double bound = kKt * kEps + settings.d_t * 2.0 * kEps / kDt;
+  double worst = 0.0, share_jump = 0.0, previous_share = -1.0;
+  for (int tick = 0; tick < 40; ++tick) {
+    const ProxyOutput& out = rig.Tick(specs(tick), Pressed());
+    ASSERT_EQ(out.reactions.size(), 4u);
+    const double share = -out.reactions[0].w_W.f.z() / out.w_W.f.z();
+    if (tick > 0) {  // the damper starts at rest
+      worst = std::max(worst, std::abs(out.w_W.f.z() - kKt * kDepth));
+      share_jump = std::max(share_jump, std::abs(share - previous_share));
+    }
+    previous_share = share;
+  }
+  EXPECT_LE(worst, bound) << "the felt force left k_t kDepth by " << worst << " N";
+  // What makes the case: the first box's share of the load did jump between ticks.
+  EXPECT_GT(share_jump, 0.1);
+}
+
 // The pointer squeezed between a box under it and a box pressing on its top face, tilted by
 // `tilt` (rad) from facing it squarely: both are kDepth deep, so the proxy satisfies both rows
 // only ~2 kDepth / tilt to the side, and the rows nearly contradict each other.

@@ -237,7 +237,6 @@ class ProxyRenderer {
     bool in_contact = false;
     Vec3 dr_pair = Vec3::Zero();
     Vec3 dtheta_pair = Vec3::Zero();
-    double normal_load = 0.0;  // N, the contact model's pair normal force
   };
 
   // Identity of a row for the warm start: (pair key, point index, normal/friction) mixed into
@@ -292,12 +291,12 @@ class ProxyRenderer {
   std::array<Vec3, ir::kMaxGeometricPairs> dtheta_pair_{};  // Σ_pair f_k R_w⁻¹(r_k × a_k)
   std::array<Vec3, ir::kMaxGeometricPairs> force_pair_{};   // F_i on the pointer this tick
   std::array<Vec3, ir::kMaxGeometricPairs> torque_pair_{};  // M_i about the pointer origin
-  // Contact model: the pair's friction rows' force and moment (pointer origin), its normal load
-  // this tick and last tick (N).
+  // Contact model: the pair's friction rows' force and moment (pointer origin) and its normal
+  // load this tick (N).
   std::array<Vec3, ir::kMaxGeometricPairs> friction_force_{};
   std::array<Vec3, ir::kMaxGeometricPairs> friction_torque_{};
   std::array<double, ir::kMaxGeometricPairs> normal_load_{};
-  std::array<double, ir::kMaxGeometricPairs> previous_load_{};
+  double previous_total_load_ = 0.0;  // Σ normal_load_ of the previous tick (N)
   // Per current pair: its object geom's gains (TickPair::material, else k_t, d_t, μ).
   std::array<ir::ContactGains, ir::kMaxGeometricPairs> gains_{};
   std::array<PairMemory, ir::kMaxGeometricPairs> memory_{};
