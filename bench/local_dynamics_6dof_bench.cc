@@ -131,7 +131,8 @@ void BM_LocalDynamics6dofTick1000Contacts8Objects(benchmark::State& state) {
   std::vector<double> wall_us, cpu_us;
   wall_us.reserve(1 << 20);
   cpu_us.reserve(1 << 20);
-  double contacts = 0.0;
+  const render::LocalContactSolver& solver = *LocalDynamics6dofSolver(*method);
+  double contacts = 0.0, sweeps = 0.0, fz_jump = 0.0, fz_before = 0.0;
   std::int64_t tick = 0;
   for (auto _ : state) {
     const TickInput in = Input(tick);
@@ -148,11 +149,13 @@ void BM_LocalDynamics6dofTick1000Contacts8Objects(benchmark::State& state) {
     const double cpu = ThreadCpuUs() - c0;
     benchmark::DoNotOptimize(out.w_W);
     contacts += out.contacts;
+    sweeps += solver.last_sweeps();
+    if (tick > 0) fz_jump = std::max(fz_jump, std::abs(out.w_W.f.z() - fz_before));
+    fz_before = out.w_W.f.z();
     if (wall_us.size() < wall_us.capacity()) wall_us.push_back(us);
     if (cpu_us.size() < cpu_us.capacity()) cpu_us.push_back(cpu);
     ++tick;
   }
-  const render::LocalContactSolver& solver = *LocalDynamics6dofSolver(*method);
   double z = 0.0, tilt = 0.0;
   for (std::size_t i = 0; i < solver.size(); ++i) {
     z = std::max(z, std::abs(solver.p_WCm(i).z() - kHalf));
@@ -161,6 +164,11 @@ void BM_LocalDynamics6dofTick1000Contacts8Objects(benchmark::State& state) {
   state.counters["box_dz_max_m"] = z;  // a diverging island shows here
   state.counters["box_tilt_max_rad"] = tilt;
   state.counters["contacts"] = contacts / static_cast<double>(std::max<std::int64_t>(1, tick));
+  // The island's Gauss–Seidel sweeps per tick (at most LocalContactSolverSettings::iterations).
+  state.counters["island_sweeps"] = sweeps / static_cast<double>(std::max<std::int64_t>(1, tick));
+  // The largest tick-to-tick change of the felt normal force (N): the rub is horizontal and
+  // the press steady, so a change of more than a few hundredths of a newton is chatter.
+  state.counters["fz_jump_max_N"] = fz_jump;
   state.counters["p50_us"] = Percentile(wall_us, 50.0);
   state.counters["p99_us"] = Percentile(wall_us, 99.0);
   state.counters["cpu_p50_us"] = Percentile(cpu_us, 50.0);

@@ -270,6 +270,30 @@ Vec3 EllipsoidSupport(const Vec3& p, const Quat& q_W, const Vec3& c, const Vec3&
 
 }  // namespace
 
+// The sweep's two primitives, defined before their callers so that they inline.
+inline double LocalContactSolver::RelativeVelocity(const Row& r, int j) const noexcept {
+  const auto u = static_cast<std::size_t>(j);
+  const Body& A = bodies_[static_cast<std::size_t>(r.c.a)];
+  double v = r.d[u].dot(A.v) + r.jA[u].dot(A.w);
+  if (r.c.b >= 0) {
+    const Body& B = bodies_[static_cast<std::size_t>(r.c.b)];
+    v -= r.d[u].dot(B.v) + r.jB[u].dot(B.w);
+  }
+  return v;
+}
+
+inline void LocalContactSolver::ApplyImpulse(Row& r, int j, double dl) noexcept {
+  const auto u = static_cast<std::size_t>(j);
+  Body& A = bodies_[static_cast<std::size_t>(r.c.a)];
+  A.v += (A.inv_mass * dl) * r.d[u];
+  A.w += dl * r.mA[u];
+  if (r.c.b >= 0) {
+    Body& B = bodies_[static_cast<std::size_t>(r.c.b)];
+    B.v -= (B.inv_mass * dl) * r.d[u];
+    B.w -= dl * r.mB[u];
+  }
+}
+
 // World frames, lever arms, effective masses and targets of this tick; warm start.
 void LocalContactSolver::PrepareRows(double dt) noexcept {
   for (std::size_t k = 0; k < rows_count_; ++k) {
@@ -309,26 +333,23 @@ void LocalContactSolver::PrepareRows(double dt) noexcept {
     }
     r.d[0] = n;
     FrictionDirections(n, t, r.c.pyramidal, &r.d[1], &r.d[2]);
-    for (int j = 0; j < 3; ++j) {
-      const Vec3 ca = r.rA.cross(r.d[j]);
-      double w = A.inv_mass + ca.dot(A.I_W_inv * ca);
+    for (std::size_t j = 0; j < 3; ++j) {
+      r.jA[j] = r.rA.cross(r.d[j]);
+      r.mA[j] = A.I_W_inv * r.jA[j];
+      double w = A.inv_mass + r.jA[j].dot(r.mA[j]);
       if (r.c.b >= 0) {
         const Body& B = bodies_[static_cast<std::size_t>(r.c.b)];
-        const Vec3 cb = r.rB.cross(r.d[j]);
-        w += B.inv_mass + cb.dot(B.I_W_inv * cb);
+        r.jB[j] = r.rB.cross(r.d[j]);
+        r.mB[j] = B.I_W_inv * r.jB[j];
+        w += B.inv_mass + r.jB[j].dot(r.mB[j]);
       }
       r.inv_w[j] = w;  // A_jj for now; SetTargets makes it 1 / (A_jj + R)
     }
     // The tangents are orthogonal, so only the rotations couple them.
-    const Vec3 ca1 = r.rA.cross(r.d[1]), ca2 = r.rA.cross(r.d[2]);
-    r.a12 = ca1.dot(A.I_W_inv * ca2);
-    if (r.c.b >= 0) {
-      const Body& B = bodies_[static_cast<std::size_t>(r.c.b)];
-      r.a12 += r.rB.cross(r.d[1]).dot(B.I_W_inv * r.rB.cross(r.d[2]));
-    }
+    r.a12 = r.jA[1].dot(r.mA[2]) + (r.c.b >= 0 ? r.jB[1].dot(r.mB[2]) : 0.0);
     SetTargets(r, n.dot(pA - pB) + r.hold, dt);
     if (r.lambda[0] > 0.0) {
-      ApplyImpulse(r, r.lambda[0] * r.d[0] + r.lambda[1] * r.d[1] + r.lambda[2] * r.d[2]);
+      for (int j = 0; j < 3; ++j) ApplyImpulse(r, j, r.lambda[static_cast<std::size_t>(j)]);
     }
   }
 }
@@ -393,56 +414,31 @@ double LocalContactSolver::RelativeStartVelocity(const Row& r, const Vec3& dir) 
   return dir.dot(v);
 }
 
-double LocalContactSolver::RelativeVelocity(const Row& r, const Vec3& dir) const noexcept {
-  return dir.dot(RelativeVelocityVector(r));
-}
-
-Vec3 LocalContactSolver::RelativeVelocityVector(const Row& r) const noexcept {
-  const Body& A = bodies_[static_cast<std::size_t>(r.c.a)];
-  Vec3 v = A.v + A.w.cross(r.rA);
-  if (r.c.b >= 0) {
-    const Body& B = bodies_[static_cast<std::size_t>(r.c.b)];
-    v -= B.v + B.w.cross(r.rB);
-  }
-  return v;
-}
-
-void LocalContactSolver::ApplyImpulse(Row& r, const Vec3& P) noexcept {
-  Body& A = bodies_[static_cast<std::size_t>(r.c.a)];
-  A.v += A.inv_mass * P;
-  A.w += A.I_W_inv * r.rA.cross(P);
-  if (r.c.b >= 0) {
-    Body& B = bodies_[static_cast<std::size_t>(r.c.b)];
-    B.v -= B.inv_mass * P;
-    B.w -= B.I_W_inv * r.rB.cross(P);
-  }
-}
-
 // One Gauss–Seidel update of a contact: normal (λ_n >= 0), then the friction of the scene's
 // cone (pyramid or disc). Returns the largest change of a relative velocity (m/s).
 double LocalContactSolver::SolveRow(Row& r, bool reverse) noexcept {
-  const double vn = RelativeVelocity(r, r.d[0]);
+  const double vn = RelativeVelocity(r, 0);
   const double ln =
       std::max(0.0, r.lambda[0] + (r.target[0] - vn - r.R * r.lambda[0]) * r.inv_w[0]);
   double change = VelocityChange(ln - r.lambda[0], r.inv_w[0]);
-  ApplyImpulse(r, (ln - r.lambda[0]) * r.d[0]);
+  ApplyImpulse(r, 0, ln - r.lambda[0]);
   r.lambda[0] = ln;
   if (r.c.pyramidal) {
     return std::max(change, SolveFrictionBox(r, r.c.mu * ln * std::sqrt(0.5), reverse));
   }
   // The contact's two tangents as one block: M = A_tt + R I, and the unconstrained impulse
   // solves M (l − λ) = target − v − R λ, i.e. M l = b with b = target − v − R λ + M λ.
-  const Vec3 v = RelativeVelocityVector(r);
   const double m11 = r.inv_w[1] > 0.0 ? 1.0 / r.inv_w[1] : 0.0;
   const double m22 = r.inv_w[2] > 0.0 ? 1.0 / r.inv_w[2] : 0.0;
-  const double g1 = r.target[1] - r.d[1].dot(v) - r.R * r.lambda[1];
-  const double g2 = r.target[2] - r.d[2].dot(v) - r.R * r.lambda[2];
+  const double g1 = r.target[1] - RelativeVelocity(r, 1) - r.R * r.lambda[1];
+  const double g2 = r.target[2] - RelativeVelocity(r, 2) - r.R * r.lambda[2];
   double l1 = 0.0, l2 = 0.0;
   SolveDisc(m11, r.a12, m22, g1 + m11 * r.lambda[1] + r.a12 * r.lambda[2],
             g2 + r.a12 * r.lambda[1] + m22 * r.lambda[2], r.c.mu * ln, &l1, &l2);
   change = std::max({change, VelocityChange(l1 - r.lambda[1], r.inv_w[1]),
                      VelocityChange(l2 - r.lambda[2], r.inv_w[2])});
-  ApplyImpulse(r, (l1 - r.lambda[1]) * r.d[1] + (l2 - r.lambda[2]) * r.d[2]);
+  ApplyImpulse(r, 1, l1 - r.lambda[1]);
+  ApplyImpulse(r, 2, l2 - r.lambda[2]);
   r.lambda[1] = l1;
   r.lambda[2] = l2;
   return change;
@@ -455,10 +451,10 @@ double LocalContactSolver::SolveFrictionBox(Row& r, double limit, bool reverse) 
   for (int i = 1; i <= 2; ++i) {
     const int j = reverse ? 3 - i : i;
     const double l = std::clamp(
-        r.lambda[j] + (r.target[j] - RelativeVelocity(r, r.d[j]) - r.R * r.lambda[j]) * r.inv_w[j],
+        r.lambda[j] + (r.target[j] - RelativeVelocity(r, j) - r.R * r.lambda[j]) * r.inv_w[j],
         -limit, limit);
     change = std::max(change, VelocityChange(l - r.lambda[j], r.inv_w[j]));
-    ApplyImpulse(r, (l - r.lambda[j]) * r.d[j]);
+    ApplyImpulse(r, j, l - r.lambda[j]);
     r.lambda[j] = l;
   }
   return change;

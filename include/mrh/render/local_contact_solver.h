@@ -118,6 +118,13 @@ class LocalContactSolver {
     double a12 = 0.0;   // the friction rows' coupling d1·(A d2) in A (1/kg): the disc's block
     double hold = 0.0;  // penetration kept, not pushed out (m, >= 0; HoldRestingPenetration)
     std::array<double, 3> lambda{};  // impulses (N·s): normal, t1, t2
+    // Per direction j, this tick: the angular Jacobians r × d_j and the angular velocity
+    // changes per unit impulse I_W⁻¹ (r × d_j) of A and B, so that a sweep's velocity and
+    // impulse updates are dot products and additions.
+    std::array<Vec3, 3> jA{};
+    std::array<Vec3, 3> mA{};
+    std::array<Vec3, 3> jB{};
+    std::array<Vec3, 3> mB{};
   };
 
   // A previous period's row impulses, kept to warm-start the same contact in the next period.
@@ -136,9 +143,10 @@ class LocalContactSolver {
   void PrepareRows(double dt) noexcept;
   void SetTargets(Row& r, double gap, double dt) const noexcept;
   double RelativeStartVelocity(const Row& r, const Vec3& dir) const noexcept;
-  void ApplyImpulse(Row& r, const Vec3& P) noexcept;
-  double RelativeVelocity(const Row& r, const Vec3& dir) const noexcept;
-  Vec3 RelativeVelocityVector(const Row& r) const noexcept;  // v_A − v_B at the contact (m/s)
+  // The impulse change dl (N·s) along the row's direction j applied to A and, opposite, B.
+  void ApplyImpulse(Row& r, int j, double dl) noexcept;
+  // The relative velocity (m/s) of A's contact point over B's along direction j.
+  double RelativeVelocity(const Row& r, int j) const noexcept;
   double SolveRow(Row& r, bool reverse) noexcept;
   double SolveFrictionBox(Row& r, double limit, bool reverse) noexcept;
   bool Finish(double dt) noexcept;
