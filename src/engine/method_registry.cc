@@ -134,14 +134,33 @@ Method LocalDynamics(const MethodContext& c) {
 
 // Issue 14: the 6-DOF proxy against the neighbors' contact island simulated at the haptic rate.
 Method LocalDynamics6dof(const MethodContext& c) {
+  // render::ProxyStatusBits, then the local island's fault bit
+  std::vector<std::string> status_bits = {"proxy.rows_full", "proxy.not_converged",
+                                          "proxy.bad_input", "local_dynamics.local_body_fault",
+                                          "proxy.pair_force_limited"};
+  if (c.pointers.size() >= 2) {
+    // Several pointers: one island, every pointer's proxy with its own gains and geometry.
+    std::vector<render::ProxyRendererSettings> settings;
+    for (const physics::PointerContext& p : c.pointers) {
+      render::ProxyRendererSettings s = physics::ProxySettingsFor(*c.world, p.body, *p.rendering);
+      s.max_pair_force = c.max_pair_force;
+      settings.push_back(s);
+    }
+    std::vector<std::unique_ptr<haptic::MethodHaptic>> group =
+        haptic::MakeLocalDynamics6dofHapticGroup(settings);
+    Method method{"local-dynamics-6dof",
+                  false,
+                  physics::MakeLocalDynamics6dofPhysics(c),
+                  std::move(group[0]),
+                  std::move(status_bits),
+                  true};
+    for (std::size_t i = 1; i < group.size(); ++i)
+      method.more_haptic.push_back(std::move(group[i]));
+    return method;
+  }
   const render::ProxyRendererSettings settings = physics::ProxySettingsFor(c);
-  return Method{"local-dynamics-6dof",
-                false,
-                physics::MakeLocalDynamics6dofPhysics(c),
-                haptic::MakeLocalDynamics6dofHaptic(settings),
-                // render::ProxyStatusBits, then the local island's fault bit
-                {"proxy.rows_full", "proxy.not_converged", "proxy.bad_input",
-                 "local_dynamics.local_body_fault", "proxy.pair_force_limited"}};
+  return Method{"local-dynamics-6dof", false, physics::MakeLocalDynamics6dofPhysics(c),
+                haptic::MakeLocalDynamics6dofHaptic(settings), std::move(status_bits)};
 }
 
 // Built-in methods register on first use: self-registering statics would be dropped by the

@@ -17,11 +17,13 @@ LocalDynamics6dofHaptic::LocalDynamics6dofHaptic(const render::ProxyRendererSett
 // follows that order.
 void LocalDynamics6dofHaptic::Adopt(const ir::PhysicsSnapshot& snapshot) noexcept {
   interpolator_.Adopt(snapshot);
-  solver_.Adopt(snapshot.local_model);
-  local_of_motion_.fill(-1);
-  for (std::size_t m = 0; m < snapshot.bodies.size(); ++m) {
-    local_of_motion_[m] = solver_.FindMotion(static_cast<int>(m));
+  if (owner_ == nullptr) {
+    solver_.Adopt(snapshot.local_model);
+    adopted_step_ = snapshot.step;
   }
+  snapshot_step_ = snapshot.step;
+  snapshot_bodies_ = snapshot.bodies.size();
+  MapMotions();
   std::size_t j = 0;
   for (const ir::GeometricPair& pair : snapshot.pairs) {
     if (pair.motion < 0 || static_cast<std::size_t>(pair.motion) >= snapshot.bodies.size()) {
@@ -35,6 +37,16 @@ void LocalDynamics6dofHaptic::Adopt(const ir::PhysicsSnapshot& snapshot) noexcep
   }
 }
 
+void LocalDynamics6dofHaptic::MapMotions() noexcept {
+  const std::int64_t island_step = owner_ ? owner_->adopted_step_ : adopted_step_;
+  const bool current = island_step == snapshot_step_;
+  local_of_motion_.fill(-1);
+  for (std::size_t m = 0; current && m < snapshot_bodies_; ++m) {
+    local_of_motion_[m] = island().FindMotion(static_cast<int>(m));
+  }
+  mapped_step_ = current ? island_step : -2;
+}
+
 // Step 2 of the class comment: planes of island pairs on the local poses.
 void LocalDynamics6dofHaptic::RePoseOnLocalBodies() noexcept {
   for (std::size_t i = 0; i < tick_ir_.pairs.size(); ++i) {
@@ -43,8 +55,8 @@ void LocalDynamics6dofHaptic::RePoseOnLocalBodies() noexcept {
     const int local = local_of_motion_[static_cast<std::size_t>(pair.motion)];
     if (local < 0) continue;
     const auto l = static_cast<std::size_t>(local);
-    pair.X_WB = solver_.X_WB(l);
-    pair.p_WCm = solver_.p_WCm(l);
+    pair.X_WB = island().X_WB(l);
+    pair.p_WCm = island().p_WCm(l);
     if (round_[i]) {
       // A rolling round body's surface facing the pointer moves with its centre, unturned: a
       // plane turned with the body would push along its turned normal and drive the roll.
@@ -78,7 +90,7 @@ void LocalDynamics6dofHaptic::PushLocalBodies() noexcept {
     const int local = local_of_motion_[static_cast<std::size_t>(pair.motion)];
     if (local < 0) continue;
     const auto l = static_cast<std::size_t>(local);
-    AddWrench(l, r.w_W, solver_.p_WCm(l));
+    AddWrench(l, r.w_W, island().p_WCm(l));
   }
   render::AddReactionImpulses(output_.reactions, tick_dt_, &period_);
 }
@@ -86,15 +98,18 @@ void LocalDynamics6dofHaptic::PushLocalBodies() noexcept {
 // The wrench (force; moment about the COM c) as the force at c plus the couple ±g at c ± a,
 // 2 a × g = τ.
 void LocalDynamics6dofHaptic::AddWrench(std::size_t l, const Wrench& w, const Vec3& c) noexcept {
-  solver_.AddForce(l, w.f, c);
+  render::LocalContactSolver& solver = island();
+  solver.AddForce(l, w.f, c);
   if (!(w.tau.squaredNorm() > 0.0)) return;
   const Vec3 a = w.tau.unitOrthogonal();
   const Vec3 g = 0.5 * w.tau.cross(a);
-  solver_.AddForce(l, g, c + a);
-  solver_.AddForce(l, -g, c - a);
+  solver.AddForce(l, g, c + a);
+  solver.AddForce(l, -g, c - a);
 }
 
 void LocalDynamics6dofHaptic::HapticTick(const TickInput& in, TickOutput* out) noexcept {
+  // A follower whose snapshot and the island's model came a tick apart catches up here.
+  if (owner_ != nullptr && mapped_step_ != snapshot_step_) MapMotions();
   interpolator_.Evaluate(in.alpha(), in.X_WP, &tick_ir_);
   RePoseOnLocalBodies();
   renderer_.Tick(tick_ir_, in.X_WP, in.dt, &output_);
@@ -106,15 +121,17 @@ void LocalDynamics6dofHaptic::HapticTick(const TickInput& in, TickOutput* out) n
   render::AddTransientForce(in.dt, &transients_, &out->w_W.f);
   tick_dt_ = in.dt;
   PushLocalBodies();
-  if (!solver_.Step(in.dt)) out->status |= kLocal6dofBodyFault;
+  if (steps_ && !island().Step(in.dt)) out->status |= kLocal6dofBodyFault;
 }
 
 void LocalDynamics6dofHaptic::EndPeriod(ir::HapticReport* report) noexcept {
   report->impulses = period_.impulses;
   report->local_states.Clear();
-  for (std::size_t i = 0; i < solver_.size(); ++i) {
+  // Several pointers: the half that steps the island reports its end states, once.
+  const render::LocalContactSolver& solver = island();
+  for (std::size_t i = 0; steps_ && i < solver.size(); ++i) {
     if (!report->local_states.PushBack(
-            ir::LocalBodyState{solver_.world_body(i), solver_.X_WB(i), solver_.V_WCm(i)})) {
+            ir::LocalBodyState{solver.world_body(i), solver.X_WB(i), solver.V_WCm(i)})) {
       period_.status |= ir::kStatusBodiesFull;
     }
   }

@@ -57,7 +57,23 @@ class LocalDynamics6dofHaptic final : public MethodHaptic {
   /// The haptic side's island (haptic thread; tests read it between ticks).
   const render::LocalContactSolver& solver() const noexcept { return solver_; }
 
+  /// Several pointers: this half renders its own pointer against `owner`'s island (null: its
+  /// own, it is the owner). The owner (pointer 0, ticked first) adopts the island, every pointer
+  /// re-poses its planes on it and adds its reactions, and the half with `steps` (the last
+  /// pointer, ticked last) steps it once per tick with all of them and reports its end states.
+  /// The owner must outlive the others. Setup only.
+  void ShareIsland(LocalDynamics6dofHaptic* owner, bool steps) noexcept {
+    owner_ = owner;
+    steps_ = steps;
+  }
+
  private:
+  render::LocalContactSolver& island() noexcept { return owner_ ? owner_->solver_ : solver_; }
+
+  /// Maps the snapshot's motions to the island's bodies, or to none while the island holds
+  /// another step's model (a follower's snapshot arrived a tick apart from the owner's).
+  void MapMotions() noexcept;
+
   void RePoseOnLocalBodies() noexcept;
   void PushLocalBodies() noexcept;
   void AddWrench(std::size_t l, const Wrench& w, const Vec3& c) noexcept;
@@ -65,6 +81,12 @@ class LocalDynamics6dofHaptic final : public MethodHaptic {
   render::IrInterpolator interpolator_;
   render::ProxyRenderer renderer_;
   render::LocalContactSolver solver_;
+  LocalDynamics6dofHaptic* owner_ = nullptr;  ///< several pointers: the island's owner
+  bool steps_ = true;                         ///< this half steps the island each tick
+  std::int64_t snapshot_step_ = -2;           ///< step of the adopted snapshot
+  std::size_t snapshot_bodies_ = 0;           ///< its number of bodies
+  std::int64_t adopted_step_ = -2;            ///< snapshot step of the island's model (owner)
+  std::int64_t mapped_step_ = -2;             ///< island step local_of_motion_ was mapped to
   render::TickIr tick_ir_;
   render::ProxyOutput output_;
   double tick_dt_ = 0.0;

@@ -66,6 +66,19 @@ std::unique_ptr<MethodHaptic> MakeLocalDynamics6dofHaptic(
   return std::make_unique<internal::LocalDynamics6dofHaptic>(settings);
 }
 
+std::vector<std::unique_ptr<MethodHaptic>> MakeLocalDynamics6dofHapticGroup(
+    const std::vector<render::ProxyRendererSettings>& pointers) {
+  std::vector<std::unique_ptr<MethodHaptic>> group;
+  internal::LocalDynamics6dofHaptic* owner = nullptr;
+  for (std::size_t i = 0; i < pointers.size(); ++i) {
+    auto half = std::make_unique<internal::LocalDynamics6dofHaptic>(pointers[i]);
+    half->ShareIsland(owner, i + 1 == pointers.size());
+    if (owner == nullptr) owner = half.get();
+    group.push_back(std::move(half));
+  }
+  return group;
+}
+
 const render::ProxyOutput* LocalDynamics6dofLastOutput(const MethodHaptic& method) noexcept {
   const auto* m = dynamic_cast<const internal::LocalDynamics6dofHaptic*>(&method);
   return m == nullptr ? nullptr : &m->last_output();

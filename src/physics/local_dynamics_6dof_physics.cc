@@ -20,6 +20,12 @@ LocalDynamics6dofPhysics::LocalDynamics6dofPhysics(const MethodContext& context)
   const auto capacity = static_cast<std::size_t>(world_->num_bodies());
   seeds_.reserve(capacity);
   motions_.reserve(capacity);
+  for (const PointerContext& pointer : context.pointers) {
+    pointer_bodies_.push_back(pointer.body);
+    builders_.push_back(
+        std::make_unique<GeometricIrBuilder>(*world_, pointer.body, *pointer.rendering));
+  }
+  remap_.resize(ir::kMaxNeighborBodies);
 }
 
 void LocalDynamics6dofPhysics::Build(const Pose& X_WP, ir::PhysicsSnapshot* out) {
@@ -67,6 +73,91 @@ void LocalDynamics6dofPhysics::PhysicsStep(const ir::HapticReport& report,
   Export(out);
   phases_.model_ms = MsSince(t0);
   sync_.CountStep();
+}
+
+void LocalDynamics6dofPhysics::PhysicsStartPointers(
+    std::span<const ir::HapticReport* const> initial, std::span<ir::PhysicsSnapshot* const> out) {
+  for (std::size_t i = 0; i < builders_.size(); ++i) {
+    world_->SetMocapPose(pointer_bodies_[i], initial[i]->X_WP);
+    builders_[i]->CapturePreviousPoses(*world_);
+  }
+  BuildPointers(initial, 0.0, out);
+  for (ir::PhysicsSnapshot* o : out) o->step = -1;
+}
+
+// As PhysicsStep, for every pointer over one world step.
+void LocalDynamics6dofPhysics::PhysicsStepPointers(std::span<const ir::HapticReport* const> reports,
+                                                   std::span<ir::PhysicsSnapshot* const> out) {
+  auto t0 = std::chrono::steady_clock::now();
+  merged_ = *reports.back();
+  for (std::size_t i = 0; i + 1 < reports.size(); ++i) {
+    for (const ir::BodyImpulse& impulse : reports[i]->impulses) {
+      merged_.AddImpulse(impulse.body, impulse.linear, impulse.angular, impulse.last_force);
+    }
+  }
+  sync_.Overwrite(merged_);
+  phases_.sync_ms = MsSince(t0);
+  t0 = std::chrono::steady_clock::now();
+  for (std::size_t i = 0; i < builders_.size(); ++i) {
+    world_->SetMocapPose(pointer_bodies_[i], reports[i]->X_WP);
+    builders_[i]->CapturePreviousPoses(*world_);
+  }
+  world_->Step();
+  sync_.HoldOwned(physics_dt_);
+  phases_.world_step_ms = MsSince(t0);
+  t0 = std::chrono::steady_clock::now();
+  BuildPointers(reports, 2.0 * physics_dt_, out);  // PhysicsStep says why 2 Δt^G ahead
+  phases_.ir_ms = MsSince(t0);
+  sync_.CountStep();
+}
+
+void LocalDynamics6dofPhysics::BuildPointers(std::span<const ir::HapticReport* const> reports,
+                                             double ahead,
+                                             std::span<ir::PhysicsSnapshot* const> out) {
+  ir::PhysicsSnapshot& all = *out[0];
+  for (std::size_t i = 0; i < builders_.size(); ++i) {
+    ir::PhysicsSnapshot& own = *out[i];
+    builders_[i]->Build(*world_, PointerAhead(*reports[i], ahead), &own);
+    own.contacts.Clear();  // the 3-DOF plane IR is not used by this method
+    own.t = world_->time();
+    own.physics_dt = physics_dt_;
+    if (i == 0) continue;
+    for (std::size_t m = 0; m < own.bodies.size(); ++m) {
+      int found = -1;
+      for (std::size_t u = 0; u < all.bodies.size() && found < 0; ++u) {
+        if (all.bodies[u].body == own.bodies[m].body) found = static_cast<int>(u);
+      }
+      if (found < 0 && all.bodies.PushBack(own.bodies[m])) {
+        found = static_cast<int>(all.bodies.size()) - 1;
+      }
+      if (found < 0) all.status |= ir::kStatusBodiesFull;
+      remap_[m] = found;
+    }
+    // A pair whose body did not fit the union keeps no body (rendered as static, flagged).
+    for (ir::GeometricPair& pair : own.pairs) {
+      if (pair.motion >= 0) pair.motion = remap_[static_cast<std::size_t>(pair.motion)];
+    }
+  }
+  seeds_.clear();
+  motions_.clear();
+  for (const ir::PhysicsSnapshot* o : out) {
+    for (const ir::GeometricPair& pair : o->pairs) {
+      if (pair.motion < 0 || static_cast<std::size_t>(pair.motion) >= all.bodies.size()) continue;
+      const ir::BodyMotion& m = all.bodies[static_cast<std::size_t>(pair.motion)];
+      if (m.is_static || std::find(seeds_.begin(), seeds_.end(), m.body) != seeds_.end() ||
+          !exporter_.IsFreeBody(m.body)) {
+        continue;
+      }
+      seeds_.push_back(m.body);
+      motions_.push_back(pair.motion);
+    }
+  }
+  all.status |= sync_.Export(exporter_, seeds_, motions_, &all);
+  for (std::size_t i = 1; i < out.size(); ++i) {
+    out[i]->bodies = all.bodies;
+    out[i]->local_model = all.local_model;
+    out[i]->status |= all.status;
+  }
 }
 
 // Seeds: every dynamic body with a geometric pair (the pointer may touch it this period).

@@ -3,12 +3,14 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "geometric_ir_builder.h"
-#include "mrh/physics/method_physics.h"
 #include "island_sync.h"
+#include "mrh/physics/method_physics.h"
 #include "mrh/world/contact_export.h"
 
 namespace mrh::physics::internal {
@@ -33,6 +35,16 @@ class LocalDynamics6dofPhysics final : public MethodPhysics {
   void PhysicsStart(const ir::HapticReport& initial, ir::PhysicsSnapshot* out) override;
   void PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot* out) override;
 
+  /// Several pointers: one geometric IR per pointer, one island for all of them. Pointer 0's
+  /// snapshot collects the union of the bodies the pointers' pairs name; every other pointer's
+  /// pairs are renumbered into it, and the bodies and the island are copied into every
+  /// snapshot. The reports' impulses are summed; the island's end states come from the last
+  /// report (the haptic half that steps the island).
+  void PhysicsStartPointers(std::span<const ir::HapticReport* const> initial,
+                            std::span<ir::PhysicsSnapshot* const> out) override;
+  void PhysicsStepPointers(std::span<const ir::HapticReport* const> reports,
+                           std::span<ir::PhysicsSnapshot* const> out) override;
+
   /// sync_ms: (0); world_step_ms: (1); ir_ms: (2); model_ms: (3).
   PhaseTimes last_phases() const noexcept override { return phases_; }
 
@@ -41,6 +53,8 @@ class LocalDynamics6dofPhysics final : public MethodPhysics {
  private:
   void Build(const Pose& X_WP, ir::PhysicsSnapshot* out);
   void Export(ir::PhysicsSnapshot* out);
+  void BuildPointers(std::span<const ir::HapticReport* const> reports, double ahead,
+                     std::span<ir::PhysicsSnapshot* const> out);
 
   world::World* world_;
   int pointer_body_;
@@ -50,6 +64,12 @@ class LocalDynamics6dofPhysics final : public MethodPhysics {
   IslandSync sync_;
   std::vector<int> seeds_, motions_;
   PhaseTimes phases_;
+  // Several pointers only: each pointer's body and IR builder, the merged report and the
+  // renumbering of one pointer's bodies into pointer 0's.
+  std::vector<int> pointer_bodies_;
+  std::vector<std::unique_ptr<GeometricIrBuilder>> builders_;
+  ir::HapticReport merged_;
+  std::vector<int> remap_;
 };
 
 }  // namespace mrh::physics::internal

@@ -82,6 +82,15 @@ std::vector<std::unique_ptr<MethodHaptic>> MakeLocalContactHapticGroup(
 std::unique_ptr<MethodHaptic> MakeLocalDynamics6dofHaptic(
     const render::ProxyRendererSettings& settings);
 
+/// Several pointers: one haptic half of "local-dynamics-6dof" per pointer (its own proxy
+/// settings, physics::ProxySettingsFor of that pointer), in pointer order, all rendering against
+/// one island: pointer 0's half adopts it, each re-poses its planes on it and adds its
+/// reactions, and the last one (ticked last) steps it once per tick with every pointer's
+/// reactions. Keep them alive together, pointer 0's last. Not RT-safe (allocates once).
+/// @throws mrh::InvalidArgument from a settings.Validate().
+std::vector<std::unique_ptr<MethodHaptic>> MakeLocalDynamics6dofHapticGroup(
+    const std::vector<render::ProxyRendererSettings>& pointers);
+
 /// proxy-6dof's haptic half: the renderer's output of its latest tick, and the tick IR it
 /// rendered against; null when `method` is not proxy-6dof's. Haptic thread (or between
 /// lockstep ticks). RT-safe.
