@@ -152,8 +152,8 @@ void EngineState::MakeMethodForSettings() {
   if (!lanes.empty() && !method.multi_pointer) {
     throw InvalidArgument(fmt::format(
         "pointers lists {} pointers, but method = \"{}\" renders one; use \"single-rate\", "
-        "\"impulse\", \"local-dynamics\" (contact local model) or \"local-dynamics-6dof\", "
-        "or keep one pointer",
+        "\"impulse\", \"local-dynamics\" (contact local model), \"local-dynamics-6dof\" or "
+        "\"proxy-6dof\", or keep one pointer",
         lanes.size() + 1, settings.method));
   }
   if (method.single_rate && settings.physics_dt != settings.haptic_dt) {

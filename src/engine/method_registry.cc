@@ -51,16 +51,35 @@ Method SingleRate(const MethodContext& c) { return PointPenalty(c, true); }
 
 Method Impulse(const MethodContext& c) { return PointPenalty(c, false); }
 
+// Every pointer's proxy settings (pointer 0's alone with one pointer): its geometry and gains,
+// the device bound on one contact pair.
+std::vector<render::ProxyRendererSettings> PointerProxySettings(const MethodContext& c) {
+  if (c.pointers.size() < 2) return {physics::ProxySettingsFor(c)};
+  std::vector<render::ProxyRendererSettings> settings;
+  for (const physics::PointerContext& p : c.pointers) {
+    render::ProxyRendererSettings s = physics::ProxySettingsFor(*c.world, p.body, *p.rendering);
+    s.max_pair_force = c.max_pair_force;
+    settings.push_back(s);
+  }
+  return settings;
+}
+
 Method Proxy(const MethodContext& c) {
   // The renderer settings first: they carry the session-key errors.
-  const render::ProxyRendererSettings settings = physics::ProxySettingsFor(c);
-  return Method{"proxy-6dof",
-                false,
-                physics::MakeProxyPhysics(c),
-                haptic::MakeProxyHaptic(settings),
-                // render::ProxyStatusBits
-                {"proxy.rows_full", "proxy.not_converged", "proxy.bad_input", "",
-                 "proxy.pair_force_limited"}};
+  const std::vector<render::ProxyRendererSettings> settings = PointerProxySettings(c);
+  Method method{
+      "proxy-6dof",
+      false,
+      physics::MakeProxyPhysics(c),
+      haptic::MakeProxyHaptic(settings[0]),
+      // render::ProxyStatusBits
+      {"proxy.rows_full", "proxy.not_converged", "proxy.bad_input", "", "proxy.pair_force_limited"},
+      /*multi_pointer=*/true};
+  // Several pointers: the haptic halves share nothing (the objects move on the physics side).
+  for (std::size_t i = 1; i < settings.size(); ++i) {
+    method.more_haptic.push_back(haptic::MakeProxyHaptic(settings[i]));
+  }
+  return method;
 }
 
 // B5: proxy-6dof's physics half (reaction one step late, geometric IR), per-contact springs.
@@ -134,18 +153,13 @@ Method LocalDynamics(const MethodContext& c) {
 
 // Issue 14: the 6-DOF proxy against the neighbors' contact island simulated at the haptic rate.
 Method LocalDynamics6dof(const MethodContext& c) {
+  const std::vector<render::ProxyRendererSettings> settings = PointerProxySettings(c);
   // render::ProxyStatusBits, then the local island's fault bit
   std::vector<std::string> status_bits = {"proxy.rows_full", "proxy.not_converged",
                                           "proxy.bad_input", "local_dynamics.local_body_fault",
                                           "proxy.pair_force_limited"};
-  if (c.pointers.size() >= 2) {
+  if (settings.size() >= 2) {
     // Several pointers: one island, every pointer's proxy with its own gains and geometry.
-    std::vector<render::ProxyRendererSettings> settings;
-    for (const physics::PointerContext& p : c.pointers) {
-      render::ProxyRendererSettings s = physics::ProxySettingsFor(*c.world, p.body, *p.rendering);
-      s.max_pair_force = c.max_pair_force;
-      settings.push_back(s);
-    }
     std::vector<std::unique_ptr<haptic::MethodHaptic>> group =
         haptic::MakeLocalDynamics6dofHapticGroup(settings);
     Method method{"local-dynamics-6dof",
@@ -158,9 +172,8 @@ Method LocalDynamics6dof(const MethodContext& c) {
       method.more_haptic.push_back(std::move(group[i]));
     return method;
   }
-  const render::ProxyRendererSettings settings = physics::ProxySettingsFor(c);
   return Method{"local-dynamics-6dof", false, physics::MakeLocalDynamics6dofPhysics(c),
-                haptic::MakeLocalDynamics6dofHaptic(settings), std::move(status_bits)};
+                haptic::MakeLocalDynamics6dofHaptic(settings[0]), std::move(status_bits)};
 }
 
 // Built-in methods register on first use: self-registering statics would be dropped by the

@@ -93,10 +93,11 @@ void PhysicsSide::Step(std::int64_t k) {
   if (std::string diverged = world_->FindDivergence(max_body_speed_); !diverged.empty()) {
     throw RuntimeError(std::move(diverged));
   }
+  // A method that applies its own reaction reports all of it, every pointer's included.
   const ir::HapticReport* applied = method_->applied_reaction();
   AddToTotals(applied != nullptr ? *applied : input_);
   for (std::size_t i = 0; i < more_input_.size(); ++i) {
-    AddToTotals(more_input_[i]);
+    if (applied == nullptr) AddToTotals(more_input_[i]);
     outputs_[i + 1]->step = k;
     ir_status_ |= outputs_[i + 1]->status;
   }
@@ -165,8 +166,10 @@ void PhysicsSide::Finish(PhysicsStats* stats) {
   // Reports of the last periods were never stepped, but their impulses were delivered (unless
   // the method applies its own reaction instead of the reports').
   TakeReports();
-  if (method_->applied_reaction() == nullptr) AddToTotals(input_);
-  for (const ir::HapticReport& lane : more_input_) AddToTotals(lane);
+  if (method_->applied_reaction() == nullptr) {
+    AddToTotals(input_);
+    for (const ir::HapticReport& lane : more_input_) AddToTotals(lane);
+  }
   DrainTickRecords();
   stats->steps = steps_;
   stats->step_ms_p50 = Percentile(step_ms_, 50.0);

@@ -16,14 +16,23 @@ ProxyLocalReaction::ProxyLocalReaction(world::World& world, int pointer_body,
                                        double physics_dt, double haptic_dt)
     : exporter_(&world),
       model_(std::make_unique<ir::LocalContactModel>()),
-      builder_(world, pointer_body, rendering),
-      snapshot_(std::make_unique<ir::PhysicsSnapshot>()),
-      renderer_(settings),
       physics_dt_(physics_dt),
       substeps_(std::max(1, static_cast<int>(std::lround(physics_dt / haptic_dt)))) {
   const auto capacity = static_cast<std::size_t>(world.num_bodies());
   seeds_.reserve(capacity);
   motions_.reserve(capacity);
+  AddPointer(world, pointer_body, rendering, settings);
+}
+
+ProxyLocalReaction::PointerRun::PointerRun(world::World& world, int pointer_body,
+                                           const engine::RenderingSettings& rendering,
+                                           const render::ProxyRendererSettings& settings)
+    : builder(world, pointer_body, rendering), renderer(settings) {}
+
+void ProxyLocalReaction::AddPointer(world::World& world, int pointer_body,
+                                    const engine::RenderingSettings& rendering,
+                                    const render::ProxyRendererSettings& settings) {
+  pointers_.push_back(std::make_unique<PointerRun>(world, pointer_body, rendering, settings));
 }
 
 ProxyLocalReaction::LocalBody* ProxyLocalReaction::Find(int body) {
@@ -49,25 +58,27 @@ void ProxyLocalReaction::EstimateOtherWrench(LocalBody* body) const {
 
 void ProxyLocalReaction::StartBodies(const world::World& world) {
   bodies_.Clear();
-  for (const render::TickPair& pair : base_.pairs) {
-    if (pair.is_static || pair.body < 0 || Find(pair.body) != nullptr) continue;
-    const world::BodyInfo& info = world.body(pair.body);
-    const world::BodyState state = world.body_state(pair.body);
-    LocalBody b;
-    b.body = pair.body;
-    b.mass = info.mass;
-    b.inertia_B = info.inertia_B;
-    b.p_BCm = info.p_BCm;
-    b.q = state.X_WB.q.normalized();
-    b.com = state.p_WCm;
-    b.com0 = state.p_WCm;
-    b.v = state.V_WCm.v;
-    b.w = state.V_WCm.w;
-    b.q0 = b.q;
-    b.v0 = b.v;
-    b.w0 = b.w;
-    EstimateOtherWrench(&b);
-    if (!(b.mass > 0.0) || !bodies_.PushBack(b)) continue;
+  for (const std::unique_ptr<PointerRun>& run : pointers_) {
+    for (const render::TickPair& pair : run->base.pairs) {
+      if (pair.is_static || pair.body < 0 || Find(pair.body) != nullptr) continue;
+      const world::BodyInfo& info = world.body(pair.body);
+      const world::BodyState state = world.body_state(pair.body);
+      LocalBody b;
+      b.body = pair.body;
+      b.mass = info.mass;
+      b.inertia_B = info.inertia_B;
+      b.p_BCm = info.p_BCm;
+      b.q = state.X_WB.q.normalized();
+      b.com = state.p_WCm;
+      b.com0 = state.p_WCm;
+      b.v = state.V_WCm.v;
+      b.w = state.V_WCm.w;
+      b.q0 = b.q;
+      b.v0 = b.v;
+      b.w0 = b.w;
+      EstimateOtherWrench(&b);
+      if (!(b.mass > 0.0) || !bodies_.PushBack(b)) continue;
+    }
   }
 }
 
@@ -91,10 +102,11 @@ void ProxyLocalReaction::StartIsland() {
   }
 }
 
-// ir_ = base_ with every touched object at its local pose and the points at pointer pose X_WP.
-void ProxyLocalReaction::PoseIr(const Pose& X_WP) {
-  ir_ = base_;
-  for (render::TickPair& pair : ir_.pairs) {
+// run.ir = run.base with every touched object at its local pose and the points at pointer pose
+// X_WP.
+void ProxyLocalReaction::PoseIr(PointerRun& run, const Pose& X_WP) {
+  run.ir = run.base;
+  for (render::TickPair& pair : run.ir.pairs) {
     const LocalBody* b = pair.is_static ? nullptr : Find(pair.body);
     if (b == nullptr) continue;
     const Quat dq = b->q * pair.X_WB.q.normalized().conjugate();
@@ -103,26 +115,34 @@ void ProxyLocalReaction::PoseIr(const Pose& X_WP) {
     pair.c_W = pair.X_WB * pair.p_BC;
     pair.p_WCm = b->com;
   }
-  for (render::TickPoint& point : ir_.points) {
-    const render::TickPair& pair = ir_.pairs[static_cast<std::size_t>(point.pair)];
+  for (render::TickPoint& point : run.ir.points) {
+    const render::TickPair& pair = run.ir.pairs[static_cast<std::size_t>(point.pair)];
     point.v_W = X_WP * point.p_PV;
     point.depth = pair.n_W.dot(pair.c_W - point.v_W);
   }
 }
 
-// One renderer tick of length h, then each touched body moves under its reaction and the rest
-// of the world's wrench (semi-implicit Euler, as MuJoCo's).
-void ProxyLocalReaction::Substep(double h, const Pose& X_WP) {
-  PoseIr(X_WP);
-  renderer_.Tick(ir_, X_WP, h, &output_);
-  pointer_impulse_.f += output_.w_W.f * h;
-  pointer_impulse_.tau += (output_.w_W.tau + (X_WP.p - pointer_origin_).cross(output_.w_W.f)) * h;
+// One renderer tick of length h per pointer (pointer i at its report's pose moved on to time t
+// of the step), then each touched body moves under all its reactions and the rest of the
+// world's wrench (semi-implicit Euler, as MuJoCo's).
+void ProxyLocalReaction::Substep(double h, std::span<const ir::HapticReport* const> reports,
+                                 double t) {
+  for (std::size_t i = 0; i < pointers_.size(); ++i) {
+    PointerRun& run = *pointers_[i];
+    const Pose X_WP = PointerAhead(*reports[i], t);
+    PoseIr(run, X_WP);
+    run.renderer.Tick(run.ir, X_WP, h, &run.output);
+    run.impulse.f += run.output.w_W.f * h;
+    run.impulse.tau += (run.output.w_W.tau + (X_WP.p - run.origin).cross(run.output.w_W.f)) * h;
+  }
   for (LocalBody& b : bodies_) {
     Wrench w;  // on the body, about its current COM
-    for (const render::ProxyPairReaction& r : output_.reactions) {
-      if (r.is_static || r.body != b.body) continue;
-      w.f += r.w_W.f;
-      w.tau += r.w_W.tau;
+    for (const std::unique_ptr<PointerRun>& run : pointers_) {
+      for (const render::ProxyPairReaction& r : run->output.reactions) {
+        if (r.is_static || r.body != b.body) continue;
+        w.f += r.w_W.f;
+        w.tau += r.w_W.tau;
+      }
     }
     b.last_force = w.f;
     b.impulse.f += w.f * h;
@@ -194,26 +214,32 @@ void ProxyLocalReaction::Finish(world::World& world) {
 }
 
 void ProxyLocalReaction::Apply(world::World& world, const ir::HapticReport& report) {
-  pointer_impulse_ = Wrench{};
-  pointer_origin_ = report.X_WP.p;
-  // The pointer during this step: the report's pose moved on with the report's velocity.
-  const auto pointer_at = [&](double t) {
-    return PointerAhead(report, t);
-  };
-  // The IR of the objects as they are now, for the pointer where it will be at the step's end,
-  // so the contact points cover the region it will penetrate (the snapshot's IR, built for the
+  const ir::HapticReport* const one[] = {&report};
+  Apply(world, one);
+}
+
+void ProxyLocalReaction::Apply(world::World& world,
+                               std::span<const ir::HapticReport* const> reports) {
+  // The pointer during this step: the report's pose moved on with the report's velocity. The IR
+  // of the objects as they are now, for the pointer where it will be at the step's end, so the
+  // contact points cover the region it will penetrate (the snapshot's IR, built for the
   // report's pose, may hold only a closest point when the pointer is just arriving).
-  const Pose X_WP_end = pointer_at(physics_dt_);
-  snapshot_->status = ir::kStatusOk;
-  builder_.CapturePreviousPoses(world);
-  builder_.Build(world, X_WP_end, snapshot_.get());
-  interpolator_.Adopt(*snapshot_);
-  interpolator_.Evaluate(1.0, X_WP_end, &base_);
+  for (std::size_t i = 0; i < pointers_.size(); ++i) {
+    PointerRun& run = *pointers_[i];
+    run.impulse = Wrench{};
+    run.origin = reports[i]->X_WP.p;
+    const Pose X_WP_end = PointerAhead(*reports[i], physics_dt_);
+    run.snapshot->status = ir::kStatusOk;
+    run.builder.CapturePreviousPoses(world);
+    run.builder.Build(world, X_WP_end, run.snapshot.get());
+    run.interpolator.Adopt(*run.snapshot);
+    run.interpolator.Evaluate(1.0, X_WP_end, &run.base);
+  }
   StartBodies(world);
   StartIsland();
   island_touched_ = false;
   const double h = physics_dt_ / substeps_;
-  for (int s = 0; s < substeps_; ++s) Substep(h, pointer_at((s + 1) * h));
+  for (int s = 0; s < substeps_; ++s) Substep(h, reports, (s + 1) * h);
   Finish(world);
 }
 

@@ -4,6 +4,7 @@
 
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "geometric_ir_builder.h"
@@ -72,9 +73,19 @@ class ProxyLocalReaction {
                      const render::ProxyRendererSettings& settings, double physics_dt,
                      double haptic_dt);
 
+  /// Several pointers: one more pointer with its own geometry and proxy settings, run over the
+  /// same steps against the same objects and island (pointer index = the order of the calls,
+  /// the constructor's being 0). Setup only. @throws as the constructor.
+  void AddPointer(world::World& world, int pointer_body, const engine::RenderingSettings& rendering,
+                  const render::ProxyRendererSettings& settings);
+
   /// Computes the step's reaction for the pointer pose and velocity of `report` and adds it to
   /// `world` as constant wrenches for its next Step. Call before SetMocapPose / Step.
   void Apply(world::World& world, const ir::HapticReport& report);
+  /// The same for every pointer at once (one report per pointer, in pointer order): each
+  /// substep renders every pointer's proxy against the objects' current local poses, and the
+  /// objects move once under all their reactions.
+  void Apply(world::World& world, std::span<const ir::HapticReport* const> reports);
   /// Call after the World::Step that followed Apply: the island bodies take the local run's end
   /// state (nothing happens when the pointer touched no island body).
   void AfterStep(world::World& world);
@@ -87,11 +98,11 @@ class ProxyLocalReaction {
   /// about the body's COM at the step's start).
   const ir::HapticReport& proxy_impulses() const noexcept { return proxy_; }
 
-  /// The physics-side proxy's wrench on the pointer integrated over the last Apply: force (N·s)
-  /// and moment about pointer_origin() (N·m·s).
-  const Wrench& pointer_impulse() const noexcept { return pointer_impulse_; }
+  /// The physics-side proxy's wrench on pointer i integrated over the last Apply: force (N·s)
+  /// and moment about pointer_origin(i) (N·m·s).
+  const Wrench& pointer_impulse(std::size_t i = 0) const noexcept { return pointers_[i]->impulse; }
 
-  const Vec3& pointer_origin() const noexcept { return pointer_origin_; }
+  const Vec3& pointer_origin(std::size_t i = 0) const noexcept { return pointers_[i]->origin; }
 
  private:
   // A touched object integrated over the step.
@@ -123,11 +134,27 @@ class ProxyLocalReaction {
     Wrench impulse;
   };
 
+  // One pointer's physics-side proxy: its own IR builder (so the haptic IR's builder keeps its
+  // state), renderer and IRs.
+  struct PointerRun {
+    PointerRun(world::World& world, int pointer_body, const engine::RenderingSettings& rendering,
+               const render::ProxyRendererSettings& settings);
+    GeometricIrBuilder builder;
+    std::unique_ptr<ir::PhysicsSnapshot> snapshot = std::make_unique<ir::PhysicsSnapshot>();
+    render::ProxyRenderer renderer;
+    render::IrInterpolator interpolator;
+    render::TickIr base;  // the newest IR at α = 1
+    render::TickIr ir;    // re-posed for one substep
+    render::ProxyOutput output;
+    Wrench impulse;  // the proxy's wrench on the pointer over the last Apply
+    Vec3 origin = Vec3::Zero();
+  };
+
   void StartBodies(const world::World& world);
   void StartIsland();
   void EstimateOtherWrench(LocalBody* body) const;
-  void PoseIr(const Pose& X_WP);
-  void Substep(double h, const Pose& X_WP);
+  void PoseIr(PointerRun& run, const Pose& X_WP);
+  void Substep(double h, std::span<const ir::HapticReport* const> reports, double t);
   Wrench DisplacementImpulse(const LocalBody& b) const;
   void Finish(world::World& world);
   LocalBody* Find(int body);
@@ -137,21 +164,13 @@ class ProxyLocalReaction {
   render::LocalContactSolver solver_;
   std::vector<int> seeds_, motions_;
   bool island_touched_ = false;
-  GeometricIrBuilder builder_;  // its own, so the haptic IR's builder keeps its state
-  std::unique_ptr<ir::PhysicsSnapshot> snapshot_;
-  render::ProxyRenderer renderer_;
-  render::IrInterpolator interpolator_;
+  std::vector<std::unique_ptr<PointerRun>> pointers_;
   double physics_dt_;
   int substeps_;
-  render::TickIr base_;  // the newest IR at α = 1
-  render::TickIr ir_;    // re-posed for one substep
-  render::ProxyOutput output_;
   FixedVector<LocalBody, ir::kMaxNeighborBodies> bodies_;
   FixedVector<BodyMemory, ir::kMaxNeighborBodies> memory_;
   ir::HapticReport applied_;
   ir::HapticReport proxy_;
-  Wrench pointer_impulse_;
-  Vec3 pointer_origin_ = Vec3::Zero();
 };
 
 }  // namespace mrh::physics::internal

@@ -90,6 +90,18 @@ ProxyPhysics::ProxyPhysics(const MethodContext& context)
     local_.emplace(*world_, pointer_body_, rendering, ProxySettingsFor(context), physics_dt_,
                    haptic_dt);
   }
+  for (std::size_t i = 0; i < context.pointers.size(); ++i) {
+    const PointerContext& pointer = context.pointers[i];
+    pointer_bodies_.push_back(pointer.body);
+    builders_.push_back(
+        std::make_unique<GeometricIrBuilder>(*world_, pointer.body, *pointer.rendering));
+    if (local_ && i > 0) {
+      render::ProxyRendererSettings settings =
+          ProxySettingsFor(*world_, pointer.body, *pointer.rendering);
+      settings.max_pair_force = context.max_pair_force;
+      local_->AddPointer(*world_, pointer.body, *pointer.rendering, settings);
+    }
+  }
 }
 
 void ProxyPhysics::Build(const Pose& X_WP, ir::PhysicsSnapshot* out) {
@@ -127,6 +139,50 @@ void ProxyPhysics::PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapsh
   // the t3.6 face push). As local-dynamics-6dof does, the IR is built for where the pointer will
   // be when the snapshot is rendered (SPEC §4.9: 1–2 Δt^G past the report).
   Build(local_ ? PointerAhead(report, 2.0 * physics_dt_) : report.X_WP, out);
+  phases_.ir_ms = MsSince(t0);
+}
+
+void ProxyPhysics::PhysicsStartPointers(std::span<const ir::HapticReport* const> initial,
+                                        std::span<ir::PhysicsSnapshot* const> out) {
+  for (std::size_t i = 0; i < builders_.size(); ++i) {
+    world_->SetMocapPose(pointer_bodies_[i], initial[i]->X_WP);
+    builders_[i]->CapturePreviousPoses(*world_);
+  }
+  for (std::size_t i = 0; i < builders_.size(); ++i) {
+    builders_[i]->Build(*world_, initial[i]->X_WP, out[i]);
+    out[i]->contacts.Clear();
+    out[i]->t = world_->time();
+    out[i]->physics_dt = physics_dt_;
+    out[i]->step = -1;
+  }
+}
+
+// As PhysicsStep, for every pointer over one world step.
+void ProxyPhysics::PhysicsStepPointers(std::span<const ir::HapticReport* const> reports,
+                                       std::span<ir::PhysicsSnapshot* const> out) {
+  if (local_) {
+    local_->Apply(*world_, reports);
+  } else {
+    for (const ir::HapticReport* report : reports) {
+      ApplyReportImpulses(*world_, *report, physics_dt_);
+    }
+  }
+  for (std::size_t i = 0; i < builders_.size(); ++i) {
+    world_->SetMocapPose(pointer_bodies_[i], reports[i]->X_WP);
+    builders_[i]->CapturePreviousPoses(*world_);
+  }
+  auto t0 = std::chrono::steady_clock::now();
+  world_->Step();
+  if (local_) local_->AfterStep(*world_);
+  phases_.world_step_ms = MsSince(t0);
+  t0 = std::chrono::steady_clock::now();
+  for (std::size_t i = 0; i < builders_.size(); ++i) {
+    const Pose X_WP = local_ ? PointerAhead(*reports[i], 2.0 * physics_dt_) : reports[i]->X_WP;
+    builders_[i]->Build(*world_, X_WP, out[i]);
+    out[i]->contacts.Clear();  // the 3-DOF plane IR is not used by this method
+    out[i]->t = world_->time();
+    out[i]->physics_dt = physics_dt_;
+  }
   phases_.ir_ms = MsSince(t0);
 }
 

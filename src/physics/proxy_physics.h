@@ -4,6 +4,8 @@
 
 #include <memory>
 #include <optional>
+#include <span>
+#include <vector>
 
 #include "geometric_ir_builder.h"
 #include "mrh/physics/method_physics.h"
@@ -31,6 +33,14 @@ class ProxyPhysics final : public MethodPhysics {
 
   void PhysicsStart(const ir::HapticReport& initial, ir::PhysicsSnapshot* out) override;
   void PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot* out) override;
+
+  /// Several pointers: every pointer's reaction over one world step (with "local", one
+  /// physics-side run of every pointer's proxy against the same objects), then one geometric IR
+  /// per pointer. Each snapshot keeps its own bodies: the haptic halves share no state.
+  void PhysicsStartPointers(std::span<const ir::HapticReport* const> initial,
+                            std::span<ir::PhysicsSnapshot* const> out) override;
+  void PhysicsStepPointers(std::span<const ir::HapticReport* const> reports,
+                           std::span<ir::PhysicsSnapshot* const> out) override;
   PhaseTimes last_phases() const noexcept override { return phases_; }
   const ir::HapticReport* applied_reaction() const noexcept override {
     return local_ ? &local_->applied() : nullptr;
@@ -51,6 +61,9 @@ class ProxyPhysics final : public MethodPhysics {
   PhaseTimes phases_;
   std::optional<GeometricIrBuilder> builder_;
   std::optional<ProxyLocalReaction> local_;
+  // Several pointers only: each pointer's body and IR builder.
+  std::vector<int> pointer_bodies_;
+  std::vector<std::unique_ptr<GeometricIrBuilder>> builders_;
 };
 
 }  // namespace mrh::physics::internal

@@ -161,10 +161,10 @@ TEST(MultiPointerTest, SqueezedBoxConservesMomentum) {
 TEST(MultiPointerTest, MethodsOfOnePointerRefuseSeveral) {
   EXPECT_THAT(
       [] {
-        TwoPointerEngine(TwoPointerSettings("proxy-6dof", 0.1), kF0OnA, kF1OnB);
+        TwoPointerEngine(TwoPointerSettings("penalty-sum", 0.1), kF0OnA, kF1OnB);
       },
       ThrowsMessage<InvalidArgument>(
-          AllOf(HasSubstr("pointers lists 2 pointers"), HasSubstr("\"proxy-6dof\""))));
+          AllOf(HasSubstr("pointers lists 2 pointers"), HasSubstr("\"penalty-sum\""))));
 }
 
 TEST(MultiPointerTest, ASecondPointerThatStillCollidesIsRejected) {

@@ -35,7 +35,7 @@ def test_a_bad_pointer_device_is_one_line_naming_the_element(mrh_cli):
 
 def test_a_method_of_one_pointer_refuses_several(mrh_cli):
     done = run_cli(mrh_cli, "run", "scenes/two_finger_grasp.json", "--set",
-                   "method=proxy-6dof", check=False)
+                   "method=penalty-sum", check=False)
     assert done.returncode == 2
     lines = done.stderr.strip().splitlines()
-    assert len(lines) == 1 and 'method = "proxy-6dof" renders one' in lines[0]
+    assert len(lines) == 1 and 'method = "penalty-sum" renders one' in lines[0]
