@@ -13,10 +13,11 @@ namespace mrh::device {
 namespace {
 
 // The DHD C API as the SDK's dhdc.h declares it (C linkage; the device ID `char` comes last,
-// -1 selects the default device; an int return < 0 is an error). Only these signatures are
+// as dhdOpen / dhdOpenID returned it; an int return < 0 is an error). Only these signatures are
 // used; no SDK header is needed. Source: Force Dimension SDK, include/dhdc.h.
-constexpr char kDefaultDevice = -1;
+constexpr int kMaxDeviceIndex = 127;  // the ID is a signed char
 using DhdOpenFn = int();
+using DhdOpenIdFn = int(char);
 using DhdCloseFn = int(char);
 using DhdGet3Fn = int(double*, double*, double*, char);
 using DhdGetFrameFn = int(double[3][3], char);
@@ -28,6 +29,7 @@ using DhdGetSystemNameFn = const char*(char);
 
 struct DhdApi {
   DhdOpenFn* open = nullptr;
+  DhdOpenIdFn* open_id = nullptr;  // required only for ForceDimensionSettings::id >= 0
   DhdCloseFn* close = nullptr;
   DhdGet3Fn* get_position = nullptr;
   DhdGetFrameFn* get_orientation_frame = nullptr;
@@ -53,6 +55,7 @@ DhdApi ResolveDhd(const internal::DynamicLibrary& lib) {
   lib.Require("dhdErrorGetLastStr", &api.error_get_last_str);
   lib.Require("dhdGetSystemName", &api.get_system_name);
   lib.Probe("dhdGetAngularVelocityRad", &api.get_angular_velocity_rad);
+  lib.Probe("dhdOpenID", &api.open_id);
   return api;
 }
 
@@ -61,7 +64,18 @@ class ForceDimensionDevice final : public Device {
   ForceDimensionDevice(const ForceDimensionSettings& settings, const Specifications& specs)
       : lib_(settings.library, "Force Dimension DHD library (device.library)"),
         api_(ResolveDhd(lib_)),
-        specs_(specs) {}
+        specs_(specs),
+        index_(settings.id) {
+    if (index_ < -1 || index_ > kMaxDeviceIndex) {
+      throw InvalidArgument("forcedimension device.id = " + std::to_string(index_) +
+                            "; expected -1 (the default device) or 0.." +
+                            std::to_string(kMaxDeviceIndex));
+    }
+    if (index_ >= 0 && api_.open_id == nullptr) {
+      throw InvalidArgument("forcedimension device.id = " + std::to_string(index_) + ": " +
+                            settings.library + " has no dhdOpenID");
+    }
+  }
 
   ~ForceDimensionDevice() override { Close(); }
 
@@ -69,16 +83,19 @@ class ForceDimensionDevice final : public Device {
 
   void Open() override {
     if (open_) return;
-    if (api_.open() < 0) {
-      throw RuntimeError("forcedimension device: dhdOpen failed: " + VendorError() +
+    const int id = index_ < 0 ? api_.open() : api_.open_id(static_cast<char>(index_));
+    if (id < 0) {
+      const std::string call =
+          index_ < 0 ? std::string("dhdOpen") : "dhdOpenID(" + std::to_string(index_) + ")";
+      throw RuntimeError("forcedimension device: " + call + " failed: " + VendorError() +
                          " (is the device plugged in, powered and allowed by udev?)");
     }
+    id_ = static_cast<char>(id);
     open_ = true;
-    const char* name = api_.get_system_name(kDefaultDevice);
+    const char* name = api_.get_system_name(id_);
     system_name_ = name != nullptr ? name : "";
     // Zero before enabling, so the first tick cannot display a stale command.
-    if (api_.set_force_and_torque(0, 0, 0, 0, 0, 0, kDefaultDevice) < 0 ||
-        api_.enable_force(1, kDefaultDevice) < 0) {
+    if (api_.set_force_and_torque(0, 0, 0, 0, 0, 0, id_) < 0 || api_.enable_force(1, id_) < 0) {
       const std::string why = VendorError();
       Close();
       throw RuntimeError("forcedimension device \"" + system_name_ +
@@ -89,9 +106,9 @@ class ForceDimensionDevice final : public Device {
   void Close() override {
     if (!open_) return;
     // Best effort on the way out: a failure here is counted, never thrown from a destructor.
-    if (api_.set_force_and_torque(0, 0, 0, 0, 0, 0, kDefaultDevice) < 0) CountError();
-    if (api_.enable_force(0, kDefaultDevice) < 0) CountError();
-    if (api_.close(kDefaultDevice) < 0) CountError();
+    if (api_.set_force_and_torque(0, 0, 0, 0, 0, 0, id_) < 0) CountError();
+    if (api_.enable_force(0, id_) < 0) CountError();
+    if (api_.close(id_) < 0) CountError();
     open_ = false;
   }
 
@@ -101,9 +118,8 @@ class ForceDimensionDevice final : public Device {
     double px = 0, py = 0, pz = 0, vx = 0, vy = 0, vz = 0;
     double frame[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
     // A failed read keeps the last good reading (the engine sees a held pose, not garbage).
-    if (api_.get_position(&px, &py, &pz, kDefaultDevice) < 0 ||
-        api_.get_orientation_frame(frame, kDefaultDevice) < 0 ||
-        api_.get_linear_velocity(&vx, &vy, &vz, kDefaultDevice) < 0) {
+    if (api_.get_position(&px, &py, &pz, id_) < 0 || api_.get_orientation_frame(frame, id_) < 0 ||
+        api_.get_linear_velocity(&vx, &vy, &vz, id_) < 0) {
       CountError();
       return s;
     }
@@ -116,10 +132,10 @@ class ForceDimensionDevice final : public Device {
     s.V_DT.v = Vec3(vx, vy, vz);
     double wx = 0, wy = 0, wz = 0;
     if (api_.get_angular_velocity_rad != nullptr &&
-        api_.get_angular_velocity_rad(&wx, &wy, &wz, kDefaultDevice) >= 0) {
+        api_.get_angular_velocity_rad(&wx, &wy, &wz, id_) >= 0) {
       s.V_DT.w = Vec3(wx, wy, wz);
     }
-    const int buttons = api_.get_button_mask(kDefaultDevice);
+    const int buttons = api_.get_button_mask(id_);
     s.buttons = buttons >= 0 ? static_cast<std::uint32_t>(buttons) : 0u;
     last_ = s;
     return s;
@@ -127,8 +143,8 @@ class ForceDimensionDevice final : public Device {
 
   void SetWrench(const Wrench& w_D) noexcept override {
     const Wrench w = internal::DropTorqueIfNoTorque(specs_, w_D, &counters_);
-    if (api_.set_force_and_torque(w.f.x(), w.f.y(), w.f.z(), w.tau.x(), w.tau.y(), w.tau.z(),
-                                  kDefaultDevice) < 0) {
+    if (api_.set_force_and_torque(w.f.x(), w.f.y(), w.f.z(), w.tau.x(), w.tau.y(), w.tau.z(), id_) <
+        0) {
       CountError();
     }
   }
@@ -153,6 +169,8 @@ class ForceDimensionDevice final : public Device {
   DeviceState last_;
   internal::AtomicCounters counters_;
   std::string system_name_;
+  int index_;    // ForceDimensionSettings::id
+  char id_ = 0;  // the device ID the open returned, named in every call
   bool open_ = false;
 };
 

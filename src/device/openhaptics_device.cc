@@ -3,6 +3,7 @@
 // loaded at run time. The vendor's scheduler owns the 1 kHz servo thread.
 #include <atomic>
 #include <chrono>
+#include <mutex>
 #include <string>
 
 #include "device/dynamic_library.h"
@@ -59,7 +60,21 @@ struct HdApi {
   void (*get_integerv)(HDenum, int*) = nullptr;        // optional: buttons
   const char* (*get_error_string)(HDerror) = nullptr;  // optional: messages
   void (*schedule_synchronous)(HDSchedulerCallback, void*, unsigned short) = nullptr;  // optional
+  void (*make_current_device)(HHD) = nullptr;  // optional: needed for several devices
 };
+
+// HD runs one scheduler per process for every device. Devices join and leave with it stopped
+// (HD initializes and disables devices while no servo callback runs), and it runs while any
+// device is open: closing one device must not stop another's servo loop.
+struct SharedScheduler {
+  std::mutex mutex;
+  int open_devices = 0;
+};
+
+SharedScheduler& Scheduler() {
+  static SharedScheduler scheduler;
+  return scheduler;
+}
 
 HdApi ResolveHd(const internal::DynamicLibrary& lib) {
   HdApi api;
@@ -78,6 +93,7 @@ HdApi ResolveHd(const internal::DynamicLibrary& lib) {
   lib.Probe("hdGetIntegerv", &api.get_integerv);
   lib.Probe("hdGetErrorString", &api.get_error_string);
   lib.Probe("hdScheduleSynchronous", &api.schedule_synchronous);
+  lib.Probe("hdMakeCurrentDevice", &api.make_current_device);
   return api;
 }
 
@@ -126,6 +142,7 @@ class OpenHapticsDevice final : public ServoDevice {
 
   static HDCallbackCode ReadOnceCallback(void* self) {
     auto* device = static_cast<OpenHapticsDevice*>(self);
+    device->MakeCurrent();
     device->api_.begin_frame(device->hhd_);
     device->PublishReading(0.0);
     device->api_.end_frame(device->hhd_);
@@ -133,6 +150,11 @@ class OpenHapticsDevice final : public ServoDevice {
   }
 
   HDCallbackCode ServoTick() noexcept;
+
+  // HD's get/set calls act on the current device; with several, each callback selects its own.
+  void MakeCurrent() noexcept {
+    if (api_.make_current_device != nullptr) api_.make_current_device(hhd_);
+  }
   DeviceState PublishReading(double t) noexcept;
   void WriteWrench(const Wrench& w_D) noexcept;
   bool CheckHd() noexcept;
@@ -174,21 +196,31 @@ std::string OpenHapticsDevice::OpenError(const std::string& step) {
 
 void OpenHapticsDevice::Open() {
   if (scheduled_) return;
+  SharedScheduler& scheduler = Scheduler();
+  const std::lock_guard<std::mutex> lock(scheduler.mutex);
+  const bool others = scheduler.open_devices > 0;
+  if (others) api_.stop_scheduler();
   hhd_ = api_.init_device(name_.empty() ? nullptr : name_.c_str());  // nullptr = HD_DEFAULT_DEVICE
   if (hhd_ == kHdInvalidHandle || api_.get_error().errorCode != kHdSuccess) {
     hhd_ = kHdInvalidHandle;
-    throw RuntimeError(OpenError("hdInitDevice"));
+    const std::string message = OpenError("hdInitDevice");
+    if (others) api_.start_scheduler();
+    throw RuntimeError(message);
   }
+  MakeCurrent();
   api_.enable(kHdForceOutput);
   callback_ = api_.schedule_asynchronous(&ServoCallback, this, kHdMaxSchedulerPriority);
   api_.start_scheduler();
   if (api_.get_error().errorCode != kHdSuccess) {
     const std::string message = OpenError("hdEnable(HD_FORCE_OUTPUT) / hdStartScheduler");
+    api_.stop_scheduler();
     api_.unschedule(callback_);
     api_.disable_device(hhd_);
     hhd_ = kHdInvalidHandle;
+    if (others) api_.start_scheduler();
     throw RuntimeError(message);
   }
+  ++scheduler.open_devices;
   scheduled_ = true;
   zero_output_.store(false);
   t0_ = std::chrono::steady_clock::now();
@@ -201,17 +233,22 @@ void OpenHapticsDevice::Open() {
 
 void OpenHapticsDevice::Close() {
   if (!scheduled_) return;
+  SharedScheduler& scheduler = Scheduler();
+  const std::lock_guard<std::mutex> lock(scheduler.mutex);
   zero_output_.store(true);  // the callbacks still to come display zero
   api_.stop_scheduler();
   api_.unschedule(callback_);
+  MakeCurrent();
   api_.disable_device(hhd_);
   hhd_ = kHdInvalidHandle;
   scheduled_ = false;
+  if (--scheduler.open_devices > 0) api_.start_scheduler();
 }
 
 // One servo tick on the vendor's thread: read, get the wrench (from the client or the
 // mailbox), write, and count any HD error (the tick goes on: the scheduler must keep running).
 HDCallbackCode OpenHapticsDevice::ServoTick() noexcept {
+  MakeCurrent();
   api_.begin_frame(hhd_);
   const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
   const DeviceState reading = PublishReading(t);

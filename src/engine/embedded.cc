@@ -28,21 +28,38 @@ void DestroyEmbeddedRun(EmbeddedRun* run) { delete run; }
 
 }  // namespace internal
 
-void Engine::Start(Recorder* recorder) {
-  internal::EngineState& s = *impl_->state;
-  auto* external = dynamic_cast<device::ExternalDevice*>(s.device.get());
-  if (external == nullptr) {
+namespace {
+
+// The one external device of an embedded run: pointer 0's, or with several pointers any one
+// pointer's (the one the caller's loop drives; the others read their own devices each tick).
+device::ExternalDevice* FindExternal(internal::EngineState& s) {
+  device::ExternalDevice* found = dynamic_cast<device::ExternalDevice*>(s.device.get());
+  for (const auto& lane : s.lanes) {
+    auto* external = dynamic_cast<device::ExternalDevice*>(lane->device.get());
+    if (external == nullptr) continue;
+    if (found != nullptr) {
+      throw InvalidArgument(
+          "Engine::Start drives one pointer from the caller's loop; give exactly one pointer an "
+          "external device (the others their own devices)");
+    }
+    found = external;
+  }
+  if (found == nullptr) {
     throw InvalidArgument(
         "Engine::Start needs an external device (device.type = \"external\"); use Run() for "
         "simulated devices");
   }
-  if (!s.lanes.empty()) {
-    throw InvalidArgument(
-        "Engine::Start embeds one pointer; a session with several pointers runs with Run()");
-  }
+  return found;
+}
+
+}  // namespace
+
+void Engine::Start(Recorder* recorder) {
+  internal::EngineState& s = *impl_->state;
+  device::ExternalDevice* external = FindExternal(s);
   if (s.has_run) throw RuntimeError("engine already ran; build a new engine for another run");
   s.has_run = true;
-  s.device->Open();
+  s.OpenDevices();
   impl_->embedded.reset(new internal::EmbeddedRun(&s, recorder));
   internal::EmbeddedRun& run = *impl_->embedded;
   run.device = external;
@@ -60,7 +77,7 @@ Wrench Engine::Tick(double t, const device::DeviceState& reading) noexcept {
   // Lockstep: the same order as RunLockstep — step k, the n ticks of period k, then exchange.
   if (lockstep && run.ticks_in_period == 0) run.physics.Step(run.period);
   run.device->Feed(reading);
-  s.haptic->Tick(t);
+  s.TickAll(t);
   run.last_t = t;
   if (lockstep && ++run.ticks_in_period == s.ticks_per_step) {
     run.physics.TakeReports();
@@ -76,10 +93,10 @@ RunStats Engine::Stop() {
   internal::EngineState& s = *impl_->state;
   MRH_DEMAND(impl_->embedded != nullptr);
   internal::EmbeddedRun& run = *impl_->embedded;
-  s.haptic->Stop();
+  s.StopAll();
   run.done.store(true, std::memory_order_release);
   if (run.physics_thread.joinable()) run.physics_thread.join();
-  s.device->Close();
+  s.CloseDevices();
   RunStats stats;
   const double wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - run.wall0).count();

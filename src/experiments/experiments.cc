@@ -63,7 +63,8 @@ constexpr Entry kExperiments[] = {
      "pushing resting boxes across a floor with friction: force and trajectory vs single-rate",
      internal::RunT4Push},
     {"grasp",
-     "two fingertips squeeze a box, lift it 5 cm, hold it and put it down: "
+     "two fingertips squeeze a box, lift it 5 cm, hold it and put it down; two hands push two "
+     "boxes apart; a squeezed box dragged sideways: "
      "local-dynamics and impulse at 20 ms vs single-rate at 1 ms",
      internal::RunGrasp},
     {"d1",

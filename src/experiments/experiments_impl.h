@@ -270,11 +270,65 @@ GraspResult RunGraspCase(const std::filesystem::path& out, const GraspRun& run);
 /// finger's mean force within 5 % and its standard deviation at most 2x the reference's.
 bool MeetsBars(const GraspResult& r, const GraspResult& reference);
 
-/// grasp: single-rate at 1 ms (the reference) against local-dynamics (checked against the
-/// issue's bars) and impulse (reported) at 20 ms. Writes grasp.csv,
-/// grasp.md, grasp.png and summary.json; returns 0 if the reference lifts and holds the box (rise
-/// within 5 mm of 5 cm, the fingers carrying its weight within 5 %) and local-dynamics meets the
-/// bars.
+/// What the two-hands case measured over the steady slide (2–4 s). Index 0 is the left hand
+/// (its 0.5 kg box), 1 the right (0.3 kg).
+struct HandsResult {
+  double mean_force[2] = {0.0, 0.0};  ///< each hand's mean |displayed force| (N); 0 if absent
+  double sd_force[2] = {0.0, 0.0};    ///< and its standard deviation (N)
+  double coulomb[2] = {0.0, 0.0};     ///< μ m g of each hand's box (N, the scene's μ and mass)
+  double travel[2] = {0.0, 0.0};      ///< each box's travel along its hand's push by the end (m)
+};
+
+/// Runs scenes/two_hands_push.xml: scripted hands `hands` (0 left, 1 right; both, or one alone)
+/// start between the boxes and push each its own box outward at 0.1 m/s, touching it at 1 s.
+/// Writes runs/hands_<method>[_<hand>_alone]_{force,box}.csv under `out` unless it is empty.
+HandsResult RunHandsCase(const std::filesystem::path& out, const GraspRun& run,
+                         const std::vector<int>& hands);
+
+class Checks;
+
+/// The two-hands case of RunGrasp: runs it, writes grasp_hands.csv and grasp_hands.png, appends
+/// its table to `md` and adds its checks and summary["hands"].
+void RunGraspHands(const std::filesystem::path& out, bool quiet, std::string* md, Checks* checks,
+                   nlohmann::json* summary);
+
+/// What the slide case measured while the fingers drag the box (1.1–1.8 s).
+struct SlideResult {
+  double mean_force[2] = {0.0, 0.0};  ///< each finger's mean |displayed force| (N)
+  double sd_force[2] = {0.0, 0.0};    ///< and its standard deviation (N)
+  double push_force = 0.0;            ///< −Σ fingers' mean f_x: what drags the box (N)
+  double carried = 0.0;  ///< −Σ fingers' mean f_z: the weight they take off the floor (N)
+  /// Coulomb's sliding friction on the box, μ_floor (m g − carried) (N).
+  double coulomb = 0.0;
+  double box_travel = 0.0;      ///< box COM's x displacement at the end of the hold (m)
+  double fingers_travel = 0.0;  ///< the fingers' scripted travel (m)
+  double box_mass = 0.0;        ///< kg (the scene's)
+  double floor_mu = 0.0;        ///< the scene's box–floor μ
+};
+
+/// Runs scenes/two_finger_slide.xml: two simulated hands grip the box as in the lift case, then
+/// move 0.1 m along +x at 0.1 m/s, hold and let go. Writes runs/slide_<method>_{force,box}.csv
+/// under `out` unless it is empty.
+SlideResult RunSlideCase(const std::filesystem::path& out, const GraspRun& run);
+
+/// The lift case's bars on the slide: each finger's mean force within 5 % of the reference's, its
+/// sd at most 2x the reference's, the box's travel within 5 mm of the reference's.
+bool MeetsSlideBars(const SlideResult& r, const SlideResult& reference);
+
+/// The slide case of RunGrasp: runs it, writes grasp_slide.csv and grasp_slide.png, appends its
+/// table to `md` and adds its checks and summary["slide"].
+void RunGraspSlide(const std::filesystem::path& out, bool quiet, std::string* md, Checks* checks,
+                   nlohmann::json* summary);
+
+/// grasp: three cases, single-rate at 1 ms (the reference) against local-dynamics (checked) and
+/// impulse (reported) at 20 ms. Lift: the pinch, lift and hold (grasp.csv, grasp.png). Two
+/// hands: each hand pushes its own box apart from the other's, together and each alone
+/// (grasp_hands.csv, grasp_hands.png). Slide: the squeezed box dragged sideways
+/// (grasp_slide.csv, grasp_slide.png). Also grasp.md (every table and the checks) and
+/// summary.json; returns 0 if every check passes: the reference lifts and holds the box and
+/// local-dynamics meets the lift bars; each hand feels its box's μ m g within 5 % and its force
+/// alone within 5 %, in the reference and in local-dynamics; the reference's slide drags the box
+/// with Coulomb's force within 5 % and local-dynamics meets the slide bars.
 int RunGrasp(const std::filesystem::path& out, bool quiet);
 
 /// Demo D1 (thesis §4.6.4, issue 36 item 3): scenes/d1.json, a simulated hand sweeping through

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // Experiment grasp: two simulated fingertips pinch a box, lift it 5 cm, hold it and
-// put it down; 20 ms methods against single-rate at 1 ms (the reference).
+// put it down; then the two-hands and slide cases (grasp_hands.cc, grasp_slide.cc). 20 ms
+// methods against single-rate at 1 ms (the reference).
 #include <fmt/format.h>
 
 #include <cmath>
@@ -205,7 +206,7 @@ int RunGrasp(const std::filesystem::path& out, bool quiet) {
   nlohmann::json summary;
   std::vector<GraspResult> results;
   for (const GraspRun& run : runs) {
-    if (!quiet) std::cout << "grasp: " << run.method << "...\n";
+    if (!quiet) std::cout << "grasp lift: " << run.method << "...\n";
     const GraspResult r = RunGraspCase(out, run);
     results.push_back(r);
     const double weight = r.box_mass * 9.81;
@@ -238,11 +239,15 @@ int RunGrasp(const std::filesystem::path& out, bool quiet) {
     if (runs[i].method == "local-dynamics") checks.Add("local_dynamics_meets_bars", bars);
   }
   WriteText(out / "grasp.csv", csv.Csv());
-  WriteText(out / "grasp.md", md.Markdown());
   Plot(out, "grasp", GraspScript(runs), quiet);
+  std::string text = "### Lift, hold, put down (hold window)\n\n" + md.Markdown();
+  RunGraspHands(out, quiet, &text, &checks, &summary);
+  RunGraspSlide(out, quiet, &text, &checks, &summary);
+  text += "\n### Checks\n\n" + checks.Markdown();
+  WriteText(out / "grasp.md", text);
   summary["experiment"] = "grasp";
   summary["machine"] = MachineTag();
-  if (!quiet) std::cout << md.Markdown();
+  if (!quiet) std::cout << text;
   return FinishExperiment(out, std::move(summary), checks, quiet);
 }
 

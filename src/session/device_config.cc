@@ -194,6 +194,13 @@ void ParseUdp(const Node& device, device::UdpSettings* udp) {
 void ParseHardware(const Node& device, const DeviceType& type, DeviceConfig* config) {
   if (type.name == "forcedimension") {
     config->forcedimension.library = ParseLibrary(device, config->forcedimension.library);
+    if (const auto id = device.Find("id")) {
+      config->forcedimension.id = id->Integer();
+      if (config->forcedimension.id < 0 || config->forcedimension.id > 127) {
+        id->Fail(std::to_string(config->forcedimension.id),
+                 "the device's index among the connected Force Dimension devices, 0..127");
+      }
+    }
   } else if (type.name == "openhaptics") {
     config->openhaptics.library = ParseLibrary(device, config->openhaptics.library);
     if (const auto name = device.Find("name")) config->openhaptics.name = name->String();

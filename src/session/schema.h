@@ -163,9 +163,9 @@ inline constexpr std::array<DeviceType, 8> kDeviceTypes{{
     {"hand", {"keyframes", "trajectory", "hand"}},
     {"replay", {"replay"}},
     {"external", {}},  // fed by the caller's servo loop (Engine::Start/Tick/Stop)
-    {"forcedimension", {"library"}},     // DHD library loaded at run time
-    {"openhaptics", {"library", "name"}},  // HD library loaded at run time
-    {"udp", {"bind", "timeout", "fade"}},  // poses in, wrenches out over UDP
+    {"forcedimension", {"library", "id"}},  // DHD library loaded at run time
+    {"openhaptics", {"library", "name"}},   // HD library loaded at run time
+    {"udp", {"bind", "timeout", "fade"}},   // poses in, wrenches out over UDP
 }};
 
 /// `device.calibration` keys.

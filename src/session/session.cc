@@ -13,6 +13,7 @@
 #include "mrh/core/error.h"
 #include "mrh/core/validate.h"
 #include "mrh/engine/method.h"
+#include "session/device_claims.h"
 #include "session/device_config.h"
 #include "session/json_node.h"
 #include "session/json_text.h"
@@ -171,6 +172,7 @@ void ReadPointers(const Node& root, const Node& pointers, Session* session) {
       }
     }
   }
+  CheckDistinctDevices(elements, devices);
   session->engine.pointer = lanes[0].pointer;
   session->device = devices[0];
   if (lanes.size() == 1) {

@@ -25,6 +25,7 @@ void LiveFeed::PublishWorld(const world::World& world) {
 
 void LiveFeed::OnTick(const engine::TickRecord& tick) {
   TickSample sample;
+  sample.pointer = tick.pointer;
   sample.t = time_offset_ + tick.t;
   sample.X_WP = tick.X_WP;
   sample.X_WQ = tick.X_WQ;

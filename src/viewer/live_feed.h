@@ -15,6 +15,7 @@ namespace mrh::viewer::internal {
 
 /// One haptic tick as the UI sees it (world frame).
 struct TickSample {
+  int pointer = 0;     ///< whose tick (the session's pointer index)
   double t = 0.0;      ///< s on the viewer clock (continues across engine restarts)
   Pose X_WP;           ///< pointer pose
   Pose X_WQ;           ///< the method's proxy pose (= X_WP for methods without a proxy)

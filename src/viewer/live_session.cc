@@ -3,11 +3,13 @@
 #include "viewer/live_session.h"
 
 #include <string>
+#include <vector>
 
 #include "mrh/core/error.h"
 #include "mrh/device/external.h"
 #include "mrh/device/simulated.h"
 #include "mrh/engine/rt_clock.h"
+#include "viewer/pointer_choice.h"
 
 namespace mrh::viewer::internal {
 namespace {
@@ -60,6 +62,10 @@ LiveSession::~LiveSession() {
   if (memory_locked_) engine::UnlockAllMemory();
 }
 
+void LiveSession::set_driven_pointer(int i) {
+  driven_ = ChoosePointer(i, static_cast<int>(PointerNames(session_).size()));
+}
+
 void LiveSession::Start(InputSource source) {
   // Once for the viewer's lifetime, not per restart: mlockall faults in every mapped page.
   if (settings_.realtime_priority && !memory_locked_) {
@@ -90,11 +96,12 @@ std::unique_ptr<device::Device> LiveSession::MakeSource(InputSource source) cons
     case InputSource::kMouse:
       return nullptr;
     case InputSource::kSession:
-      return session::MakeDevice(session_);
-    case InputSource::kReplay:
-      return std::make_unique<WorldPoseSource>(
-          device::MakeReplayDevice(replay_file_, session_.device.specs),
-          session_.device.calibration);
+      return session::MakePointerDevice(session_, driven_);
+    case InputSource::kReplay: {
+      const session::DeviceConfig& config = PointerDevice(session_, driven_);
+      return std::make_unique<WorldPoseSource>(device::MakeReplayDevice(replay_file_, config.specs),
+                                               config.calibration);
+    }
   }
   return nullptr;
 }
@@ -111,12 +118,26 @@ void LiveSession::Launch(const engine::EngineSettings& settings, InputSource sou
   configured.engine = s;
   world::World world = session::LoadWorld(configured);
   if (state != nullptr) world.Restore(*state);
-  auto external = std::make_unique<device::ExternalDevice>(session_.device.specs);
+  auto external = std::make_unique<device::ExternalDevice>(PointerDevice(session_, driven_).specs);
   // Engine::Start reads the external device for the initial snapshot: give it the input's
   // first reading, or the first IR would be built around the device origin.
   external->Feed(input->Read(0.0));
-  auto engine = std::make_unique<engine::Engine>(std::move(world), std::move(external),
-                                                 session_.device.calibration, s);
+  std::unique_ptr<engine::Engine> engine;
+  if (s.pointers.empty()) {
+    engine = std::make_unique<engine::Engine>(std::move(world), std::move(external),
+                                              session_.device.calibration, s);
+  } else {
+    // The input drives the chosen pointer; every other pointer keeps its session device.
+    std::vector<std::unique_ptr<device::Device>> devices;
+    std::vector<device::Calibration> calibrations;
+    for (int i = 0; i < static_cast<int>(s.pointers.size()); ++i) {
+      devices.push_back(i == driven_ ? std::move(external)
+                                     : session::MakePointerDevice(session_, i));
+      calibrations.push_back(PointerDevice(session_, i).calibration);
+    }
+    engine =
+        std::make_unique<engine::Engine>(std::move(world), std::move(devices), calibrations, s);
+  }
   feed_->set_time_offset(time_offset_);
   feed_->PublishWorld(engine->world());
   engine->Start(feed_);

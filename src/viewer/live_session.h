@@ -46,6 +46,12 @@ class LiveSession {
   /// previous configuration and rethrows the error.
   void Restart(const engine::EngineSettings& settings, InputSource source, bool keep_world);
 
+  /// With several pointers, the one the input drives (the others keep their session devices);
+  /// takes effect at the next Start or Restart. Out of range: the first.
+  void set_driven_pointer(int i);
+
+  int driven_pointer() const { return driven_; }
+
   /// The tick file kReplay plays (a ticks.csv: t, px, py, pz, qw, qx, qy, qz, world frame).
   void set_replay_file(const std::filesystem::path& file) { replay_file_ = file; }
 
@@ -79,6 +85,7 @@ class LiveSession {
 
   engine::EngineSettings settings_;
   InputSource source_ = InputSource::kMouse;
+  int driven_ = 0;                                ///< the pointer the input drives
   std::unique_ptr<device::Device> owned_source_;  ///< null when the source is the mouse
   std::unique_ptr<engine::Engine> engine_;
   HapticLoop loop_;

@@ -70,6 +70,20 @@ bool DrawGains(engine::EngineSettings* edit) {
 }
 
 void DrawInput(const PanelInfo& info, PanelState* state, PanelActions* actions) {
+  if (state->pointer_names.size() > 1) {
+    const auto chosen = static_cast<std::size_t>(state->pointer);
+    const char* current = chosen < state->pointer_names.size()
+                              ? state->pointer_names[chosen].c_str()
+                              : state->pointer_names.front().c_str();
+    if (ImGui::BeginCombo("input drives", current)) {
+      for (std::size_t i = 0; i < state->pointer_names.size(); ++i) {
+        if (ImGui::Selectable(state->pointer_names[i].c_str(), i == chosen) && i != chosen) {
+          actions->pointer = static_cast<int>(i);
+        }
+      }
+      ImGui::EndCombo();
+    }
+  }
   for (InputSource s : {InputSource::kMouse, InputSource::kSession}) {
     if (ImGui::RadioButton(InputSourceName(s), info.source == s) && info.source != s) {
       actions->source = s;

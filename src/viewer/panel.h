@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "mrh/engine/settings.h"
 #include "mrh/session/session.h"
@@ -23,6 +24,10 @@ struct PanelState {
   bool recording = false;
   std::int64_t recorded_rows = 0;
   std::string message;  ///< the last error or notice, shown in the panel
+  /// The session's pointers (bodies, in order); with two or more the panel offers a choice of
+  /// the one the input drives.
+  std::vector<std::string> pointer_names;
+  int pointer = 0;  ///< the pointer the input drives
 };
 
 /// What the panel shows this frame.
@@ -54,6 +59,7 @@ struct PanelActions {
   bool record = false;                ///< reset and start recording to record_path
   bool stop_record = false;
   bool replay = false;  ///< reset and play record_path
+  std::optional<int> pointer;  ///< drive this pointer instead (restart)
 };
 
 /// Draws the panel (a window docked at the left, `scale` = the display's content scale).

@@ -21,6 +21,7 @@
 #include "viewer/overlay.h"
 #include "viewer/panel.h"
 #include "viewer/plot.h"
+#include "viewer/pointer_choice.h"
 #include "viewer/pointer_control.h"
 #include "viewer/tick_file.h"
 #include "viewer/window.h"
@@ -39,10 +40,10 @@ constexpr std::size_t kPlotTicks = 10'000;
 constexpr double kFrameAzimuthDeg = 120.0;
 constexpr double kFrameElevationDeg = -25.0;
 
-// The pointer's initial pose and body, and the initial scene, from the session's world.
+// The pointers' initial poses and bodies, and the initial scene, from the session's world.
 struct InitialView {
-  Pose X_WP;
-  int pointer_body = -1;
+  std::vector<Pose> X_WP;         // per pointer, in session order
+  std::vector<int> pointer_body;  // per pointer
   world::SceneState state;
   std::vector<int> framed_bodies;  // moving bodies and the pointer
   world::OrbitCamera camera;       // set once the renderer has framed them
@@ -51,11 +52,17 @@ struct InitialView {
 InitialView LoadInitialView(const session::Session& session) {
   const world::World world = session::LoadWorld(session);
   InitialView view;
-  view.pointer_body = world.pointer_body();
-  if (view.pointer_body >= 0) view.X_WP = world.body_state(view.pointer_body).X_WB;
+  const std::vector<std::string> names = PointerNames(session);
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const int body = i == 0 ? world.pointer_body() : world.FindBody(names[i]);
+    view.pointer_body.push_back(body);
+    view.X_WP.push_back(body >= 0 ? world.body_state(body).X_WB : Pose{});
+  }
   world::CaptureSceneState(world, &view.state);
   for (int b = 0; b < world.num_bodies(); ++b) {
-    if (!world.body(b).is_static || b == view.pointer_body) view.framed_bodies.push_back(b);
+    const bool pointer =
+        std::find(view.pointer_body.begin(), view.pointer_body.end(), b) != view.pointer_body.end();
+    if (!world.body(b).is_static || pointer) view.framed_bodies.push_back(b);
   }
   return view;
 }
@@ -81,8 +88,9 @@ class ViewerApp {
                                                                   100 * window_.content_scale())}),
         feed_(kFeedTicks),
         initial_(LoadInitialView(session)),
-        pointer_body_(initial_.pointer_body),
-        target_W_(initial_.X_WP),
+        pointer_body_(initial_.pointer_body.front()),
+        target_W_(initial_.X_WP.front()),
+        poses_(initial_.X_WP),
         mouse_(session.device.calibration.ToDevice(target_W_), device::MouseDeviceSettings{},
                session.device.specs),
         live_(session, &mouse_, &feed_),
@@ -94,6 +102,7 @@ class ViewerApp {
     initial_.camera = renderer_.camera();
     display_.panel = settings.panel;
     panel_.edit = live_.settings();
+    panel_.pointer_names = PointerNames(session);
     const std::string path = DefaultRecordPath(session);
     std::strncpy(panel_.record_path.data(), path.c_str(), panel_.record_path.size() - 1);
     last_.X_WP = target_W_;
@@ -166,7 +175,7 @@ class ViewerApp {
 
   // The target stays inside the device's workspace so that it never runs away from the tool.
   void FeedMouse() {
-    const device::Calibration& c = session_.device.calibration;
+    const device::Calibration& c = PointerDevice(session_, live_.driven_pointer()).calibration;
     Pose X_DT = c.ToDevice(target_W_);
     const device::Specifications& specs = mouse_.specifications();
     X_DT.p = X_DT.p.cwiseMax(specs.workspace_min).cwiseMin(specs.workspace_max);
@@ -177,6 +186,10 @@ class ViewerApp {
   void DrainTicks() {
     TickSample sample;
     while (feed_.PopTick(&sample)) {
+      const auto i = static_cast<std::size_t>(sample.pointer);
+      if (i < poses_.size()) poses_[i] = sample.X_WP;
+      // Plots, the panel and recordings follow the pointer the mouse drives.
+      if (sample.pointer != live_.driven_pointer()) continue;
       history_.Push(sample);
       last_ = sample;
       if (recording_ && sample.t >= record_from_) recording_->Write(sample);
@@ -190,9 +203,11 @@ class ViewerApp {
     feed_.UpdateScene();
     feed_.UpdateIr();
     state_ = feed_.scene();
-    // The pointer is drawn at the newest tick's pose (1 kHz), not the last physics step's.
+    // Every pointer is drawn at its newest tick's pose (1 kHz), not the last physics step's.
     for (auto& [body, X_WB] : state_.mocap) {
-      if (body == pointer_body_) X_WB = last_.X_WP;
+      for (std::size_t i = 0; i < poses_.size(); ++i) {
+        if (body == initial_.pointer_body[i]) X_WB = poses_[i];
+      }
     }
     renderer_.Update(state_);
     DrawOverlay(renderer_, last_, feed_.ir(), display_, pointer_body_);
@@ -234,17 +249,32 @@ class ViewerApp {
     if (a.reset || k.reset) Restart(live_.settings(), live_.source(), false);
     if (a.apply) Restart(panel_.edit, live_.source(), true);
     if (a.source) {
-      if (*a.source == InputSource::kMouse) {
-        target_W_ = last_.X_WP;
-        mouse_.Teleport(session_.device.calibration.ToDevice(target_W_));
-      }
+      if (*a.source == InputSource::kMouse) TeleportMouse(last_.X_WP);
       Restart(live_.settings(), *a.source, true);
     }
+    if (a.pointer) SelectPointer(*a.pointer);
     if (a.record) StartRecording();
     if (a.replay) {
       live_.set_replay_file(panel_.record_path.data());
       Restart(live_.settings(), InputSource::kReplay, false);
     }
+  }
+
+  void TeleportMouse(const Pose& X_WP) {
+    target_W_ = X_WP;
+    const device::Calibration& c = PointerDevice(session_, live_.driven_pointer()).calibration;
+    mouse_.Teleport(c.ToDevice(target_W_));
+  }
+
+  // The mouse takes over the chosen pointer where it is; the one it leaves goes back to its own
+  // session device.
+  void SelectPointer(int i) {
+    live_.set_driven_pointer(i);
+    panel_.pointer = live_.driven_pointer();
+    pointer_body_ = initial_.pointer_body[static_cast<std::size_t>(panel_.pointer)];
+    TeleportMouse(poses_[static_cast<std::size_t>(panel_.pointer)]);
+    history_.Clear();
+    Restart(live_.settings(), live_.source(), true);
   }
 
   void Restart(const engine::EngineSettings& settings, InputSource source, bool keep_world) {
@@ -292,6 +322,7 @@ class ViewerApp {
   InitialView initial_;
   int pointer_body_ = -1;
   Pose target_W_;  // the pointer target the mouse drives (world frame)
+  std::vector<Pose> poses_;  // every pointer's newest tick pose (world frame)
   device::MouseDevice mouse_;
   LiveSession live_;  // after feed_ and mouse_: its threads stop before they go
   PlotHistory history_;

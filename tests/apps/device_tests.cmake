@@ -29,4 +29,12 @@ if(Python3_Interpreter_FOUND)
                    ${fixtures}/tiny.json ${CMAKE_CURRENT_BINARY_DIR}/run_udp
            WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
   set_tests_properties(cli.RunUdpSessionCountsLandInSummary PROPERTIES LABELS apps TIMEOUT 120)
+  # Two pointers on two UDP ports in one real-time run: each client moves its own finger and
+  # gets that finger's wrenches back; summary.json counts each port's poses.
+  add_test(NAME cli.RunTwoUdpPointersEachOnItsOwnPort
+           COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_LIST_DIR}/udp_pointers_session_test.py
+                   ${mrh_bin} ${PROJECT_SOURCE_DIR}/scenes/two_finger_grasp.json
+                   ${CMAKE_CURRENT_BINARY_DIR}/run_udp_pointers
+           WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+  set_tests_properties(cli.RunTwoUdpPointersEachOnItsOwnPort PROPERTIES LABELS apps TIMEOUT 120)
 endif()

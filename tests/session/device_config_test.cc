@@ -118,7 +118,7 @@ TEST(DeviceConfigTest, DeviceMustBeAnObject) {
       },
       ThrowsInvalidExactly("session.json: device: found a string (\"fixed\"); expected an "
                            "object with keys: type, model, limits, calibration, pose, keyframes, "
-                           "trajectory, hand, replay, library, name, bind, timeout, fade"));
+                           "trajectory, hand, replay, library, id, name, bind, timeout, fade"));
 }
 
 TEST(DeviceConfigTest, MissingTypeIsAnError) {

@@ -74,7 +74,7 @@ TEST(SessionKeysTest, UnknownDeviceKeyListsEveryDeviceKey) {
       },
       ThrowsInvalid("session.json: device.gain: unknown key; expected one of: type, model, "
                     "limits, calibration, pose, keyframes, trajectory, hand, replay, library, "
-                    "name, bind, timeout, fade"));
+                    "id, name, bind, timeout, fade"));
 }
 
 TEST(SessionKeysTest, UnknownKeyTwoLevelsDownIsNamedByItsFullPath) {

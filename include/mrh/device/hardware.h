@@ -15,6 +15,9 @@ namespace mrh::device {
 struct ForceDimensionSettings {
   /// A path or a soname searched by the dynamic loader (LD_LIBRARY_PATH, ld.so.conf).
   std::string library = "libdhd.so";
+  /// Which device: -1 the default one (dhdOpen); 0..127 the id-th device the DHD enumerates
+  /// (dhdOpenID), so that several devices on one machine each get their own.
+  int id = -1;
 };
 
 /// Session: `device.type = "openhaptics"`. The HD library is dlopen()ed at construction.
@@ -33,13 +36,16 @@ struct UdpSettings {
 };
 
 /// Loads `settings.library` and resolves the required DHD symbols (the optional ones are probed).
-/// Open() opens the default device (dhdOpen) and enables forces; Close() zeroes the force,
-/// disables it and closes. Read/SetWrench call the DHD on the calling (haptic) thread; a DHD
-/// error there is counted (counters().vendor_errors, last_error()) and the last good reading
-/// is kept. Positions in m and forces in N, device frame (x toward the user, z up).
-/// `specs.has_torque == false` (3-DOF devices) drops and counts any torque.
+/// Open() opens the default device (dhdOpen) or, with `settings.id` >= 0, that device
+/// (dhdOpenID), and enables forces; every later call names the device ID the open returned, so
+/// several devices can run side by side. Close() zeroes the force, disables it and closes.
+/// Read/SetWrench call the DHD on the calling (haptic) thread; a DHD error there is counted
+/// (counters().vendor_errors, last_error()) and the last good reading is kept. Positions in m and
+/// forces in N, device frame (x toward the user, z up). `specs.has_torque == false` (3-DOF devices)
+/// drops and counts any torque.
 /// @throws mrh::InvalidArgument naming the library path and dlerror() if it cannot be loaded
-/// or lacks a required symbol; Open() throws mrh::RuntimeError with dhdErrorGetLastStr().
+/// or lacks a required symbol (dhdOpenID when `settings.id` >= 0), or naming `device.id` if it
+/// is outside -1..127; Open() throws mrh::RuntimeError with dhdErrorGetLastStr().
 std::unique_ptr<Device> MakeForceDimensionDevice(const ForceDimensionSettings& settings,
                                                  const Specifications& specs);
 
@@ -52,6 +58,9 @@ std::unique_ptr<Device> MakeForceDimensionDevice(const ForceDimensionSettings& s
 ///  - through ServoDevice::SetServoClient(): the callback itself calls the client (for example
 ///    Engine::Tick in embedded mode), so the engine runs on the vendor's thread.
 /// HD errors inside the callback are counted; Open() errors throw mrh::RuntimeError.
+/// Several devices (each by `settings.name`) share HD's one scheduler: each callback makes its
+/// own device current, a device joins or leaves with the scheduler briefly stopped, and the
+/// scheduler runs while any of them is open.
 /// @throws mrh::InvalidArgument if the library or a symbol is missing (path and dlerror()).
 std::unique_ptr<Device> MakeOpenHapticsDevice(const OpenHapticsSettings& settings,
                                               const Specifications& specs);

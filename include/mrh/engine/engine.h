@@ -113,14 +113,17 @@ class Engine {
   void RequestStop() noexcept;
 
   /// Embedding in the caller's own servo loop: the calling thread becomes the haptic thread.
-  /// Needs a device::ExternalDevice. Real-time mode starts the physics thread; lockstep runs
-  /// each physics step inline in Tick() at period boundaries (deterministic, not RT-safe).
-  /// @throws mrh::InvalidArgument if the device is not external; mrh::RuntimeError if the engine
-  /// has already run.
+  /// Needs a device::ExternalDevice; with several pointers exactly one pointer has it (the one
+  /// the caller's loop drives) and the others read their own devices in every Tick. Real-time
+  /// mode starts the physics thread; lockstep runs each physics step inline in Tick() at period
+  /// boundaries (deterministic, not RT-safe).
+  /// @throws mrh::InvalidArgument if no device, or more than one, is external;
+  /// mrh::RuntimeError if the engine has already run.
   void Start(Recorder* recorder = nullptr);
 
   /// One haptic tick at time t (s since Start): feeds `reading` (device frame) to the external
-  /// device, renders, and returns the wrench to display (device frame, after the safety layer).
+  /// device, renders every pointer, and returns the external device's pointer's wrench to display
+  /// (device frame, after the safety layer).
   /// RT-safe in real-time mode. @pre Start() was called.
   Wrench Tick(double t, const device::DeviceState& reading) noexcept;
 

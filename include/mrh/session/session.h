@@ -36,7 +36,7 @@ struct DeviceConfig {
   device::HandSettings hand;                ///< hand: the simulated user's parameters
   device::Specifications specs;             ///< max_force, max_torque, ... overrides
   device::Calibration calibration;          ///< device → world
-  device::ForceDimensionSettings forcedimension;  ///< forcedimension: device.library
+  device::ForceDimensionSettings forcedimension;  ///< forcedimension: device.library, device.id
   device::OpenHapticsSettings openhaptics;        ///< openhaptics: device.library, device.name
   device::UdpSettings udp;                        ///< udp: device.bind, timeout, fade
   /// True if device.model or device.limits.max_stiffness states the stiffness limit; then

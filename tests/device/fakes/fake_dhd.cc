@@ -21,6 +21,9 @@ struct State {
   int buttons = 0;
   int records = 0;
   double forces[kMaxRecords][6] = {};
+  int force_ids[kMaxRecords] = {};  // the device ID each force was sent to
+  int last_open_index = -1;         // dhdOpenID's argument
+  int enabled_ids = 0;              // bit i: forces enabled on device ID i
   bool has_angular_velocity = true;
 };
 
@@ -39,6 +42,19 @@ int dhdOpen() {
   }
   state.open = true;
   return 0;
+}
+
+// Device IDs differ from enumeration indices (index + 10), so that a caller passing the index
+// where the ID belongs is seen.
+int dhdOpenID(char index) {
+  ++state.open_calls;
+  state.last_open_index = index;
+  if (state.fail_open || index < 0 || index > 3) {
+    state.error = "fake: no such device";
+    return -1;
+  }
+  state.open = true;
+  return index + 10;
 }
 
 int dhdClose(char) {
@@ -71,7 +87,8 @@ int dhdGetLinearVelocity(double* x, double* y, double* z, char) {
   return 0;
 }
 
-int dhdSetForceAndTorque(double fx, double fy, double fz, double tx, double ty, double tz, char) {
+int dhdSetForceAndTorque(double fx, double fy, double fz, double tx, double ty, double tz,
+                         char id) {
   if (state.fail_writes > 0) {
     --state.fail_writes;
     state.error = "fake: force write failed";
@@ -80,12 +97,16 @@ int dhdSetForceAndTorque(double fx, double fy, double fz, double tx, double ty, 
   if (state.records < kMaxRecords) {
     double* r = state.forces[state.records++];
     r[0] = fx, r[1] = fy, r[2] = fz, r[3] = tx, r[4] = ty, r[5] = tz;
+    state.force_ids[state.records - 1] = id;
   }
   return 0;
 }
 
-int dhdEnableForce(unsigned char on, char) {
+int dhdEnableForce(unsigned char on, char id) {
   state.force_enabled = on != 0;
+  if (id >= 0 && id < 31) {
+    state.enabled_ids = on != 0 ? state.enabled_ids | (1 << id) : state.enabled_ids & ~(1 << id);
+  }
   return 0;
 }
 
@@ -149,6 +170,18 @@ int fakedhd_CloseCalls() {
 
 int fakedhd_ForceCount() {
   return state.records;
+}
+
+int fakedhd_ForceId(int i) {
+  return state.force_ids[i];
+}
+
+int fakedhd_LastOpenIndex() {
+  return state.last_open_index;
+}
+
+int fakedhd_EnabledIds() {
+  return state.enabled_ids;
 }
 
 void fakedhd_Force(int i, double out[6]) {

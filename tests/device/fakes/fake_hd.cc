@@ -30,6 +30,15 @@ struct State {
   HDCallback callback = nullptr;
   void* data = nullptr;
   bool scheduled = false;
+  // A second scheduled callback (a second device), run after the first on each servo tick.
+  HDCallback callback2 = nullptr;
+  void* data2 = nullptr;
+  bool scheduled2 = false;
+  unsigned long next_schedule_handle = 7;
+  unsigned int next_device = 1;  // hdInitDevice's handles: 1, 2, ...
+  unsigned int current = 0;      // the current device (hdInitDevice, hdMakeCurrentDevice)
+  int start_calls = 0, stop_calls = 0;
+  unsigned int force_devices[kMaxRecords] = {};  // the current device at each force write
   int in_frame = 0;
   int frames = 0;
   double transform[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
@@ -72,7 +81,12 @@ unsigned int hdInitDevice(const char* name) {
     return kInvalidHandle;
   }
   state.initialized = true;
-  return 1;
+  state.current = state.next_device++;
+  return state.current;
+}
+
+void hdMakeCurrentDevice(unsigned int hhd) {
+  state.current = hhd;
 }
 
 void hdDisableDevice(unsigned int) {
@@ -83,7 +97,14 @@ void hdEnable(unsigned int cap) {
   state.force_output = state.force_output || cap == 0x4000;
 }
 
+// The first callback takes handle 7, a second one while the first is scheduled handle 8.
 unsigned long hdScheduleAsynchronous(HDCallback cb, void* data, unsigned short) {
+  if (state.scheduled) {
+    state.callback2 = cb;
+    state.data2 = data;
+    state.scheduled2 = true;
+    return 8;
+  }
   state.callback = cb;
   state.data = data;
   state.scheduled = true;
@@ -102,6 +123,7 @@ void hdScheduleSynchronous(HDCallback cb, void* data, unsigned short) {
 }
 
 void hdStartScheduler() {
+  ++state.start_calls;
   state.scheduler = true;
   const char* threaded = std::getenv("FAKEHD_THREAD");
   if (threaded != nullptr && threaded[0] == '1' && !scheduler_thread.joinable()) {
@@ -111,13 +133,18 @@ void hdStartScheduler() {
 }
 
 void hdStopScheduler() {
+  ++state.stop_calls;
   scheduler_quit.store(true);
   if (scheduler_thread.joinable()) scheduler_thread.join();
   state.scheduler = false;
 }
 
-void hdUnschedule(unsigned long) {
-  state.scheduled = false;
+void hdUnschedule(unsigned long handle) {
+  if (handle == 8) {
+    state.scheduled2 = false;
+  } else {
+    state.scheduled = false;
+  }
 }
 
 void hdBeginFrame(unsigned int) {
@@ -142,6 +169,7 @@ void hdGetIntegerv(unsigned int what, int* out) {
 void hdSetDoublev(unsigned int what, const double* v) {
   if (what == 0x2701) ++state.torque_writes;
   if (what != 0x2700 || state.records >= kMaxRecords) return;
+  state.force_devices[state.records] = state.current;
   std::memcpy(state.forces[state.records++], v, 3 * sizeof(double));
 }
 
@@ -184,12 +212,13 @@ void fakehd_SetButtons(int b) {
 // (a callback that returns HD_CALLBACK_DONE is unscheduled, as in HD).
 int fakehd_RunServoTicks(int n) {
   int ran = 0;
-  for (; ran < n && state.scheduler && state.scheduled; ++ran) {
+  for (; ran < n && state.scheduler && (state.scheduled || state.scheduled2); ++ran) {
     if (state.fail_frames > 0) {
       --state.fail_frames;
       state.pending_error = kFakeError;
     }
-    if (state.callback(state.data) == 0) state.scheduled = false;
+    if (state.scheduled && state.callback(state.data) == 0) state.scheduled = false;
+    if (state.scheduled2 && state.callback2(state.data2) == 0) state.scheduled2 = false;
   }
   return ran;
 }
@@ -200,6 +229,18 @@ int fakehd_ForceCount() {
 
 void fakehd_Force(int i, double out[3]) {
   std::memcpy(out, state.forces[i], 3 * sizeof(double));
+}
+
+unsigned int fakehd_ForceDevice(int i) {
+  return state.force_devices[i];
+}
+
+int fakehd_StartCalls() {
+  return state.start_calls;
+}
+
+int fakehd_StopCalls() {
+  return state.stop_calls;
 }
 
 int fakehd_TorqueWrites() {
