@@ -252,6 +252,17 @@ struct GraspRun {
   double physics_dt = 0.001;  ///< s
 };
 
+/// The runs of every grasp case: the reference (single-rate at 1 ms) first, then the methods at
+/// 20 ms: the local-dynamics methods (checked against the bars) and proxy-6dof and
+/// impulse (reported: their reaction arrives one physics step late).
+std::vector<GraspRun> GraspRuns();
+
+/// True for the 20 ms runs held to the bars (local-dynamics, local-dynamics-6dof).
+bool GraspChecked(const GraspRun& run);
+
+/// "local-dynamics-6dof" → "local_dynamics_6dof": a method name as a check-name part.
+std::string CheckName(const std::string& method);
+
 /// What a grasp run measured over the hold (both fingers still, box lifted).
 struct GraspResult {
   double hold_height = 0.0;           ///< box COM's mean rise above its start (m)
@@ -320,11 +331,11 @@ bool MeetsSlideBars(const SlideResult& r, const SlideResult& reference);
 void RunGraspSlide(const std::filesystem::path& out, bool quiet, std::string* md, Checks* checks,
                    nlohmann::json* summary);
 
-/// grasp: three cases, single-rate at 1 ms (the reference) against local-dynamics (checked) and
-/// impulse (reported) at 20 ms. Lift: the pinch, lift and hold (grasp.csv, grasp.png). Two
-/// hands: each hand pushes its own box apart from the other's, together and each alone
-/// (grasp_hands.csv, grasp_hands.png). Slide: the squeezed box dragged sideways
-/// (grasp_slide.csv, grasp_slide.png). Also grasp.md (every table and the checks) and
+/// grasp: three cases, single-rate at 1 ms (the reference) against local-dynamics and
+/// local-dynamics-6dof (checked), proxy-6dof and impulse (reported) at 20 ms. Lift: the pinch, lift
+/// and hold (grasp.csv, grasp.png). Two hands: each hand pushes its own box apart from the other's,
+/// together and each alone (grasp_hands.csv, grasp_hands.png). Slide: the squeezed box dragged
+/// sideways (grasp_slide.csv, grasp_slide.png). Also grasp.md (every table and the checks) and
 /// summary.json; returns 0 if every check passes: the reference lifts and holds the box and
 /// local-dynamics meets the lift bars; each hand feels its box's μ m g within 5 % and its force
 /// alone within 5 %, in the reference and in local-dynamics; the reference's slide drags the box

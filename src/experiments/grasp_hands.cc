@@ -149,11 +149,10 @@ std::string HandsScript(const std::vector<GraspRun>& runs) {
 
 // The bar for two hands: each hand feels its own box's Coulomb force μ m g within 5 %,
 // undisturbed by the other hand (its force alone within 5 %). Checked for the reference and for
-// local-dynamics; impulse is reported.
+// the local-dynamics methods; proxy-6dof and impulse are reported.
 void RunGraspHands(const std::filesystem::path& out, bool quiet, std::string* md, Checks* checks,
                    nlohmann::json* summary) {
-  const std::vector<GraspRun> runs = {
-      {"single-rate", 0.001}, {"local-dynamics", 0.02}, {"impulse", 0.02}};
+  const std::vector<GraspRun> runs = GraspRuns();
   const char* names[2] = {"left", "right"};
   Table csv({"method", "physics_dt_s", "hand", "mean_N", "sd_N", "mu_m_g_N", "vs_mu_m_g",
              "alone_mean_N", "vs_alone", "box_travel_m"});
@@ -162,7 +161,7 @@ void RunGraspHands(const std::filesystem::path& out, bool quiet, std::string* md
   for (const GraspRun& run : runs) {
     if (!quiet) std::cout << "grasp two hands: " << run.method << "...\n";
     const HandsResult both = RunHandsCase(out, run, {0, 1});
-    const bool checked = run.method != "impulse";
+    const bool checked = run.method == "single-rate" || GraspChecked(run);
     for (int i = 0; i < 2; ++i) {
       const HandsResult alone = RunHandsCase(out, run, {i});
       const double vs_coulomb = both.mean_force[i] / both.coulomb[i] - 1.0;
@@ -181,9 +180,7 @@ void RunGraspHands(const std::filesystem::path& out, bool quiet, std::string* md
           {"vs_mu_m_g", vs_coulomb},        {"alone_mean_force_N", alone.mean_force[i]},
           {"vs_alone", vs_alone},           {"box_travel_m", both.travel[i]}};
       if (!checked) continue;
-      std::string method = Slug(run.method, '_');
-      std::replace(method.begin(), method.end(), '-', '_');
-      const std::string prefix = fmt::format("hands_{}_{}", method, names[i]);
+      const std::string prefix = fmt::format("hands_{}_{}", CheckName(run.method), names[i]);
       checks->Add(prefix + "_feels_mu_m_g", std::abs(vs_coulomb) <= 0.05, vs_coulomb, 0.05);
       checks->Add(prefix + "_as_alone", std::abs(vs_alone) <= 0.05, vs_alone, 0.05);
     }

@@ -152,11 +152,11 @@ std::string SlideScript(const std::vector<GraspRun>& runs) {
 }  // namespace
 
 // The reference must drag the box with Coulomb's sliding force and carry it the fingers' travel;
-// local-dynamics at 20 ms must meet the slide bars against it. Impulse is reported.
+// the local-dynamics methods at 20 ms must meet the slide bars against it. proxy-6dof and
+// impulse are reported.
 void RunGraspSlide(const std::filesystem::path& out, bool quiet, std::string* md, Checks* checks,
                    nlohmann::json* summary) {
-  const std::vector<GraspRun> runs = {
-      {"single-rate", 0.001}, {"local-dynamics", 0.02}, {"impulse", 0.02}};
+  const std::vector<GraspRun> runs = GraspRuns();
   Table csv({"method", "physics_dt_s", "thumb_mean_N", "index_mean_N", "thumb_sd_N", "index_sd_N",
              "push_N", "coulomb_N", "carried_N", "box_travel_m"});
   Table table({"method", "physics dt", "thumb mean force (N)", "index mean force (N)",
@@ -191,13 +191,14 @@ void RunGraspSlide(const std::filesystem::path& out, bool quiet, std::string* md
   for (std::size_t i = 1; i < runs.size(); ++i) {
     const bool bars = MeetsSlideBars(results[i], ref);
     (*summary)["slide"][runs[i].method]["meets_bars"] = bars;
-    if (runs[i].method != "local-dynamics") continue;
-    checks->Add("slide_local_dynamics_meets_bars", bars);
+    if (!GraspChecked(runs[i])) continue;
+    const std::string method = CheckName(runs[i].method);
+    checks->Add("slide_" + method + "_meets_bars", bars);
     // Its own load on the floor may differ from the reference's (the fingers' vertical
     // friction is statically indeterminate), but the push must be Coulomb's for that load.
     const SlideResult& r = results[i];
     const double error = r.push_force / r.coulomb - 1.0;
-    checks->Add("slide_local_dynamics_push_is_coulomb", std::abs(error) <= 0.05, error, 0.05);
+    checks->Add("slide_" + method + "_push_is_coulomb", std::abs(error) <= 0.05, error, 0.05);
   }
   WriteText(out / "grasp_slide.csv", csv.Csv());
   Plot(out, "grasp_slide", SlideScript(runs), quiet);

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // grasp's two-hands and slide cases: each hand feels Coulomb's μ m g of its own box, whether
 // or not the other hand pushes; a box squeezed between two fingers is dragged sideways with
-// Coulomb's sliding force; local-dynamics at 20 ms matches single-rate at 1 ms.
+// Coulomb's sliding force; the local-dynamics methods at 20 ms match single-rate at 1 ms.
 #include <gtest/gtest.h>
 
 #include "experiments/experiments_impl.h"
@@ -37,6 +37,10 @@ TEST(GraspHandsTest, LocalDynamicsAt20MsEachHandFeelsItsOwnBoxsCoulombForce) {
   ExpectEachHandFeelsItsOwnBox(GraspRun{"local-dynamics", 0.02});
 }
 
+TEST(GraspHandsTest, LocalDynamics6dofAt20MsEachHandFeelsItsOwnBoxsCoulombForce) {
+  ExpectEachHandFeelsItsOwnBox(GraspRun{"local-dynamics-6dof", 0.02});
+}
+
 TEST(GraspSlideTest, SingleRateDragsTheSqueezedBoxWithCoulombsForce) {
   const SlideResult r = RunSlideCase({}, GraspRun{"single-rate", 0.001});
   const double weight = r.box_mass * kGravity;
@@ -47,20 +51,24 @@ TEST(GraspSlideTest, SingleRateDragsTheSqueezedBoxWithCoulombsForce) {
   EXPECT_GT(r.mean_force[0], r.push_force);  // a squeeze, not a push
 }
 
-TEST(GraspSlideTest, LocalDynamicsAt20MsSlidesAsSingleRateAt1Ms) {
+TEST(GraspSlideTest, LocalDynamicsMethodsAt20MsSlideAsSingleRateAt1Ms) {
   const SlideResult ref = RunSlideCase({}, GraspRun{"single-rate", 0.001});
-  const SlideResult r = RunSlideCase({}, GraspRun{"local-dynamics", 0.02});
-  EXPECT_NEAR(r.box_travel, ref.box_travel, 0.005);
-  for (int finger = 0; finger < 2; ++finger) {
-    EXPECT_NEAR(r.mean_force[finger], ref.mean_force[finger], kForceTol * ref.mean_force[finger])
-        << "finger " << finger;
-    EXPECT_LE(r.sd_force[finger], 2.0 * ref.sd_force[finger]) << "finger " << finger;
+  for (const char* method : {"local-dynamics", "local-dynamics-6dof"}) {
+    SCOPED_TRACE(method);
+    const SlideResult r = RunSlideCase({}, GraspRun{method, 0.02});
+    EXPECT_NEAR(r.box_travel, ref.box_travel, 0.005);
+    for (int finger = 0; finger < 2; ++finger) {
+      EXPECT_NEAR(r.mean_force[finger], ref.mean_force[finger], kForceTol * ref.mean_force[finger])
+          << "finger " << finger;
+      EXPECT_LE(r.sd_force[finger], 2.0 * ref.sd_force[finger]) << "finger " << finger;
+    }
+    EXPECT_TRUE(MeetsSlideBars(r, ref));
+    // The push is Coulomb's for the box's load on the floor (which the fingers' vertical
+    // friction changes: it is statically indeterminate, so it is not compared with the
+    // reference's).
+    const double weight = r.box_mass * kGravity;
+    EXPECT_NEAR(r.push_force, kFloorMu * (weight - r.carried), kForceTol * kFloorMu * weight);
   }
-  EXPECT_TRUE(MeetsSlideBars(r, ref));
-  // The push is Coulomb's for the box's load on the floor (which the fingers' vertical friction
-  // changes: it is statically indeterminate, so it is not compared with the reference's).
-  const double weight = r.box_mass * kGravity;
-  EXPECT_NEAR(r.push_force, kFloorMu * (weight - r.carried), kForceTol * kFloorMu * weight);
 }
 
 }  // namespace

@@ -31,21 +31,24 @@ TEST(GraspTest, SingleRateLiftsAndHoldsTheBox) {
   EXPECT_GT(r.mean_force[0], weight / 2.0);  // a squeeze, not a touch
 }
 
-// The essential result: at 20 ms local-dynamics lifts and holds the box as single-rate
-// does at 1 ms: hold height within 5 mm, each finger's mean force within 5 %, force sd at most
-// 2x the reference's; the fingers carry the weight.
-TEST(GraspTest, LocalDynamicsAt20MsHoldsAsSingleRateAt1Ms) {
+// The essential result: at 20 ms the local-dynamics methods lift and hold the box as
+// single-rate does at 1 ms: hold height within 5 mm, each finger's mean force within 5 %, force
+// sd at most 2x the reference's; the fingers carry the weight.
+TEST(GraspTest, LocalDynamicsMethodsAt20MsHoldAsSingleRateAt1Ms) {
   const GraspResult ref = RunGraspCase({}, GraspRun{"single-rate", 0.001});
-  const GraspResult r = RunGraspCase({}, GraspRun{"local-dynamics", 0.02});
-  EXPECT_NEAR(r.hold_height, ref.hold_height, 0.005);
-  for (int finger = 0; finger < 2; ++finger) {
-    EXPECT_NEAR(r.mean_force[finger], ref.mean_force[finger], kForceTol * ref.mean_force[finger])
-        << "finger " << finger;
-    EXPECT_LE(r.sd_force[finger], 2.0 * ref.sd_force[finger]) << "finger " << finger;
+  for (const char* method : {"local-dynamics", "local-dynamics-6dof"}) {
+    SCOPED_TRACE(method);
+    const GraspResult r = RunGraspCase({}, GraspRun{method, 0.02});
+    EXPECT_NEAR(r.hold_height, ref.hold_height, 0.005);
+    for (int finger = 0; finger < 2; ++finger) {
+      EXPECT_NEAR(r.mean_force[finger], ref.mean_force[finger], kForceTol * ref.mean_force[finger])
+          << "finger " << finger;
+      EXPECT_LE(r.sd_force[finger], 2.0 * ref.sd_force[finger]) << "finger " << finger;
+    }
+    const double weight = r.box_mass * kGravity;
+    EXPECT_NEAR(r.mean_lift_force, weight, kForceTol * weight);
+    EXPECT_TRUE(MeetsBars(r, ref));
   }
-  const double weight = r.box_mass * kGravity;
-  EXPECT_NEAR(r.mean_lift_force, weight, kForceTol * weight);
-  EXPECT_TRUE(MeetsBars(r, ref));
 }
 
 }  // namespace
