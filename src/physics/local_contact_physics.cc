@@ -6,6 +6,7 @@
 #include <chrono>
 
 #include "mrh/world/world.h"
+#include "pointer_union.h"
 
 namespace mrh::physics::internal {
 
@@ -46,12 +47,7 @@ void LocalContactPhysics::PhysicsStepPointers(std::span<const ir::HapticReport* 
                                               std::span<ir::PhysicsSnapshot* const> out) {
   auto t0 = std::chrono::steady_clock::now();
   // The island's end states from the half that stepped it; every pointer's reaction.
-  merged_ = *reports.back();
-  for (std::size_t i = 0; i + 1 < reports.size(); ++i) {
-    for (const ir::BodyImpulse& impulse : reports[i]->impulses) {
-      merged_.AddImpulse(impulse.body, impulse.linear, impulse.angular, impulse.last_force);
-    }
-  }
+  MergePointerReports(reports, &merged_);
   sync_.Overwrite(merged_);
   phases_.sync_ms = MsSince(t0);
   t0 = std::chrono::steady_clock::now();
@@ -82,17 +78,7 @@ void LocalContactPhysics::BuildPointers(std::span<const ir::HapticReport* const>
   for (std::size_t i = 1; i < builders_.size(); ++i) {
     ir::PhysicsSnapshot& own = *out[i];
     builders_[i].Build(*world_, reports[i]->X_WP, &own);
-    for (std::size_t m = 0; m < own.bodies.size(); ++m) {
-      int found = -1;
-      for (std::size_t u = 0; u < all.bodies.size() && found < 0; ++u) {
-        if (all.bodies[u].body == own.bodies[m].body) found = static_cast<int>(u);
-      }
-      if (found < 0 && all.bodies.PushBack(own.bodies[m])) {
-        found = static_cast<int>(all.bodies.size()) - 1;
-      }
-      if (found < 0) all.status |= ir::kStatusBodiesFull;
-      remap_[m] = found;
-    }
+    UniteBodies(own, &all, remap_);
     // A contact whose body did not fit the union is dropped (and the overflow flagged).
     kept_.Clear();
     for (ir::PointContact c : own.contacts) {

@@ -7,6 +7,7 @@
 
 #include "mrh/world/world.h"
 #include "pointer_ahead.h"
+#include "pointer_union.h"
 
 namespace mrh::physics::internal {
 
@@ -89,12 +90,7 @@ void LocalDynamics6dofPhysics::PhysicsStartPointers(
 void LocalDynamics6dofPhysics::PhysicsStepPointers(std::span<const ir::HapticReport* const> reports,
                                                    std::span<ir::PhysicsSnapshot* const> out) {
   auto t0 = std::chrono::steady_clock::now();
-  merged_ = *reports.back();
-  for (std::size_t i = 0; i + 1 < reports.size(); ++i) {
-    for (const ir::BodyImpulse& impulse : reports[i]->impulses) {
-      merged_.AddImpulse(impulse.body, impulse.linear, impulse.angular, impulse.last_force);
-    }
-  }
+  MergePointerReports(reports, &merged_);
   sync_.Overwrite(merged_);
   phases_.sync_ms = MsSince(t0);
   t0 = std::chrono::steady_clock::now();
@@ -122,17 +118,7 @@ void LocalDynamics6dofPhysics::BuildPointers(std::span<const ir::HapticReport* c
     own.t = world_->time();
     own.physics_dt = physics_dt_;
     if (i == 0) continue;
-    for (std::size_t m = 0; m < own.bodies.size(); ++m) {
-      int found = -1;
-      for (std::size_t u = 0; u < all.bodies.size() && found < 0; ++u) {
-        if (all.bodies[u].body == own.bodies[m].body) found = static_cast<int>(u);
-      }
-      if (found < 0 && all.bodies.PushBack(own.bodies[m])) {
-        found = static_cast<int>(all.bodies.size()) - 1;
-      }
-      if (found < 0) all.status |= ir::kStatusBodiesFull;
-      remap_[m] = found;
-    }
+    UniteBodies(own, &all, remap_);
     // A pair whose body did not fit the union keeps no body (rendered as static, flagged).
     for (ir::GeometricPair& pair : own.pairs) {
       if (pair.motion >= 0) pair.motion = remap_[static_cast<std::size_t>(pair.motion)];
