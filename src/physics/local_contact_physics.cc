@@ -101,11 +101,7 @@ void LocalContactPhysics::BuildPointers(std::span<const ir::HapticReport* const>
     }
   }
   all.status |= sync_.Export(exporter_, seeds_, motions_, &all);
-  for (std::size_t i = 1; i < out.size(); ++i) {
-    out[i]->bodies = all.bodies;
-    out[i]->local_model = all.local_model;
-    out[i]->status |= all.status;
-  }
+  ShareUnion(out);
 }
 
 void LocalContactPhysics::PhysicsStart(const ir::HapticReport& initial, ir::PhysicsSnapshot* out) {

@@ -29,8 +29,9 @@ LocalDynamics6dofPhysics::LocalDynamics6dofPhysics(const MethodContext& context)
   remap_.resize(ir::kMaxNeighborBodies);
 }
 
-void LocalDynamics6dofPhysics::Build(const Pose& X_WP, ir::PhysicsSnapshot* out) {
-  builder_->Build(*world_, X_WP, out);
+void LocalDynamics6dofPhysics::Build(GeometricIrBuilder& builder, const Pose& X_WP,
+                                     ir::PhysicsSnapshot* out) {
+  builder.Build(*world_, X_WP, out);
   out->contacts.Clear();  // the 3-DOF plane IR is not used by this method
   out->t = world_->time();
   out->physics_dt = physics_dt_;
@@ -40,7 +41,7 @@ void LocalDynamics6dofPhysics::PhysicsStart(const ir::HapticReport& initial,
                                             ir::PhysicsSnapshot* out) {
   world_->SetMocapPose(pointer_body_, initial.X_WP);
   builder_->CapturePreviousPoses(*world_);
-  Build(initial.X_WP, out);
+  Build(*builder_, initial.X_WP, out);
   Export(out);
   out->step = -1;
 }
@@ -68,7 +69,7 @@ void LocalDynamics6dofPhysics::PhysicsStep(const ir::HapticReport& report,
   // the report's pose. The IR is built for it at the end of that period: its contact points then
   // cover the region the pointer will penetrate (built at the report's pose, a pointer that is
   // just arriving gets only its closest point, and the proxy spins about that single point).
-  Build(PointerAhead(report, 2.0 * physics_dt_), out);
+  Build(*builder_, PointerAhead(report, 2.0 * physics_dt_), out);
   phases_.ir_ms = MsSince(t0);
   t0 = std::chrono::steady_clock::now();
   Export(out);
@@ -113,10 +114,7 @@ void LocalDynamics6dofPhysics::BuildPointers(std::span<const ir::HapticReport* c
   ir::PhysicsSnapshot& all = *out[0];
   for (std::size_t i = 0; i < builders_.size(); ++i) {
     ir::PhysicsSnapshot& own = *out[i];
-    builders_[i]->Build(*world_, PointerAhead(*reports[i], ahead), &own);
-    own.contacts.Clear();  // the 3-DOF plane IR is not used by this method
-    own.t = world_->time();
-    own.physics_dt = physics_dt_;
+    Build(*builders_[i], PointerAhead(*reports[i], ahead), &own);
     if (i == 0) continue;
     UniteBodies(own, &all, remap_);
     // A pair whose body did not fit the union keeps no body (rendered as static, flagged).
@@ -126,38 +124,32 @@ void LocalDynamics6dofPhysics::BuildPointers(std::span<const ir::HapticReport* c
   }
   seeds_.clear();
   motions_.clear();
-  for (const ir::PhysicsSnapshot* o : out) {
-    for (const ir::GeometricPair& pair : o->pairs) {
-      if (pair.motion < 0 || static_cast<std::size_t>(pair.motion) >= all.bodies.size()) continue;
-      const ir::BodyMotion& m = all.bodies[static_cast<std::size_t>(pair.motion)];
-      if (m.is_static || std::find(seeds_.begin(), seeds_.end(), m.body) != seeds_.end() ||
-          !exporter_.IsFreeBody(m.body)) {
-        continue;
-      }
-      seeds_.push_back(m.body);
-      motions_.push_back(pair.motion);
-    }
-  }
+  for (const ir::PhysicsSnapshot* o : out) AddSeeds(*o, all);
   all.status |= sync_.Export(exporter_, seeds_, motions_, &all);
-  for (std::size_t i = 1; i < out.size(); ++i) {
-    out[i]->bodies = all.bodies;
-    out[i]->local_model = all.local_model;
-    out[i]->status |= all.status;
-  }
+  ShareUnion(out);
 }
 
 // Seeds: every dynamic body with a geometric pair (the pointer may touch it this period).
 void LocalDynamics6dofPhysics::Export(ir::PhysicsSnapshot* out) {
   seeds_.clear();
   motions_.clear();
-  for (const ir::GeometricPair& pair : out->pairs) {
-    if (pair.motion < 0 || static_cast<std::size_t>(pair.motion) >= out->bodies.size()) continue;
-    const ir::BodyMotion& m = out->bodies[static_cast<std::size_t>(pair.motion)];
-    if (m.is_static || std::find(seeds_.begin(), seeds_.end(), m.body) != seeds_.end() || !exporter_.IsFreeBody(m.body)) continue;
+  AddSeeds(*out, *out);
+  out->status |= sync_.Export(exporter_, seeds_, motions_, out);
+}
+
+// The free bodies of `pairs`'s snapshot, its motions indexing `bodies`'s, not yet seeds.
+void LocalDynamics6dofPhysics::AddSeeds(const ir::PhysicsSnapshot& pairs,
+                                        const ir::PhysicsSnapshot& bodies) {
+  for (const ir::GeometricPair& pair : pairs.pairs) {
+    if (pair.motion < 0 || static_cast<std::size_t>(pair.motion) >= bodies.bodies.size()) continue;
+    const ir::BodyMotion& m = bodies.bodies[static_cast<std::size_t>(pair.motion)];
+    if (m.is_static || std::find(seeds_.begin(), seeds_.end(), m.body) != seeds_.end() ||
+        !exporter_.IsFreeBody(m.body)) {
+      continue;
+    }
     seeds_.push_back(m.body);
     motions_.push_back(pair.motion);
   }
-  out->status |= sync_.Export(exporter_, seeds_, motions_, out);
 }
 
 }  // namespace mrh::physics::internal

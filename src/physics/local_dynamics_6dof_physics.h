@@ -51,8 +51,9 @@ class LocalDynamics6dofPhysics final : public MethodPhysics {
   const LocalDynamics6dofCounters& counters() const { return sync_.counters(); }
 
  private:
-  void Build(const Pose& X_WP, ir::PhysicsSnapshot* out);
+  void Build(GeometricIrBuilder& builder, const Pose& X_WP, ir::PhysicsSnapshot* out);
   void Export(ir::PhysicsSnapshot* out);
+  void AddSeeds(const ir::PhysicsSnapshot& pairs, const ir::PhysicsSnapshot& bodies);
   void BuildPointers(std::span<const ir::HapticReport* const> reports, double ahead,
                      std::span<ir::PhysicsSnapshot* const> out);
 

@@ -28,4 +28,13 @@ void UniteBodies(const ir::PhysicsSnapshot& own, ir::PhysicsSnapshot* all, std::
   }
 }
 
+void ShareUnion(std::span<ir::PhysicsSnapshot* const> out) {
+  const ir::PhysicsSnapshot& all = *out[0];
+  for (std::size_t i = 1; i < out.size(); ++i) {
+    out[i]->bodies = all.bodies;
+    out[i]->local_model = all.local_model;
+    out[i]->status |= all.status;
+  }
+}
+
 }  // namespace mrh::physics::internal

@@ -19,4 +19,8 @@ void MergePointerReports(std::span<const ir::HapticReport* const> reports,
 /// @pre remap.size() >= own.bodies.size(). Physics thread.
 void UniteBodies(const ir::PhysicsSnapshot& own, ir::PhysicsSnapshot* all, std::span<int> remap);
 
+/// Gives every other pointer's snapshot pointer 0's (out[0]'s) united bodies, its island and
+/// its status bits. Physics thread.
+void ShareUnion(std::span<ir::PhysicsSnapshot* const> out);
+
 }  // namespace mrh::physics::internal

@@ -104,8 +104,8 @@ ProxyPhysics::ProxyPhysics(const MethodContext& context)
   }
 }
 
-void ProxyPhysics::Build(const Pose& X_WP, ir::PhysicsSnapshot* out) {
-  builder_->Build(*world_, X_WP, out);
+void ProxyPhysics::Build(GeometricIrBuilder& builder, const Pose& X_WP, ir::PhysicsSnapshot* out) {
+  builder.Build(*world_, X_WP, out);
   out->contacts.Clear();  // the 3-DOF plane IR is not used by this method
   out->t = world_->time();
   out->physics_dt = physics_dt_;
@@ -114,7 +114,7 @@ void ProxyPhysics::Build(const Pose& X_WP, ir::PhysicsSnapshot* out) {
 void ProxyPhysics::PhysicsStart(const ir::HapticReport& initial, ir::PhysicsSnapshot* out) {
   world_->SetMocapPose(pointer_body_, initial.X_WP);
   builder_->CapturePreviousPoses(*world_);
-  Build(initial.X_WP, out);
+  Build(*builder_, initial.X_WP, out);
   out->step = -1;
 }
 
@@ -138,7 +138,7 @@ void ProxyPhysics::PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapsh
   // which the haptic proxy then spins (a 9.7 N·m spike and a 1.4 N·m twist held by friction on
   // the t3.6 face push). As local-dynamics-6dof does, the IR is built for where the pointer will
   // be when the snapshot is rendered (SPEC §4.9: 1–2 Δt^G past the report).
-  Build(local_ ? PointerAhead(report, 2.0 * physics_dt_) : report.X_WP, out);
+  Build(*builder_, local_ ? PointerAhead(report, 2.0 * physics_dt_) : report.X_WP, out);
   phases_.ir_ms = MsSince(t0);
 }
 
@@ -149,10 +149,7 @@ void ProxyPhysics::PhysicsStartPointers(std::span<const ir::HapticReport* const>
     builders_[i]->CapturePreviousPoses(*world_);
   }
   for (std::size_t i = 0; i < builders_.size(); ++i) {
-    builders_[i]->Build(*world_, initial[i]->X_WP, out[i]);
-    out[i]->contacts.Clear();
-    out[i]->t = world_->time();
-    out[i]->physics_dt = physics_dt_;
+    Build(*builders_[i], initial[i]->X_WP, out[i]);
     out[i]->step = -1;
   }
 }
@@ -177,11 +174,8 @@ void ProxyPhysics::PhysicsStepPointers(std::span<const ir::HapticReport* const> 
   phases_.world_step_ms = MsSince(t0);
   t0 = std::chrono::steady_clock::now();
   for (std::size_t i = 0; i < builders_.size(); ++i) {
-    const Pose X_WP = local_ ? PointerAhead(*reports[i], 2.0 * physics_dt_) : reports[i]->X_WP;
-    builders_[i]->Build(*world_, X_WP, out[i]);
-    out[i]->contacts.Clear();  // the 3-DOF plane IR is not used by this method
-    out[i]->t = world_->time();
-    out[i]->physics_dt = physics_dt_;
+    Build(*builders_[i], local_ ? PointerAhead(*reports[i], 2.0 * physics_dt_) : reports[i]->X_WP,
+          out[i]);
   }
   phases_.ir_ms = MsSince(t0);
 }

@@ -53,7 +53,7 @@ class ProxyPhysics final : public MethodPhysics {
   const GeometricIrStats& ir_stats() const { return builder_->stats(); }
 
  private:
-  void Build(const Pose& X_WP, ir::PhysicsSnapshot* out);
+  void Build(GeometricIrBuilder& builder, const Pose& X_WP, ir::PhysicsSnapshot* out);
 
   world::World* world_;
   int pointer_body_;
