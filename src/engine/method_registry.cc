@@ -51,6 +51,17 @@ Method SingleRate(const MethodContext& c) { return PointPenalty(c, true); }
 
 Method Impulse(const MethodContext& c) { return PointPenalty(c, false); }
 
+// A method of several pointers: pointer 0's haptic half first, the others' in more_haptic.
+Method PointerGroupMethod(std::string name, std::unique_ptr<physics::MethodPhysics> physics,
+                          std::vector<std::unique_ptr<haptic::MethodHaptic>> group,
+                          std::vector<std::string> status_bits) {
+  Method method{std::move(name),        false,
+                std::move(physics),     std::move(group[0]),
+                std::move(status_bits), /*multi_pointer=*/true};
+  for (std::size_t i = 1; i < group.size(); ++i) method.more_haptic.push_back(std::move(group[i]));
+  return method;
+}
+
 // Every pointer's proxy settings (pointer 0's alone with one pointer): its geometry and gains,
 // the device bound on one contact pair.
 std::vector<render::ProxyRendererSettings> PointerProxySettings(const MethodContext& c) {
@@ -67,19 +78,14 @@ std::vector<render::ProxyRendererSettings> PointerProxySettings(const MethodCont
 Method Proxy(const MethodContext& c) {
   // The renderer settings first: they carry the session-key errors.
   const std::vector<render::ProxyRendererSettings> settings = PointerProxySettings(c);
-  Method method{
-      "proxy-6dof",
-      false,
-      physics::MakeProxyPhysics(c),
-      haptic::MakeProxyHaptic(settings[0]),
-      // render::ProxyStatusBits
-      {"proxy.rows_full", "proxy.not_converged", "proxy.bad_input", "", "proxy.pair_force_limited"},
-      /*multi_pointer=*/true};
   // Several pointers: the haptic halves share nothing (the objects move on the physics side).
-  for (std::size_t i = 1; i < settings.size(); ++i) {
-    method.more_haptic.push_back(haptic::MakeProxyHaptic(settings[i]));
-  }
-  return method;
+  std::vector<std::unique_ptr<haptic::MethodHaptic>> group;
+  for (const render::ProxyRendererSettings& s : settings)
+    group.push_back(haptic::MakeProxyHaptic(s));
+  // render::ProxyStatusBits
+  return PointerGroupMethod("proxy-6dof", physics::MakeProxyPhysics(c), std::move(group),
+                            {"proxy.rows_full", "proxy.not_converged", "proxy.bad_input", "",
+                             "proxy.pair_force_limited"});
 }
 
 // B5: proxy-6dof's physics half (reaction one step late, geometric IR), per-contact springs.
@@ -125,17 +131,9 @@ Method LocalDynamics(const MethodContext& c) {
           "method 'local-dynamics' (3-DOF) needs; set the radius (m)",
           i, c.world->body(c.pointers[i].body).name, i));
     }
-    std::vector<std::unique_ptr<haptic::MethodHaptic>> group =
-        haptic::MakeLocalContactHapticGroup(gains);
-    Method method{"local-dynamics",
-                  false,
-                  physics::MakeLocalContactPhysics(c),
-                  std::move(group[0]),
-                  {"local_dynamics.local_body_fault"},
-                  true};
-    for (std::size_t i = 1; i < group.size(); ++i)
-      method.more_haptic.push_back(std::move(group[i]));
-    return method;
+    return PointerGroupMethod("local-dynamics", physics::MakeLocalContactPhysics(c),
+                              haptic::MakeLocalContactHapticGroup(gains),
+                              {"local_dynamics.local_body_fault"});
   }
   if (physics::UsesContactLocalModel(c)) {
     return Method{"local-dynamics",
@@ -160,17 +158,9 @@ Method LocalDynamics6dof(const MethodContext& c) {
                                           "proxy.pair_force_limited"};
   if (settings.size() >= 2) {
     // Several pointers: one island, every pointer's proxy with its own gains and geometry.
-    std::vector<std::unique_ptr<haptic::MethodHaptic>> group =
-        haptic::MakeLocalDynamics6dofHapticGroup(settings);
-    Method method{"local-dynamics-6dof",
-                  false,
-                  physics::MakeLocalDynamics6dofPhysics(c),
-                  std::move(group[0]),
-                  std::move(status_bits),
-                  true};
-    for (std::size_t i = 1; i < group.size(); ++i)
-      method.more_haptic.push_back(std::move(group[i]));
-    return method;
+    return PointerGroupMethod("local-dynamics-6dof", physics::MakeLocalDynamics6dofPhysics(c),
+                              haptic::MakeLocalDynamics6dofHapticGroup(settings),
+                              std::move(status_bits));
   }
   return Method{"local-dynamics-6dof", false, physics::MakeLocalDynamics6dofPhysics(c),
                 haptic::MakeLocalDynamics6dofHaptic(settings[0]), std::move(status_bits)};
