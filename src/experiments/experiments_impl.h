@@ -281,6 +281,11 @@ GraspResult RunGraspCase(const std::filesystem::path& out, const GraspRun& run);
 /// finger's mean force within 5 % and its standard deviation at most 2x the reference's.
 bool MeetsBars(const GraspResult& r, const GraspResult& reference);
 
+/// The bars on both fingers of a grasp case: each finger's mean force within 5 % of the
+/// reference's and its standard deviation at most 2x the reference's.
+bool FingersMeetBars(const double mean[2], const double sd[2], const double ref_mean[2],
+                     const double ref_sd[2]);
+
 /// What the two-hands case measured over the steady slide (2–4 s). Index 0 is the left hand
 /// (its 0.5 kg box), 1 the right (0.3 kg).
 struct HandsResult {

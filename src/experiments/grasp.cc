@@ -150,13 +150,17 @@ void WriteRun(const std::filesystem::path& dir, const std::string& slug, const T
 // The bars: hold height within 5 mm of the reference's, each finger's mean force within
 // 5 % and its standard deviation at most 2x the reference's.
 bool MeetsBars(const GraspResult& r, const GraspResult& ref) {
-  bool ok = std::abs(r.hold_height - ref.hold_height) <= 0.005;
+  return std::abs(r.hold_height - ref.hold_height) <= 0.005 &&
+         FingersMeetBars(r.mean_force, r.sd_force, ref.mean_force, ref.sd_force);
+}
+
+bool FingersMeetBars(const double mean[2], const double sd[2], const double ref_mean[2],
+                     const double ref_sd[2]) {
   for (int finger = 0; finger < 2; ++finger) {
-    ok = ok &&
-         std::abs(r.mean_force[finger] - ref.mean_force[finger]) <= 0.05 * ref.mean_force[finger];
-    ok = ok && r.sd_force[finger] <= 2.0 * ref.sd_force[finger];
+    if (std::abs(mean[finger] - ref_mean[finger]) > 0.05 * ref_mean[finger]) return false;
+    if (sd[finger] > 2.0 * ref_sd[finger]) return false;
   }
-  return ok;
+  return true;
 }
 
 namespace {

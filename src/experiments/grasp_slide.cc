@@ -115,13 +115,8 @@ SlideResult RunSlideCase(const std::filesystem::path& out, const GraspRun& run) 
 // The lift case's bars, on the slide: each finger's mean force within 5 % of the reference's and
 // its sd at most 2x; the box where the reference left it, within 5 mm.
 bool MeetsSlideBars(const SlideResult& r, const SlideResult& ref) {
-  bool ok = std::abs(r.box_travel - ref.box_travel) <= 0.005;
-  for (int finger = 0; finger < 2; ++finger) {
-    ok = ok &&
-         std::abs(r.mean_force[finger] - ref.mean_force[finger]) <= 0.05 * ref.mean_force[finger];
-    ok = ok && r.sd_force[finger] <= 2.0 * ref.sd_force[finger];
-  }
-  return ok;
+  return std::abs(r.box_travel - ref.box_travel) <= 0.005 &&
+         FingersMeetBars(r.mean_force, r.sd_force, ref.mean_force, ref.sd_force);
 }
 
 namespace {
