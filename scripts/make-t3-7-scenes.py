@@ -55,6 +55,21 @@ def hexagonal_prism(circumradius, half_height):
     return "  ".join(vertices)
 
 
+def support_feet(circumradius, half_height, radius=0.0005):
+    # MuJoCo's plane-convex collision reports at most 4 contact points, so a prism standing on a
+    # hexagon gets 4 of its 6 bottom vertices, a subset that changes as the prism rocks: its
+    # floor support, and with it the friction's moment, is not the hexagon's. A tiny sphere at
+    # each bottom vertex, flush with the face and massless in effect, gives MuJoCo all 6.
+    feet = []
+    for k in range(6):
+        a = math.radians(30 + 60 * k)
+        r = circumradius - radius
+        feet.append(f'      <geom name="foot{k}" type="sphere" size="{radius:g}"'
+                    f' pos="{r * math.cos(a):.6f} {r * math.sin(a):.6f} {-half_height + radius:g}"'
+                    f' mass="1e-6" rgba="0.5 0.5 0.5 1"/>')
+    return "\n".join(feet)
+
+
 SHAPES = {
     "sphere": dict(
         what="a 0.3 kg sphere, r 0.04 m: it rolls (spin v / r).",
@@ -76,10 +91,12 @@ SHAPES = {
               '            rgba="0.8 0.6 0.2 1"/>'),
     "mesh": dict(
         what="a 0.3 kg convex mesh, an upright hexagonal prism (circumradius 0.04 m, 6 cm tall)"
-             " with a face toward the pointer: it slides (Coulomb).",
+             " with a face toward the pointer: it slides (Coulomb). It stands on 6 point feet, one"
+             " under each bottom vertex: MuJoCo's plane-mesh collision keeps 4 of the 6 vertices.",
         z=0.03,
         asset='  <asset>\n    <mesh name="hex" vertex="{}"/>\n  </asset>\n'.format(hexagonal_prism(0.04, 0.03)),
-        geoms='      <geom name="object" type="mesh" mesh="hex" mass="0.3" rgba="0.5 0.5 0.5 1"/>'),
+        geoms='      <geom name="object" type="mesh" mesh="hex" mass="0.3" rgba="0.5 0.5 0.5 1"/>\n'
+              + support_feet(0.04, 0.03)),
     "compound": dict(
         what="a 0.5 kg body of two boxes side by side in y (0.2 kg, 4 cm tall; 0.3 kg, 6 cm tall):"
              " its centre of mass lies 5 mm toward +y; it slides (Coulomb).",

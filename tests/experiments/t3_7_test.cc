@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
 // t3.7: the bars by which runs are judged (Judge), and the essential result on a sphere, an
-// upright cylinder, an ellipsoid and a compound body pushed by the box pointer: against mechanics
-// (nothing thrown, the sphere rolls at v / r, a steady slide costs μ m g) and against the tool as a
-// rigid MuJoCo body at 1 ms (the compound body turns the reference's way; the cylinder, deflected
-// by the pointer's edge, takes the reference's impulse and goes where it goes).
+// upright cylinder, an ellipsoid, a convex mesh and a compound body pushed by the box pointer:
+// against mechanics (nothing thrown, the sphere rolls at v / r, a steady slide costs μ m g) and
+// against the tool as a rigid MuJoCo body at 1 ms (the compound body turns the reference's way;
+// the cylinder, deflected by the pointer's edge, and the mesh, pushed on one end of its face,
+// take the reference's impulse and go where it goes).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -96,10 +97,10 @@ const T37Result& Find(const std::vector<T37Result>& runs, const std::string& sha
 TEST(T37Test, SphereCylinderEllipsoidAndCompoundUnderTheBoxPointer) {
   const std::filesystem::path out = testing::TempDir("mrh_t3_7_test_");
   T37Options options;
-  options.shapes = {"sphere", "cylinder", "ellipsoid", "compound"};
+  options.shapes = {"sphere", "cylinder", "ellipsoid", "mesh", "compound"};
   const std::vector<T37Result> runs = RunT37Cases(out, /*quiet=*/true, options);
   std::filesystem::remove_all(out);
-  ASSERT_EQ(runs.size(), 4u * 2u * 4u);
+  ASSERT_EQ(runs.size(), 5u * 2u * 4u);
   constexpr double kV = 0.1;  // m/s, the push
   const char* ld = "local-dynamics-6dof@20ms";
   for (std::size_t i = 0; i < runs.size(); i += 4) {
@@ -120,9 +121,11 @@ TEST(T37Test, SphereCylinderEllipsoidAndCompoundUnderTheBoxPointer) {
       EXPECT_GT(ball.end.x(), 0.3) << method << ": the sphere did not roll ahead";
     }
     // Steady slides: Coulomb's μ m g (0.5 × 0.3 kg and 0.5 × 0.5 kg at 9.81 m/s²).
-    const T37Result& cylinder = Find(runs, "cylinder", false, method);
-    EXPECT_NEAR(cylinder.coulomb_f, 0.5 * 0.3 * 9.81, 1e-9);
-    EXPECT_NEAR(cylinder.mean_f, cylinder.coulomb_f, 0.05 * cylinder.coulomb_f) << method;
+    for (const char* shape : {"cylinder", "mesh"}) {
+      const T37Result& slide = Find(runs, shape, false, method);
+      EXPECT_NEAR(slide.coulomb_f, 0.5 * 0.3 * 9.81, 1e-4) << shape;  // the mesh feet weigh 6 mg
+      EXPECT_NEAR(slide.mean_f, slide.coulomb_f, 0.05 * slide.coulomb_f) << shape << " " << method;
+    }
   }
   // The ellipsoid pushed off centre tips, turns and stops: the local island's floor contact
   // must follow its support point as it rocks, or it is launched (0.59 m/s, ends 44 cm away).
@@ -138,11 +141,13 @@ TEST(T37Test, SphereCylinderEllipsoidAndCompoundUnderTheBoxPointer) {
   const T37Verdict turn = Judge(Find(runs, "compound", true, ld), turn_ref);
   ASSERT_TRUE(turn.same_turn.has_value());
   EXPECT_TRUE(*turn.same_turn);
-  const T37Verdict deflect =
-      Judge(Find(runs, "cylinder", true, ld), Find(runs, "cylinder", true, "virtual-coupling@1ms"));
-  ASSERT_TRUE(deflect.follows_ref.has_value());
-  EXPECT_TRUE(*deflect.follows_ref) << "impulse off by " << *deflect.force_vs_ref
-                                    << ", position by " << *deflect.pose_error << " m";
+  for (const char* shape : {"cylinder", "mesh"}) {
+    const T37Verdict follow =
+        Judge(Find(runs, shape, true, ld), Find(runs, shape, true, "virtual-coupling@1ms"));
+    ASSERT_TRUE(follow.follows_ref.has_value()) << shape;
+    EXPECT_TRUE(*follow.follows_ref) << shape << ": impulse off by " << *follow.force_vs_ref
+                                     << ", position by " << *follow.pose_error << " m";
+  }
 }
 
 }  // namespace
