@@ -6,6 +6,18 @@
 #include <cmath>
 
 namespace mrh::haptic::internal {
+namespace {
+
+// The blend of SPEC §3.9 from `start` to `next`, unit; where the two nearly cancel (a normal that
+// flipped, α near 1/2) it has no reliable direction and `next` is used, as in IrInterpolator.
+Vec3 BlendNormal(const Vec3& start, const Vec3& next, double alpha) noexcept {
+  const Vec3 n = (1.0 - alpha) * start + alpha * next;
+  const double length = n.norm();
+  if (!(length > 1e-9)) return next;
+  return n / length;
+}
+
+}  // namespace
 
 LocalDynamics6dofHaptic::LocalDynamics6dofHaptic(const render::ProxyRendererSettings& settings,
                                                  const render::LocalContactSolverSettings& solver)
@@ -33,8 +45,18 @@ void LocalDynamics6dofHaptic::Adopt(const ir::PhysicsSnapshot& snapshot) noexcep
     round_[j] = pair.round;
     n_W_[j] = pair.n_W;
     c_Cm_[j] = body.X_WB * pair.p_BC - body.X_WB * body.p_BCm;
-    n_B_[j++] = body.X_WB.q.conjugate() * pair.n_W;
+    n_B_[j] = body.X_WB.q.conjugate() * pair.n_W;
+    start_n_B_[j] = n_B_[j];
+    start_n_W_[j] = n_W_[j];
+    const std::uint64_t key = render::PairKey(pair.pointer_geom, pair.object_geom);
+    for (std::size_t o = 0; o < rendered_count_; ++o) {
+      if (rendered_key_[o] != key || rendered_round_[o] != pair.round) continue;
+      (pair.round ? start_n_W_[j] : start_n_B_[j]) = rendered_n_[o];
+      break;
+    }
+    ++j;
   }
+  rendered_count_ = 0;
 }
 
 void LocalDynamics6dofHaptic::MapMotions() noexcept {
@@ -47,8 +69,17 @@ void LocalDynamics6dofHaptic::MapMotions() noexcept {
   mapped_step_ = current ? island_step : -2;
 }
 
-// Step 2 of the class comment: planes of island pairs on the local poses.
-void LocalDynamics6dofHaptic::RePoseOnLocalBodies() noexcept {
+// Step 2 of the class comment: planes of island pairs on the local poses. The snapshot's normal
+// is the contact's at the end of the period it was built for (SPEC §4.9: the pointer there, 2 Δt^G
+// after the report). Where the contact turns about an edge or a vertex (a round pointer sliding
+// past a corner) that normal is tilted from the one at the period's start, and a plane through
+// the corner with it reaches deeper into the pointer than the corner does (a plane that supports
+// the contact at one relative pose over-estimates the depth at every other); the snapshot switch
+// is then also a step in the load, which the damper turns into a one-tick spike. Blending from
+// the last rendered normal keeps the normal, and so the depth, continuous and near the contact's
+// own, as IrInterpolator does on the other bodies. In the body frame, so the plane still turns
+// with the local body; a round object's in the world, as its plane does not turn.
+void LocalDynamics6dofHaptic::RePoseOnLocalBodies(double alpha) noexcept {
   for (std::size_t i = 0; i < tick_ir_.pairs.size(); ++i) {
     render::TickPair& pair = tick_ir_.pairs[i];
     if (pair.is_static || pair.motion < 0) continue;
@@ -60,10 +91,10 @@ void LocalDynamics6dofHaptic::RePoseOnLocalBodies() noexcept {
     if (round_[i]) {
       // A rolling round body's surface facing the pointer moves with its centre, unturned: a
       // plane turned with the body would push along its turned normal and drive the roll.
-      pair.n_W = n_W_[i];
+      pair.n_W = BlendNormal(start_n_W_[i], n_W_[i], alpha);
       pair.c_W = pair.p_WCm + c_Cm_[i];
     } else {
-      pair.n_W = (pair.X_WB.q * n_B_[i]).normalized();
+      pair.n_W = (pair.X_WB.q * BlendNormal(start_n_B_[i], n_B_[i], alpha)).normalized();
       pair.c_W = pair.X_WB * pair.p_BC;
     }
     const double n_dot_c = pair.n_W.dot(pair.c_W);
@@ -71,6 +102,24 @@ void LocalDynamics6dofHaptic::RePoseOnLocalBodies() noexcept {
       render::TickPoint& point = tick_ir_.points[static_cast<std::size_t>(k)];
       point.depth = n_dot_c - pair.n_W.dot(point.v_W);
     }
+  }
+}
+
+// The normals this tick rendered on island bodies (body frame; world for a round object), where
+// the next snapshot's blends start. A pair not re-posed this tick (static, or its body not in
+// the island) is not remembered: its next snapshot starts from its own normal.
+void LocalDynamics6dofHaptic::RememberRenderedNormals() noexcept {
+  rendered_count_ = 0;
+  for (std::size_t i = 0; i < tick_ir_.pairs.size(); ++i) {
+    const render::TickPair& pair = tick_ir_.pairs[i];
+    if (pair.is_static || pair.motion < 0 ||
+        local_of_motion_[static_cast<std::size_t>(pair.motion)] < 0) {
+      continue;
+    }
+    rendered_key_[rendered_count_] = pair.key;
+    rendered_round_[rendered_count_] = round_[i];
+    rendered_n_[rendered_count_] = round_[i] ? pair.n_W : Vec3(pair.X_WB.q.conjugate() * pair.n_W);
+    ++rendered_count_;
   }
 }
 
@@ -111,7 +160,8 @@ void LocalDynamics6dofHaptic::HapticTick(const TickInput& in, TickOutput* out) n
   // A follower whose snapshot and the island's model came a tick apart catches up here.
   if (owner_ != nullptr && mapped_step_ != snapshot_step_) MapMotions();
   interpolator_.Evaluate(in.alpha(), in.X_WP, &tick_ir_);
-  RePoseOnLocalBodies();
+  RePoseOnLocalBodies(in.alpha());
+  RememberRenderedNormals();
   renderer_.Tick(tick_ir_, in.X_WP, in.dt, &output_);
   out->w_W = output_.w_W;
   out->X_WQ = output_.X_WQ;

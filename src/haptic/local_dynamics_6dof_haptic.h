@@ -26,7 +26,10 @@ inline constexpr std::uint32_t kLocal6dofBodyFault = 1u << 3;
 ///     re-posed on that body's CURRENT local pose: its plane (point p_BC and normal, both fixed in
 ///     the body frame of the snapshot's end pose) follows the locally simulated body (a round
 ///     object's, ir::GeometricPair::round, follows its COM without turning), and the points'
-///     depths are recomputed; static pairs and non-island bodies keep the interpolated IR;
+///     depths are recomputed; static pairs and non-island bodies keep the interpolated IR. The
+///     normal is blended over the period (SPEC §3.9, α as in step 1) from the one the pair was
+///     last rendered with to the snapshot's, in the body frame (world for a round object), so it
+///     is continuous across the snapshot switch, as the interpolator's is;
 ///  3. render::ProxyRenderer solves the proxy (eq. 3.4–3.10) and renders eq. 3.7–3.8;
 ///  4. each island pair's reaction, the renderer's wrench (render::ProxyPairReaction: force in N
 ///     and moment about the COM in N·m, world), is applied to the local body in the same tick
@@ -74,7 +77,8 @@ class LocalDynamics6dofHaptic final : public MethodHaptic {
   /// another step's model (a follower's snapshot arrived a tick apart from the owner's).
   void MapMotions() noexcept;
 
-  void RePoseOnLocalBodies() noexcept;
+  void RePoseOnLocalBodies(double alpha) noexcept;
+  void RememberRenderedNormals() noexcept;
   void PushLocalBodies() noexcept;
   void AddWrench(std::size_t l, const Wrench& w, const Vec3& c) noexcept;
 
@@ -92,11 +96,22 @@ class LocalDynamics6dofHaptic final : public MethodHaptic {
   double tick_dt_ = 0.0;
   // Per snapshot motion: the island body index, or -1.
   std::array<int, ir::kMaxNeighborBodies> local_of_motion_{};
-  // Per tick pair (the interpolator's output order): the plane normal in the body frame.
+  // Per tick pair (the interpolator's output order): the snapshot's plane normal in the body
+  // frame, and the one the blend starts from (the last rendered one of the same pair, in the
+  // body frame; the snapshot's own for a new pair).
   std::array<Vec3, ir::kMaxGeometricPairs> n_B_{};
-  // Round objects: the exported plane normal (world) and plane point relative to the COM.
+  std::array<Vec3, ir::kMaxGeometricPairs> start_n_B_{};
+  // Round objects: the exported plane normal (world) and the one its blend starts from (world),
+  // and the plane point relative to the COM.
   std::array<bool, ir::kMaxGeometricPairs> round_{};
   std::array<Vec3, ir::kMaxGeometricPairs> n_W_{};
+  std::array<Vec3, ir::kMaxGeometricPairs> start_n_W_{};
+  // What the last tick rendered, per tick pair: its key and normal (body frame; world for a
+  // round object), the start of the next snapshot's blends.
+  std::array<std::uint64_t, ir::kMaxGeometricPairs> rendered_key_{};
+  std::array<Vec3, ir::kMaxGeometricPairs> rendered_n_{};
+  std::array<bool, ir::kMaxGeometricPairs> rendered_round_{};
+  std::size_t rendered_count_ = 0;
   std::array<Vec3, ir::kMaxGeometricPairs> c_Cm_{};
   ir::HapticReport period_;
   // Material vibration at contact onset, added to the rendered force.

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "engine/engine_impl.h"
@@ -270,6 +271,63 @@ TEST(LocalDynamics6dofTest, ThePushMovesTheLocalBodyInTheSameTick) {
   (void)RunTicks(world::World::LoadString(xml), 0.01, 0.06, 2.0, before, after);
   ASSERT_GT(checked, 20) << "the pointer never pushed the local box";
   EXPECT_LT(worst, 1e-9);
+}
+
+// A sphere pointer (r 1.5 cm, frictionless, no damper, so the felt force is k_t times the
+// proxy's offset) slides along a 10 kg box's side, 0.5 mm deep, and past its vertical edge at
+// 8 cm/s: around the edge the contact normal turns by 75° in 4 mm, two physics steps. The
+// felt force never exceeds k_t times the sphere's exact depth in the box at the locally
+// simulated pose. (A plane through the edge with the period's end normal, used from the period's
+// start, reaches up to 0.07 mm deeper than the edge does: 0.14 N more than the geometry allows.)
+TEST(LocalDynamics6dofTest, ASpherePastABoxEdgeFeelsNoMoreThanItsDepth) {
+  const std::string xml = R"(<mujoco><option timestep="0.02" gravity="0 0 -9.81" cone="elliptic"/>
+    <default><geom condim="3" friction="0 0 0"/></default><worldbody>
+    <geom type="plane" size="1 1 0.1" friction="0.5 0.005 0.0001"/>
+    <body name="box" pos="0 0 0.05"><freejoint/>
+      <geom type="box" size="0.05 0.05 0.05" mass="10"/></body>
+    <body name="pointer" mocap="true" pos="0 0.0645 0.05">
+      <geom type="sphere" size="0.015" density="1000" contype="0" conaffinity="0"/></body>
+    </worldbody></mujoco>)";
+  constexpr double kR = 0.015, kHalf = 0.05, kStiffness = 2000.0, kSeconds = 1.0;
+  EngineSettings settings = PushSettings("local-dynamics-6dof", 0.02, kSeconds);
+  settings.rendering.damping = 0.0;
+  settings.rendering.rot_damping = 0.0;
+  settings.rendering.friction = 0.0;
+  settings.rendering.torque_model = "contact";
+  internal::EngineState state(
+      world::World::LoadString(xml),
+      device::MakeScriptedDevice(
+          {device::Keyframe{0.0, Pose{Vec3(0.0, 0.0645, 0.05), Quat::Identity()}},
+           device::Keyframe{kSeconds, Pose{Vec3(0.08, 0.0645, 0.05), Quat::Identity()}}}),
+      device::Calibration{}, settings);
+  physics::PhysicsSide physics = state.MakePhysicsSide(nullptr);
+  physics.Start(state.haptic->InitialReport(0.0));
+  double worst = -1.0;  // largest |f| − k_t · exact depth (N)
+  int past_edge = 0;    // ticks in contact with the sphere's centre beyond the edge
+  std::int64_t tick = 0;
+  for (std::int64_t k = 0; k < std::llround(kSeconds / 0.02); ++k) {
+    physics.Step(k);
+    for (int j = 0; j < state.ticks_per_step; ++j, ++tick) {
+      state.haptic->Tick(static_cast<double>(tick) * 0.001);
+      const haptic::MethodHaptic& m = *state.method.haptic;
+      const render::ProxyOutput& out = *haptic::LocalDynamics6dofLastOutput(m);
+      const render::LocalContactSolver& island = *haptic::LocalDynamics6dofSolver(m);
+      if (island.size() != 1) continue;
+      const Vec3 S_B = island.X_WB(0).Inverse() * (out.X_WQ.p - out.dr);
+      const Vec3 closest = S_B.cwiseMax(Vec3::Constant(-kHalf)).cwiseMin(Vec3::Constant(kHalf));
+      const double depth = std::max(0.0, kR - (S_B - closest).norm());
+      const double f = out.w_W.f.norm();
+      worst = std::max(worst, f - kStiffness * depth);
+      if (f > 0.0 && S_B.x() > kHalf) ++past_edge;
+    }
+    physics.TakeReports();
+    physics.Publish();
+    physics.DrainTickRecords();
+  }
+  physics::PhysicsStats stats;
+  physics.Finish(&stats);
+  ASSERT_GT(past_edge, 20) << "the sphere never slid past the edge in contact";
+  EXPECT_LE(worst, 1e-9);
 }
 
 // The haptic path of local-dynamics-6dof never allocates, in sustained contact with a moving box.
