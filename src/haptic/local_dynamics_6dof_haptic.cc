@@ -6,19 +6,6 @@
 #include <cmath>
 
 namespace mrh::haptic::internal {
-namespace {
-
-// The blend of SPEC §3.9 from `start` to `next`, unit; where the two nearly cancel (a normal that
-// flipped, α near 1/2) it has no reliable direction and `next` is used, as in IrInterpolator.
-Vec3 BlendNormal(const Vec3& start, const Vec3& next, double alpha) noexcept {
-  const Vec3 n = (1.0 - alpha) * start + alpha * next;
-  const double length = n.norm();
-  if (!(length > 1e-9)) return next;
-  return n / length;
-}
-
-}  // namespace
-
 LocalDynamics6dofHaptic::LocalDynamics6dofHaptic(const render::ProxyRendererSettings& settings,
                                                  const render::LocalContactSolverSettings& solver)
     : renderer_(settings), solver_(solver) {
@@ -91,10 +78,10 @@ void LocalDynamics6dofHaptic::RePoseOnLocalBodies(double alpha) noexcept {
     if (round_[i]) {
       // A rolling round body's surface facing the pointer moves with its centre, unturned: a
       // plane turned with the body would push along its turned normal and drive the roll.
-      pair.n_W = BlendNormal(start_n_W_[i], n_W_[i], alpha);
+      pair.n_W = render::BlendNormal(start_n_W_[i], n_W_[i], alpha);
       pair.c_W = pair.p_WCm + c_Cm_[i];
     } else {
-      pair.n_W = (pair.X_WB.q * BlendNormal(start_n_B_[i], n_B_[i], alpha)).normalized();
+      pair.n_W = (pair.X_WB.q * render::BlendNormal(start_n_B_[i], n_B_[i], alpha)).normalized();
       pair.c_W = pair.X_WB * pair.p_BC;
     }
     const double n_dot_c = pair.n_W.dot(pair.c_W);

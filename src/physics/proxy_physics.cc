@@ -4,8 +4,6 @@
 
 #include <fmt/format.h>
 
-#include <cmath>
-
 #include "mrh/core/error.h"
 #include "mrh/physics/methods.h"
 #include "mrh/world/world.h"

@@ -16,13 +16,6 @@ std::uint64_t KeyOf(const ir::GeometricPair& pair) noexcept {
   return PairKey(pair.pointer_geom, pair.object_geom);
 }
 
-Vec3 BlendNormal(const Vec3& previous, const Vec3& next, double alpha) noexcept {
-  const Vec3 n = (1.0 - alpha) * previous + alpha * next;
-  const double length = n.norm();
-  if (!(length > kMinBlendedNormal)) return next;
-  return n / length;
-}
-
 // Points are fixed on the pointer: re-posed with this tick's pointer pose, never blended.
 // depth = n·(c − v) = n·c − n·v.
 void AppendPoints(const ir::PhysicsSnapshot& snapshot, const ir::GeometricPair& pair,
@@ -42,6 +35,13 @@ void AppendPoints(const ir::PhysicsSnapshot& snapshot, const ir::GeometricPair& 
 }
 
 }  // namespace
+
+Vec3 BlendNormal(const Vec3& previous, const Vec3& next, double alpha) noexcept {
+  const Vec3 n = (1.0 - alpha) * previous + alpha * next;
+  const double length = n.norm();
+  if (!(length > kMinBlendedNormal)) return next;
+  return n / length;
+}
 
 // Each persisting pair starts its blend from the normal it was last rendered with, so the
 // normal is continuous across the snapshot switch; a new pair has no history and starts at its

@@ -43,4 +43,9 @@ inline std::uint64_t PairKey(int pointer_geom, int object_geom) noexcept {
          static_cast<std::uint32_t>(object_geom);
 }
 
+/// The normal blend of SPEC §3.9 from `previous` to `next` at alpha in [0, 1], unit. Where the
+/// two nearly cancel (a normal that flipped, alpha near 1/2) the blend has no reliable direction
+/// and `next` is returned. RT-safe.
+Vec3 BlendNormal(const Vec3& previous, const Vec3& next, double alpha) noexcept;
+
 }  // namespace mrh::render
