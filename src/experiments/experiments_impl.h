@@ -420,6 +420,7 @@ struct T37Result {
   std::string shape, pointer, method;  ///< method: e.g. "local-dynamics-6dof@20ms"
   bool offcentre = false;
   double mean_f = 0.0;          ///< N, rendered |f| over 2–5 s
+  double sd_f = 0.0;            ///< N, its standard deviation over 2–5 s
   Vec3 impulse = Vec3::Zero();  ///< N·s, ∫f dt of the rendered force from the touch on (world)
   double coulomb_f = 0.0;       ///< N, μ m |g| where the push is a steady slide, else 0
   double rolling_radius = 0.0;  ///< m, where the object rolls, else 0

@@ -179,14 +179,16 @@ T37Result Analyze(const Case& c, const Variant& v, const Tap& tap) {
   const bool steady = c.y == 0.0 && (c.pointer->face || c.shape->round_side);
   r.coulomb_f = c.shape->motion == Motion::kSlides && steady ? kFriction * tap.mass * tap.g : 0.0;
   r.rolling_radius = c.shape->radius;
-  double s = 0.0, n = 0.0;
+  double s = 0.0, ss = 0.0, n = 0.0;
   for (std::size_t i = 0; i < tap.t.size(); ++i) {
     if (tap.t[i] >= kTouch - 0.1 && i > 0) r.impulse += tap.f_W[i] * (tap.t[i] - tap.t[i - 1]);
     if (tap.t[i] < kFrom) continue;
     s += tap.f[i];
+    ss += tap.f[i] * tap.f[i];
     n += 1.0;
   }
   r.mean_f = n > 0.0 ? s / n : 0.0;
+  r.sd_f = n > 0.0 ? std::sqrt(std::max(0.0, ss / n - r.mean_f * r.mean_f)) : 0.0;
   for (const Tap::Step& step : tap.steps) {
     if (step.t < kTouch - 0.1) continue;  // a 20 ms step first drops a resting body (g Δt)
     r.peak_speed = std::max(r.peak_speed, step.state.V_WCm.v.norm());
@@ -322,12 +324,13 @@ int RunT37Full(const std::filesystem::path& out, bool quiet) {
 int RunT37(const std::filesystem::path& out, bool quiet, const T37Options& options) {
   const std::vector<T37Result> results = RunT37Cases(out, quiet, options);
   const std::size_t per_case = std::size(kVariants);
-  Table csv({"case", "method", "mean_force_N", "coulomb_force_N", "slide_error", "impulse_Ns",
-             "impulse_vs_ref", "peak_speed_mps", "peak_spin_radps", "end_x_m", "end_y_m",
-             "end_yaw_rad", "pose_error_m", "thrown", "spun", "follows_ref", "same_turn"});
-  Table md({"case", "method", "mean |f| 2–5 s (N)", "vs μmg", "∫f dt (x, y) (N·s)", "vs ref",
-            "peak speed (m/s)", "peak spin (rad/s)", "end (x, y) (m)", "yaw (°)", "pos. error (m)",
-            "verdict"});
+  Table csv({"case", "method", "mean_force_N", "sd_force_N", "coulomb_force_N", "slide_error",
+             "impulse_Ns", "impulse_vs_ref", "peak_speed_mps", "peak_spin_radps", "end_x_m",
+             "end_y_m", "end_yaw_rad", "pose_error_m", "thrown", "spun", "follows_ref",
+             "same_turn"});
+  Table md({"case", "method", "mean |f| 2–5 s (N)", "sd (N)", "vs μmg", "∫f dt (x, y) (N·s)",
+            "vs ref", "peak speed (m/s)", "peak spin (rad/s)", "end (x, y) (m)", "yaw (°)",
+            "pos. error (m)", "verdict"});
   Checks checks;
   nlohmann::json summary;
   const auto cell = [](const std::optional<double>& x, const char* f) {
@@ -353,12 +356,13 @@ int RunT37(const std::filesystem::path& out, bool quiet, const T37Options& optio
       note(v.follows_ref && !*v.follows_ref, "off ref");
       note(v.same_turn && !*v.same_turn, "turns the other way");
       csv.AddFormatted(
-          "{},{},{:.4f},{:.4f},{},{:.4f},{},{:.4f},{:.3f},{:.4f},{:.4f},{:.4f},{},{},{},{},{}",
-          name, r.method, r.mean_f, r.coulomb_f, cell(v.slide_error, "{:.4f}"), r.impulse.norm(),
-          cell(v.force_vs_ref, "{:.4f}"), r.peak_speed, r.peak_spin, r.end.x(), r.end.y(), r.yaw,
-          cell(v.pose_error, "{:.4f}"), v.thrown ? 1 : 0, v.spun ? 1 : 0, flag(v.follows_ref),
-          flag(v.same_turn));
-      md.Add({name, r.method, fmt::format("{:.3f}", r.mean_f),
+          "{},{},{:.4f},{:.4f},{:.4f},{},{:.4f},{},{:.4f},{:.3f},{:.4f},{:.4f},{:.4f},{},{},{},{},{"
+          "}",
+          name, r.method, r.mean_f, r.sd_f, r.coulomb_f, cell(v.slide_error, "{:.4f}"),
+          r.impulse.norm(), cell(v.force_vs_ref, "{:.4f}"), r.peak_speed, r.peak_spin, r.end.x(),
+          r.end.y(), r.yaw, cell(v.pose_error, "{:.4f}"), v.thrown ? 1 : 0, v.spun ? 1 : 0,
+          flag(v.follows_ref), flag(v.same_turn));
+      md.Add({name, r.method, fmt::format("{:.3f}", r.mean_f), fmt::format("{:.3f}", r.sd_f),
               v.slide_error ? fmt::format("{:+.1f} %", 100 * *v.slide_error) : "—",
               fmt::format("({:.2f}, {:.2f})", r.impulse.x(), r.impulse.y()),
               k > 0 && v.force_vs_ref ? fmt::format("{:.1f} %", 100 * *v.force_vs_ref) : "—",
@@ -368,6 +372,7 @@ int RunT37(const std::filesystem::path& out, bool quiet, const T37Options& optio
               k > 0 ? cell(v.pose_error, "{:.4f}") : "—", verdict.empty() ? "ok" : verdict});
       summary["cases"][name][r.method] = {
           {"mean_force_N", r.mean_f},
+          {"sd_force_N", r.sd_f},
           {"impulse_Ns", {r.impulse.x(), r.impulse.y(), r.impulse.z()}},
           {"peak_speed_mps", r.peak_speed},
           {"peak_spin_radps", r.peak_spin},
@@ -389,6 +394,9 @@ int RunT37(const std::filesystem::path& out, bool quiet, const T37Options& optio
       if (v.slide_ok) {
         checks.Add(fmt::format("{}_{}_coulomb_within_5pc", name, r.method), *v.slide_ok,
                    *v.slide_error, kSlideBar);
+        // A steady slide feels steady: no more force fluctuation than the rigid tool's.
+        checks.Add(fmt::format("{}_{}_force_sd_within_ref", name, r.method), r.sd_f <= ref.sd_f,
+                   r.sd_f, ref.sd_f);
       }
       if (v.force_vs_ref) {
         checks.Add(fmt::format("{}_{}_impulse_within_10pc_of_ref", name, r.method),

@@ -12,7 +12,7 @@ LocalDynamics6dofHaptic::LocalDynamics6dofHaptic(const render::ProxyRendererSett
   local_of_motion_.fill(-1);
 }
 
-// The interpolator emits one tick pair per snapshot pair with a valid motion, in order; n_B_
+// The interpolator emits one tick pair per snapshot pair with a valid motion, in order; n_F_
 // follows that order.
 void LocalDynamics6dofHaptic::Adopt(const ir::PhysicsSnapshot& snapshot) noexcept {
   interpolator_.Adopt(snapshot);
@@ -29,16 +29,18 @@ void LocalDynamics6dofHaptic::Adopt(const ir::PhysicsSnapshot& snapshot) noexcep
       continue;
     }
     const ir::BodyMotion& body = snapshot.bodies[static_cast<std::size_t>(pair.motion)];
-    round_[j] = pair.round;
-    n_W_[j] = pair.n_W;
     c_Cm_[j] = body.X_WB * pair.p_BC - body.X_WB * body.p_BCm;
-    n_B_[j] = body.X_WB.q.conjugate() * pair.n_W;
-    start_n_B_[j] = n_B_[j];
-    start_n_W_[j] = n_W_[j];
+    frame_[j] = pair.round                                       ? Frame::kWorld
+                : pair.normal_frame == ir::NormalFrame::kPointer ? Frame::kPointer
+                                                                 : Frame::kBody;
+    n_F_[j] = pair.round ? pair.n_W : pair.n_F;
+    start_n_F_[j] = n_F_[j];
     const std::uint64_t key = render::PairKey(pair.pointer_geom, pair.object_geom);
     for (std::size_t o = 0; o < rendered_count_; ++o) {
-      if (rendered_key_[o] != key || rendered_round_[o] != pair.round) continue;
-      (pair.round ? start_n_W_[j] : start_n_B_[j]) = rendered_n_[o];
+      if (rendered_key_[o] != key) continue;
+      start_n_F_[j] = rendered_frame_[o] == frame_[j]
+                          ? rendered_n_[o]
+                          : InFrame(frame_[j], rendered_n_W_[o], rendered_q_WB_[o]);
       break;
     }
     ++j;
@@ -64,9 +66,9 @@ void LocalDynamics6dofHaptic::MapMotions() noexcept {
 // the contact at one relative pose over-estimates the depth at every other); the snapshot switch
 // is then also a step in the load, which the damper turns into a one-tick spike. Blending from
 // the last rendered normal keeps the normal, and so the depth, continuous and near the contact's
-// own, as IrInterpolator does on the other bodies. In the body frame, so the plane still turns
-// with the local body; a round object's in the world, as its plane does not turn.
-void LocalDynamics6dofHaptic::RePoseOnLocalBodies(double alpha) noexcept {
+// own, as IrInterpolator does on the other bodies. The blend runs in the frame the normal turns
+// with (the class comment, step 2), so the plane still turns with the body whose face it is.
+void LocalDynamics6dofHaptic::RePoseOnLocalBodies(double alpha, const Pose& X_WP) noexcept {
   for (std::size_t i = 0; i < tick_ir_.pairs.size(); ++i) {
     render::TickPair& pair = tick_ir_.pairs[i];
     if (pair.is_static || pair.motion < 0) continue;
@@ -75,14 +77,22 @@ void LocalDynamics6dofHaptic::RePoseOnLocalBodies(double alpha) noexcept {
     const auto l = static_cast<std::size_t>(local);
     pair.X_WB = island().X_WB(l);
     pair.p_WCm = island().p_WCm(l);
-    if (round_[i]) {
-      // A rolling round body's surface facing the pointer moves with its centre, unturned: a
-      // plane turned with the body would push along its turned normal and drive the roll.
-      pair.n_W = render::BlendNormal(start_n_W_[i], n_W_[i], alpha);
-      pair.c_W = pair.p_WCm + c_Cm_[i];
-    } else {
-      pair.n_W = (pair.X_WB.q * render::BlendNormal(start_n_B_[i], n_B_[i], alpha)).normalized();
-      pair.c_W = pair.X_WB * pair.p_BC;
+    const Vec3 n_F = render::BlendNormal(start_n_F_[i], n_F_[i], alpha);
+    switch (frame_[i]) {
+      case Frame::kWorld:
+        // A rolling round body's surface facing the pointer moves with its centre, unturned: a
+        // plane turned with the body would push along its turned normal and drive the roll.
+        pair.n_W = n_F;
+        pair.c_W = pair.p_WCm + c_Cm_[i];
+        break;
+      case Frame::kPointer:
+        pair.n_W = (X_WP.q * n_F).normalized();
+        pair.c_W = pair.X_WB * pair.p_BC;
+        break;
+      case Frame::kBody:
+        pair.n_W = (pair.X_WB.q * n_F).normalized();
+        pair.c_W = pair.X_WB * pair.p_BC;
+        break;
     }
     const double n_dot_c = pair.n_W.dot(pair.c_W);
     for (int k = pair.first; k < pair.first + pair.count; ++k) {
@@ -92,22 +102,39 @@ void LocalDynamics6dofHaptic::RePoseOnLocalBodies(double alpha) noexcept {
   }
 }
 
-// The normals this tick rendered on island bodies (body frame; world for a round object), where
-// the next snapshot's blends start. A pair not re-posed this tick (static, or its body not in
-// the island) is not remembered: its next snapshot starts from its own normal.
-void LocalDynamics6dofHaptic::RememberRenderedNormals() noexcept {
+// The normals this tick rendered on island bodies (in their frames, and in the world with the
+// pose of their frame, for a pair whose next snapshot names another frame), where the next
+// snapshot's blends start. A pair not re-posed this tick (static, or its body not in the
+// island) is not remembered: its next snapshot starts from its own normal.
+void LocalDynamics6dofHaptic::RememberRenderedNormals(const Pose& X_WP) noexcept {
   rendered_count_ = 0;
+  rendered_q_WP_ = X_WP.q;
   for (std::size_t i = 0; i < tick_ir_.pairs.size(); ++i) {
     const render::TickPair& pair = tick_ir_.pairs[i];
     if (pair.is_static || pair.motion < 0 ||
         local_of_motion_[static_cast<std::size_t>(pair.motion)] < 0) {
       continue;
     }
-    rendered_key_[rendered_count_] = pair.key;
-    rendered_round_[rendered_count_] = round_[i];
-    rendered_n_[rendered_count_] = round_[i] ? pair.n_W : Vec3(pair.X_WB.q.conjugate() * pair.n_W);
-    ++rendered_count_;
+    const std::size_t o = rendered_count_++;
+    rendered_key_[o] = pair.key;
+    rendered_frame_[o] = frame_[i];
+    rendered_n_W_[o] = pair.n_W;
+    rendered_q_WB_[o] = pair.X_WB.q;
+    rendered_n_[o] = InFrame(frame_[i], pair.n_W, pair.X_WB.q);
   }
+}
+
+Vec3 LocalDynamics6dofHaptic::InFrame(Frame frame, const Vec3& n_W,
+                                      const Quat& q_WB) const noexcept {
+  switch (frame) {
+    case Frame::kPointer:
+      return rendered_q_WP_.conjugate() * n_W;
+    case Frame::kBody:
+      return q_WB.conjugate() * n_W;
+    case Frame::kWorld:
+      break;
+  }
+  return n_W;
 }
 
 // Step 4: each island pair's reaction, the renderer's wrench (the pair's force and its share of
@@ -147,8 +174,8 @@ void LocalDynamics6dofHaptic::HapticTick(const TickInput& in, TickOutput* out) n
   // A follower whose snapshot and the island's model came a tick apart catches up here.
   if (owner_ != nullptr && mapped_step_ != snapshot_step_) MapMotions();
   interpolator_.Evaluate(in.alpha(), in.X_WP, &tick_ir_);
-  RePoseOnLocalBodies(in.alpha());
-  RememberRenderedNormals();
+  RePoseOnLocalBodies(in.alpha(), in.X_WP);
+  RememberRenderedNormals(in.X_WP);
   renderer_.Tick(tick_ir_, in.X_WP, in.dt, &output_);
   out->w_W = output_.w_W;
   out->X_WQ = output_.X_WQ;

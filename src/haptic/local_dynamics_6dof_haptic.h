@@ -23,13 +23,17 @@ inline constexpr std::uint32_t kLocal6dofBodyFault = 1u << 3;
 /// lock, throw or I/O):
 ///  1. the geometric IR is evaluated as in proxy-6dof (IrInterpolator, α = min(1, (j+1)/n));
 ///  2. every pair whose object is a body of the snapshot's ir::LocalContactModel island is
-///     re-posed on that body's CURRENT local pose: its plane (point p_BC and normal, both fixed in
-///     the body frame of the snapshot's end pose) follows the locally simulated body (a round
-///     object's, ir::GeometricPair::round, follows its COM without turning), and the points'
-///     depths are recomputed; static pairs and non-island bodies keep the interpolated IR. The
-///     normal is blended over the period (SPEC §3.9, α as in step 1) from the one the pair was
-///     last rendered with to the snapshot's, in the body frame (world for a round object), so it
-///     is continuous across the snapshot switch, as the interpolator's is;
+///     re-posed on that body's CURRENT local pose: its plane point p_BC follows the locally
+///     simulated body (a round object's, ir::GeometricPair::round, follows its COM without
+///     turning), and its normal turns with the body whose face it is
+///     (ir::GeometricPair::normal_frame): the object's (an object face), the pointer's (an
+///     object edge or vertex, or a cylinder's side, on a pointer face: held in the object, it
+///     would tilt the plane by the object's turn against the pointer face the contact lies on
+///     and pull the object back toward the snapshot's orientation, a step late), or neither (a
+///     round object); the points' depths are recomputed. Static pairs and non-island bodies
+///     keep the interpolated IR. The normal is blended over the period (SPEC §3.9, α as in
+///     step 1) from the one the pair was last rendered with to the snapshot's, in its frame, so
+///     it is continuous across the snapshot switch, as the interpolator's is;
 ///  3. render::ProxyRenderer solves the proxy (eq. 3.4–3.10) and renders eq. 3.7–3.8;
 ///  4. each island pair's reaction, the renderer's wrench (render::ProxyPairReaction: force in N
 ///     and moment about the COM in N·m, world), is applied to the local body in the same tick
@@ -77,8 +81,14 @@ class LocalDynamics6dofHaptic final : public MethodHaptic {
   /// another step's model (a follower's snapshot arrived a tick apart from the owner's).
   void MapMotions() noexcept;
 
-  void RePoseOnLocalBodies(double alpha) noexcept;
-  void RememberRenderedNormals() noexcept;
+  /// The frame an island pair's normal is held in over the period: the world (a round object),
+  /// the object's body frame or the pointer's (ir::GeometricPair::normal_frame).
+  enum class Frame : std::uint8_t { kWorld, kBody, kPointer };
+
+  void RePoseOnLocalBodies(double alpha, const Pose& X_WP) noexcept;
+  void RememberRenderedNormals(const Pose& X_WP) noexcept;
+  /// n_W in `frame` with the last rendered tick's pointer pose, or the body orientation q_WB.
+  Vec3 InFrame(Frame frame, const Vec3& n_W, const Quat& q_WB) const noexcept;
   void PushLocalBodies() noexcept;
   void AddWrench(std::size_t l, const Wrench& w, const Vec3& c) noexcept;
 
@@ -96,22 +106,23 @@ class LocalDynamics6dofHaptic final : public MethodHaptic {
   double tick_dt_ = 0.0;
   // Per snapshot motion: the island body index, or -1.
   std::array<int, ir::kMaxNeighborBodies> local_of_motion_{};
-  // Per tick pair (the interpolator's output order): the snapshot's plane normal in the body
-  // frame, and the one the blend starts from (the last rendered one of the same pair, in the
-  // body frame; the snapshot's own for a new pair).
-  std::array<Vec3, ir::kMaxGeometricPairs> n_B_{};
-  std::array<Vec3, ir::kMaxGeometricPairs> start_n_B_{};
-  // Round objects: the exported plane normal (world) and the one its blend starts from (world),
-  // and the plane point relative to the COM.
-  std::array<bool, ir::kMaxGeometricPairs> round_{};
-  std::array<Vec3, ir::kMaxGeometricPairs> n_W_{};
-  std::array<Vec3, ir::kMaxGeometricPairs> start_n_W_{};
-  // What the last tick rendered, per tick pair: its key and normal (body frame; world for a
-  // round object), the start of the next snapshot's blends.
+  // Per tick pair (the interpolator's output order): the frame its normal is held in, the
+  // snapshot's normal in that frame, and the one the blend starts from (the last rendered one of
+  // the same pair, in that frame; the snapshot's own for a new pair).
+  std::array<Frame, ir::kMaxGeometricPairs> frame_{};
+  std::array<Vec3, ir::kMaxGeometricPairs> n_F_{};
+  std::array<Vec3, ir::kMaxGeometricPairs> start_n_F_{};
+  // What the last tick rendered, per tick pair: its key, frame, normal in that frame and in the
+  // world, and its body's orientation (and the pointer's), the start of the next snapshot's
+  // blends.
   std::array<std::uint64_t, ir::kMaxGeometricPairs> rendered_key_{};
+  std::array<Frame, ir::kMaxGeometricPairs> rendered_frame_{};
   std::array<Vec3, ir::kMaxGeometricPairs> rendered_n_{};
-  std::array<bool, ir::kMaxGeometricPairs> rendered_round_{};
+  std::array<Vec3, ir::kMaxGeometricPairs> rendered_n_W_{};
+  std::array<Quat, ir::kMaxGeometricPairs> rendered_q_WB_{};
+  Quat rendered_q_WP_ = Quat::Identity();
   std::size_t rendered_count_ = 0;
+  // The plane point of a round object relative to its COM (world).
   std::array<Vec3, ir::kMaxGeometricPairs> c_Cm_{};
   ir::HapticReport period_;
   // Material vibration at contact onset, added to the rendered force.

@@ -87,6 +87,11 @@ GeometricIrBuilder::Piece GeometricIrBuilder::MakePiece(const world::World& worl
   piece.moves = BodyMoves(world.body(info.body));
   piece.round = info.shape.type == geometry::ShapeType::kSphere ||
                 info.shape.type == geometry::ShapeType::kCapsule;
+  piece.faces =
+      info.shape.type == geometry::ShapeType::kBox || info.shape.type == geometry::ShapeType::kMesh
+          ? Faces::kFlat
+      : info.shape.type == geometry::ShapeType::kCylinder ? Faces::kAxial
+                                                          : Faces::kCurved;
   try {
     piece.polyhedron =
         geometry::ConvexPolyhedron::FromShape(info.shape, rendering_.curved_segments);
@@ -202,6 +207,16 @@ void GeometricIrBuilder::FillPair(const Neighbor& n, const Pose& X_WP, int motio
   pair.penetrating = region.status == geometry::RegionStatus::kRegion;
   pair.round = o.round;
   pair.material = materials_.of(o.geom);
+  const NormalOwner owner = NormalFeature(NormalSide{&p.polyhedron, p.X_WG, p.faces},
+                                          NormalSide{&o.polyhedron, o.X_WG, o.faces}, region.n_W,
+                                          region.status == geometry::RegionStatus::kRegion
+                                              ? std::span<const Vec3>(region.points_W)
+                                              : std::span<const Vec3>());
+  pair.normal_frame = owner.frame;
+  pair.n_F =
+      owner.frame == ir::NormalFrame::kPointer
+          ? Vec3(X_WP.q.conjugate() * owner.n_W)
+          : Vec3(out->bodies[static_cast<std::size_t>(motion)].X_WB.q.conjugate() * owner.n_W);
   if (pair.penetrating) ++stats_.penetrating;
   const Pose X_PW = X_WP.Inverse();
   for (std::size_t k = 0; k < region.points_W.size(); ++k) {

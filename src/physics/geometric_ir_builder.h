@@ -6,14 +6,15 @@
 #include <memory>
 #include <vector>
 
+#include "body_motions.h"
+#include "material_table.h"
 #include "mrh/engine/settings.h"
 #include "mrh/geometry/broadphase.h"
 #include "mrh/geometry/contact_region.h"
 #include "mrh/geometry/distance.h"
 #include "mrh/geometry/polyhedron.h"
 #include "mrh/ir/snapshot.h"
-#include "body_motions.h"
-#include "material_table.h"
+#include "normal_feature.h"
 
 namespace mrh::world {
 class World;
@@ -81,6 +82,7 @@ class GeometricIrBuilder {
     Pose X_WG;          // last world pose (objects)
     bool moves = true;  // its body can move (boxes refreshed every Build)
     bool round = false; // sphere or capsule (ir::GeometricPair::round)
+    Faces faces = Faces::kCurved;  // NormalSide::faces
     int handle = -1;    // sweep-and-prune handle
     geometry::ConvexPolyhedron polyhedron;
     std::unique_ptr<geometry::CollisionShape> shape;

@@ -80,6 +80,13 @@ struct PointContact {
 
 /// One pointer-geom/object-geom pair of the geometric IR (SPEC §3.3.3): a plane fixed on the
 /// object and the pointer's contact points below it.
+/// The body a geometric pair's contact normal belongs to (its face, or the face a feature of the
+/// other body lies on): the normal turns with that body while the other moves relative to it.
+enum class NormalFrame : std::uint8_t {
+  kObject,   ///< an object face (or an edge–edge contact, or any contact of a curved pointer)
+  kPointer,  ///< a pointer face: an object edge or vertex, or a curved object's side, on it
+};
+
 struct GeometricPair {
   int motion = -1;              ///< index into PhysicsSnapshot::bodies (the object's body)
   int object_geom = -1;         ///< world geom id of the object side
@@ -96,6 +103,12 @@ struct GeometricPair {
   /// surface, and so the plane facing the pointer, does not turn with the body. An ellipsoid's
   /// does.
   bool round = false;
+  /// The body whose face the contact normal is (physics::internal::NormalFeature) and the normal
+  /// in that body's frame: the object body frame (a flat object's face normal exactly) or the
+  /// pointer body frame. Read by the methods that move the object during the period
+  /// (local-dynamics-6dof); n_W is the EPA normal, as built.
+  NormalFrame normal_frame = NormalFrame::kObject;
+  Vec3 n_F = Vec3::UnitZ();
   ContactMaterial material;     ///< the object geom's haptic material (none: rendering.*)
 };
 
