@@ -91,10 +91,15 @@ void ProxyLocalReaction::StartIsland() {
     seeds_.push_back(b.body);
     motions_.push_back(static_cast<int>(motions_.size()));
   }
-  solver_.Clear();
-  if (seeds_.empty()) return;
+  if (seeds_.empty()) {
+    solver_.Clear();
+    return;
+  }
   (void)exporter_.Export(seeds_, motions_, model_.get());
-  solver_.Adopt(*model_);
+  // Every body from the world's state (the world owns it between steps; AfterStep writes the
+  // run back), the contacts warm-started from the last step's impulses: with one substep per
+  // step a solve started from zero stops at its sweep cap with the floor friction unresolved.
+  solver_.Restart(*model_);
   for (LocalBody& b : bodies_) {  // local is -1 from StartBodies
     for (std::size_t i = 0; i < solver_.size(); ++i) {
       if (solver_.world_body(i) == b.body) b.local = static_cast<int>(i);

@@ -121,8 +121,10 @@ Mat3 InverseOrZero(const Mat3& I) {
 
 }  // namespace
 
-// The model's bodies into scratch_, each from its local state when it keeps one (see Adopt).
-void LocalContactSolver::AdoptBodies(const ir::LocalContactModel& model, std::size_t n) noexcept {
+// The model's bodies into scratch_, each from its local state when it keeps one (see Adopt;
+// none with keep_local_state false).
+void LocalContactSolver::AdoptBodies(const ir::LocalContactModel& model, std::size_t n,
+                                     bool keep_local_state) noexcept {
   for (std::size_t i = 0; i < n; ++i) {
     const ir::LocalIslandBody& e = model.bodies[i];
     Body& b = scratch_[i];
@@ -137,7 +139,7 @@ void LocalContactSolver::AdoptBodies(const ir::LocalContactModel& model, std::si
     b.q = e.X_WB.q.normalized();
     b.v = e.V_WCm.v;
     b.w = e.V_WCm.w;
-    for (std::size_t o = 0; o < count_; ++o) {
+    for (std::size_t o = 0; keep_local_state && o < count_; ++o) {
       if (bodies_[o].body != e.body || (e.reset && !bodies_[o].pushed)) continue;
       b.p = bodies_[o].p;
       b.q = bodies_[o].q;
@@ -149,9 +151,18 @@ void LocalContactSolver::AdoptBodies(const ir::LocalContactModel& model, std::si
 }
 
 void LocalContactSolver::Adopt(const ir::LocalContactModel& model) noexcept {
+  AdoptModel(model, true);
+}
+
+void LocalContactSolver::Restart(const ir::LocalContactModel& model) noexcept {
+  AdoptModel(model, false);
+}
+
+void LocalContactSolver::AdoptModel(const ir::LocalContactModel& model,
+                                    bool keep_local_state) noexcept {
   SaveWarmStart();
   const std::size_t n = std::min(model.bodies.size(), bodies_.size());
-  AdoptBodies(model, n);
+  AdoptBodies(model, n, keep_local_state);
   for (std::size_t i = 0; i < n; ++i) bodies_[i] = scratch_[i];
   count_ = n;
   rows_count_ = 0;

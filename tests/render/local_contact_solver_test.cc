@@ -151,5 +151,55 @@ TEST(LocalContactSolverFriction, OffCentrePushTurnsTheBoxAbeamItsCentreOfPressur
   }
 }
 
+// Restart: a caller whose world owns the bodies (proxy-6dof's physics-side island) hands the
+// solver its state every period. The bodies start from it, not from the solver's own run, and
+// the contacts keep their impulses, so a sliding, turning box re-exported every tick moves as
+// one continuous run does and its solve converges; from zero impulses (Clear, then Adopt) it
+// stops at the sweep cap every tick.
+TEST(LocalContactSolverRestart, StartsFromTheExportedStateWithWarmContacts) {
+  const auto exported = [](const LocalContactSolver& from) {
+    ir::LocalContactModel m = BoxOnFloor(false);
+    m.bodies[0].X_WB = from.X_WB(0);
+    m.bodies[0].V_WCm = from.V_WCm(0);
+    return m;
+  };
+  const LocalContactSolverSettings settings;
+  LocalContactSolver continuous(settings);
+  continuous.Adopt(BoxOnFloor(false));
+  for (int k = 0; k < 300; ++k) EXPECT_TRUE(continuous.Step(kDt));
+  LocalContactSolver restarted = continuous, cold = continuous;
+  // 1.2 μ m g along +x at the -x face, 3 cm off the centre line: the box slides and turns.
+  const Vec3 p_B(-kHalf, 0.03, 0.0);
+  const Vec3 F(1.2 * kMu * kMass * kG, 0.0, 0.0);
+  int continuous_capped = 0, cold_capped = 0, sweeps_differ = 0;
+  for (int k = 0; k < 300; ++k) {
+    restarted.Restart(exported(restarted));
+    cold.Clear();
+    cold.Adopt(exported(cold));
+    for (LocalContactSolver* s : {&continuous, &restarted, &cold}) {
+      s->AddForce(0, s->X_WB(0).q * F, s->X_WB(0) * p_B);
+      EXPECT_TRUE(s->Step(kDt));
+    }
+    continuous_capped += continuous.last_sweeps() == settings.iterations ? 1 : 0;
+    cold_capped += cold.last_sweeps() == settings.iterations ? 1 : 0;
+    sweeps_differ += restarted.last_sweeps() != continuous.last_sweeps() ? 1 : 0;
+  }
+  EXPECT_LT(continuous.V_WCm(0).w.z(), -0.1) << "the push did not turn the box";
+  EXPECT_LT((restarted.p_WCm(0) - continuous.p_WCm(0)).norm(), 1e-9);
+  EXPECT_NEAR(restarted.V_WCm(0).w.z(), continuous.V_WCm(0).w.z(), 1e-6);
+  // The same solve tick by tick; cold, nearly every tick stops at the cap (the continuous run
+  // reaches it in a quarter of them as the box starts to slide and turn).
+  EXPECT_EQ(sweeps_differ, 0);
+  EXPECT_LT(continuous_capped, 100);
+  EXPECT_GT(cold_capped, 250);
+
+  // Not the solver's own run: a body moved by the world between periods starts where it is.
+  ir::LocalContactModel moved = exported(restarted);
+  moved.bodies[0].X_WB.p.x() += 0.01;
+  const Vec3 p_moved = moved.bodies[0].X_WB * moved.bodies[0].p_BCm;
+  restarted.Restart(moved);
+  EXPECT_LT((restarted.p_WCm(0) - p_moved).norm(), 1e-12);
+}
+
 }  // namespace
 }  // namespace mrh::render

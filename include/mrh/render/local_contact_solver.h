@@ -49,6 +49,13 @@ class LocalContactSolver {
   /// before that push reached the world, and the next synchronization writes it. RT-safe.
   void Adopt(const ir::LocalContactModel& model) noexcept;
 
+  /// As Adopt, but every body starts from the model's exported state, none from a local state:
+  /// for a caller whose world owns the bodies' state every period (proxy-6dof's physics-side
+  /// island, rebuilt from the world each step). The contacts are still warm-started from the
+  /// latest rows' impulses: a projected Gauss–Seidel solve cut at `iterations` sweeps from zero
+  /// impulses leaves a sliding, turning body's friction loads unresolved. RT-safe.
+  void Restart(const ir::LocalContactModel& model) noexcept;
+
   /// Drops every body (e.g. a method that stopped using the model). RT-safe.
   void Clear() noexcept { count_ = 0; rows_count_ = 0; }
 
@@ -135,7 +142,9 @@ class LocalContactSolver {
     std::array<double, 3> lambda{};
   };
 
-  void AdoptBodies(const ir::LocalContactModel& model, std::size_t n) noexcept;
+  void AdoptModel(const ir::LocalContactModel& model, bool keep_local_state) noexcept;
+  void AdoptBodies(const ir::LocalContactModel& model, std::size_t n,
+                   bool keep_local_state) noexcept;
   void SaveWarmStart() noexcept;
   void WarmStart(Row& r, std::size_t k) const noexcept;
   void HoldRestingPenetration() noexcept;
