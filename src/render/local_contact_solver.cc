@@ -58,20 +58,21 @@ void ProjectOnDisc(double limit, double* l1, double* l2) {
 
 // The friction impulse of an elliptic (disc) cone: the minimiser of ½ xᵀ M x − bᵀ x over the
 // disc |x| <= limit, M = [m11 m12; m12 m22] symmetric positive definite (the contact's 2×2
-// tangential block of A + R). Outside the disc the solution is x = (M + ν I)⁻¹ b with ν > 0 and
+// tangential block of A + R), det = m11 m22 − m12² (constant over a tick's sweeps, so computed
+// once per tick). Outside the disc the solution is x = (M + ν I)⁻¹ b with ν > 0 and
 // |x| = limit, ν found by Newton's method on |x(ν)|² − limit², which is convex and decreasing
 // in ν, so the iterates approach the root from below without overshooting. This is the friction
 // the maximum-dissipation principle gives: opposite the sliding velocity in M's metric.
 // Projecting the unconstrained x radially instead (the Euclidean metric) would turn the friction
 // of a corner whose tangents differ in effective mass away from the slip.
-void SolveDisc(double m11, double m12, double m22, double b1, double b2, double limit, double* x1,
-               double* x2) {
+void SolveDisc(double m11, double m12, double m22, double det, double b1, double b2, double limit,
+               double* x1, double* x2) {
   if (!(limit > 0.0)) {
     *x1 = 0.0;
     *x2 = 0.0;
     return;
   }
-  if (!(m11 * m22 - m12 * m12 > 0.0)) {  // degenerate block: each tangent on its own
+  if (!(det > 0.0)) {  // degenerate block: each tangent on its own
     *x1 = m11 > 0.0 ? b1 / m11 : 0.0;
     *x2 = m22 > 0.0 ? b2 / m22 : 0.0;
     ProjectOnDisc(limit, x1, x2);
@@ -80,11 +81,13 @@ void SolveDisc(double m11, double m12, double m22, double b1, double b2, double 
   // y = (M + ν I)⁻¹ r
   const auto apply_inverse = [&](double nu, double r1, double r2, double* y1, double* y2) {
     const double a = m11 + nu, c = m22 + nu;
-    const double det = a * c - m12 * m12;
-    *y1 = (c * r1 - m12 * r2) / det;
-    *y2 = (a * r2 - m12 * r1) / det;
+    const double det_nu = a * c - m12 * m12;
+    *y1 = (c * r1 - m12 * r2) / det_nu;
+    *y2 = (a * r2 - m12 * r1) / det_nu;
   };
-  apply_inverse(0.0, b1, b2, x1, x2);
+  // x = M⁻¹ b: apply_inverse at ν = 0 with the tick's det (m11, m22 >= +0, so m + 0 is m).
+  *x1 = (m22 * b1 - m12 * b2) / det;
+  *x2 = (m11 * b2 - m12 * b1) / det;
   const double limit2 = limit * limit;
   if (*x1 * *x1 + *x2 * *x2 <= limit2) return;
   double nu = 0.0;
@@ -413,6 +416,9 @@ void LocalContactSolver::SetTargets(Row& r, double gap, double dt) const noexcep
     }
   }
   for (double& w : r.inv_w) w = w + r.R > 0.0 ? 1.0 / (w + r.R) : 0.0;
+  r.m11 = r.inv_w[1] > 0.0 ? 1.0 / r.inv_w[1] : 0.0;
+  r.m22 = r.inv_w[2] > 0.0 ? 1.0 / r.inv_w[2] : 0.0;
+  r.det = r.m11 * r.m22 - r.a12 * r.a12;
 }
 
 double LocalContactSolver::RelativeStartVelocity(const Row& r, const Vec3& dir) const noexcept {
@@ -439,12 +445,11 @@ double LocalContactSolver::SolveRow(Row& r, bool reverse) noexcept {
   }
   // The contact's two tangents as one block: M = A_tt + R I, and the unconstrained impulse
   // solves M (l − λ) = target − v − R λ, i.e. M l = b with b = target − v − R λ + M λ.
-  const double m11 = r.inv_w[1] > 0.0 ? 1.0 / r.inv_w[1] : 0.0;
-  const double m22 = r.inv_w[2] > 0.0 ? 1.0 / r.inv_w[2] : 0.0;
+  const double m11 = r.m11, m22 = r.m22;
   const double g1 = r.target[1] - RelativeVelocity(r, 1) - r.R * r.lambda[1];
   const double g2 = r.target[2] - RelativeVelocity(r, 2) - r.R * r.lambda[2];
   double l1 = 0.0, l2 = 0.0;
-  SolveDisc(m11, r.a12, m22, g1 + m11 * r.lambda[1] + r.a12 * r.lambda[2],
+  SolveDisc(m11, r.a12, m22, r.det, g1 + m11 * r.lambda[1] + r.a12 * r.lambda[2],
             g2 + r.a12 * r.lambda[1] + m22 * r.lambda[2], r.c.mu * ln, &l1, &l2);
   change = std::max({change, VelocityChange(l1 - r.lambda[1], r.inv_w[1]),
                      VelocityChange(l2 - r.lambda[2], r.inv_w[2])});

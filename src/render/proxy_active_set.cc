@@ -192,33 +192,78 @@ void ProxyActiveSetSolver::SolveEqualityActive() noexcept {
   }
 }
 
+namespace {
+
+// Two doubles, one per row: the slack scan below handles rows two at a time. Each lane does
+// exactly the scalar operations in the scalar order (SSE2 lanes round as scalar SSE2 does, and
+// -ffp-contract=off keeps multiply and add apart), so the slacks are bit-identical.
+using TwoRows = double __attribute__((vector_size(16)));
+
+// Rows k and k + 1 side by side: each lane one row's direction, lever arm and rhs.
+struct TwoRowData {
+  TwoRows a[3];
+  TwoRows r[3];
+  TwoRows rhs;
+};
+
+TwoRowData LoadTwo(const ProxyRow* rows, std::size_t k) noexcept {
+  const ProxyRow& p = rows[k];
+  const ProxyRow& q = rows[k + 1];
+  return {{TwoRows{p.a.x(), q.a.x()}, TwoRows{p.a.y(), q.a.y()}, TwoRows{p.a.z(), q.a.z()}},
+          {TwoRows{p.r.x(), q.r.x()}, TwoRows{p.r.y(), q.r.y()}, TwoRows{p.r.z(), q.r.z()}},
+          TwoRows{p.rhs, q.rhs}};
+}
+
+// The slack n_k·y − rhs_k of a row, evaluated as a_k·(Δr + Δθ × r_k) − rhs_k (see MostViolated).
+// T is double (one row) or TwoRows; dr and w are Δr and Δθ.
+template <typename T>
+T Slack(const T (&dr)[3], const T (&w)[3], const T (&a)[3], const T (&r)[3], T rhs) noexcept {
+  // Displacement of the contact point, Δr + Δθ × r.
+  const T u0 = dr[0] + (w[1] * r[2] - w[2] * r[1]);
+  const T u1 = dr[1] + (w[2] * r[0] - w[0] * r[2]);
+  const T u2 = dr[2] + (w[0] * r[1] - w[1] * r[0]);
+  return (a[0] * u0 + a[1] * u1) + a[2] * u2 - rhs;
+}
+
+}  // namespace
+
 // The inactive row with the most negative n_k·y − rhs_k below −tolerance, or −1. The slack is
 // evaluated as a_k·(Δr + Δθ × r_k) − rhs_k on the rows as given (n_k·y in the proxy's own
 // coordinates), so no per-row data is stored: in sustained contact the warm start is the
-// solution and this one pass over the rows is all the solver reads of them.
+// solution and this one pass over the rows is all the solver reads of them. Rows go two at a
+// time; a pair of rows whose slacks are both no lower than the running minimum (nearly every
+// pair) is passed over, the others are taken one after the other as in a scalar scan.
 int ProxyActiveSetSolver::MostViolated(double tolerance, double* violation) const noexcept {
-  const double dr0 = y_[0], dr1 = y_[1], dr2 = y_[2];
   // Δθ = K y_θ.
-  const double w0 = k_[0] * y_[3];
-  const double w1 = k_[1] * y_[3] + k_[3] * y_[4];
-  const double w2 = k_[2] * y_[3] + k_[4] * y_[4] + k_[5] * y_[5];
+  const double w[3] = {k_[0] * y_[3], k_[1] * y_[3] + k_[3] * y_[4],
+                       k_[2] * y_[3] + k_[4] * y_[4] + k_[5] * y_[5]};
+  const double dr[3] = {y_[0], y_[1], y_[2]};
+  const TwoRows w2[3] = {TwoRows{w[0], w[0]}, TwoRows{w[1], w[1]}, TwoRows{w[2], w[2]}};
+  const TwoRows dr2[3] = {TwoRows{dr[0], dr[0]}, TwoRows{dr[1], dr[1]}, TwoRows{dr[2], dr[2]}};
   std::size_t best = 0;
   double lowest = std::numeric_limits<double>::infinity();
   const std::size_t m = rows_.size();
   const ProxyRow* const rows = rows_.data();
-  for (std::size_t k = 0; k < m; ++k) {
-    const ProxyRow& row = rows[k];
-    const double r0 = row.r.x(), r1 = row.r.y(), r2 = row.r.z();
-    // Displacement of the contact point, Δr + Δθ × r.
-    const double u0 = dr0 + (w1 * r2 - w2 * r1);
-    const double u1 = dr1 + (w2 * r0 - w0 * r2);
-    const double u2 = dr2 + (w0 * r1 - w1 * r0);
-    const double s = (row.a.x() * u0 + row.a.y() * u1) + row.a.z() * u2 - row.rhs;
-    // A new running minimum is rare, so the active-set test (<= 6 compares) costs little.
+  // A new running minimum is rare, so the active-set test (<= 6 compares) costs little.
+  const auto consider = [&](std::size_t k, double s) noexcept {
     if (s < lowest && !IsActive(k)) {
       lowest = s;
       best = k;
     }
+  };
+  std::size_t k = 0;
+  for (; k + 1 < m; k += 2) {
+    const TwoRowData two = LoadTwo(rows, k);
+    const TwoRows s = Slack(dr2, w2, two.a, two.r, two.rhs);
+    if (!(s[0] < lowest) && !(s[1] < lowest)) continue;
+    consider(k, s[0]);
+    consider(k + 1, s[1]);
+  }
+  for (; k < m; ++k) {
+    const ProxyRow& row = rows[k];
+    const double a[3] = {row.a.x(), row.a.y(), row.a.z()};
+    const double r[3] = {row.r.x(), row.r.y(), row.r.z()};
+    consider(k, Slack(dr, w, a, r, row.rhs));
   }
   *violation = std::min(0.0, lowest);
   return lowest < -tolerance ? static_cast<int>(best) : -1;

@@ -123,6 +123,11 @@ class LocalContactSolver {
     std::array<double, 3> target{};  // velocity (m/s) the row drives to (less R λ when soft)
     double R = 0.0;                  // soft regularisation (1/kg; 0: hard)
     double a12 = 0.0;   // the friction rows' coupling d1·(A d2) in A (1/kg): the disc's block
+    // The disc's block M = A_tt + R I (kg): its diagonal 1 / inv_w[1], 1 / inv_w[2] (0 where
+    // inv_w is 0) and determinant m11 m22 − a12², which every sweep of the tick uses.
+    double m11 = 0.0;
+    double m22 = 0.0;
+    double det = 0.0;
     double hold = 0.0;  // penetration kept, not pushed out (m, >= 0; HoldRestingPenetration)
     std::array<double, 3> lambda{};  // impulses (N·s): normal, t1, t2
     // Per direction j, this tick: the angular Jacobians r × d_j and the angular velocity
