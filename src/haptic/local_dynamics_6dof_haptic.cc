@@ -30,10 +30,11 @@ void LocalDynamics6dofHaptic::Adopt(const ir::PhysicsSnapshot& snapshot) noexcep
     }
     const ir::BodyMotion& body = snapshot.bodies[static_cast<std::size_t>(pair.motion)];
     c_Cm_[j] = body.X_WB * pair.p_BC - body.X_WB * body.p_BCm;
-    frame_[j] = pair.round                                       ? Frame::kWorld
-                : pair.normal_frame == ir::NormalFrame::kPointer ? Frame::kPointer
-                                                                 : Frame::kBody;
-    n_F_[j] = pair.round ? pair.n_W : pair.n_F;
+    const bool carried = pair.n_F.squaredNorm() > 0.0;
+    frame_[j] = pair.round                                                  ? Frame::kWorld
+                : carried && pair.normal_frame == ir::NormalFrame::kPointer ? Frame::kPointer
+                                                                            : Frame::kBody;
+    n_F_[j] = pair.round ? pair.n_W : carried ? pair.n_F : Vec3(body.X_WB.q.conjugate() * pair.n_W);
     start_n_F_[j] = n_F_[j];
     const std::uint64_t key = render::PairKey(pair.pointer_geom, pair.object_geom);
     for (std::size_t o = 0; o < rendered_count_; ++o) {

@@ -103,12 +103,13 @@ struct GeometricPair {
   /// surface, and so the plane facing the pointer, does not turn with the body. An ellipsoid's
   /// does.
   bool round = false;
-  /// The body whose face the contact normal is (physics::internal::NormalFeature) and the normal
-  /// in that body's frame: the object body frame (a flat object's face normal exactly) or the
-  /// pointer body frame. Read by the methods that move the object during the period
-  /// (local-dynamics-6dof); n_W is the EPA normal, as built.
+  /// The body whose face the contact normal is (physics::internal::NormalFeature) and the unit
+  /// normal in that body's frame: the object body frame (a flat object's face normal exactly) or
+  /// the pointer body frame. Read by the methods that move the object during the period
+  /// (local-dynamics-6dof); n_W is the minimal penetration direction, as built. Zero (a pair
+  /// made without the builder): n_W, held in the object's frame.
   NormalFrame normal_frame = NormalFrame::kObject;
-  Vec3 n_F = Vec3::UnitZ();
+  Vec3 n_F = Vec3::Zero();
   ContactMaterial material;     ///< the object geom's haptic material (none: rendering.*)
 };
 
