@@ -52,7 +52,7 @@ void BM_NeighborSearchAndIr(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   world::World world = world::World::LoadString(GridScene(n));
   const int pointer = world.pointer_body();
-  physics::internal::GeometricIrBuilder builder(world, pointer, engine::RenderingSettings{});
+  physics::internal::GeometricIrBuilder builder(world, pointer, settings::RenderingSettings{});
   auto snapshot = std::make_unique<ir::PhysicsSnapshot>();
   std::int64_t iteration = 0;
   double broad = 0.0, narrow = 0.0, region = 0.0, pairs = 0.0, points = 0.0, candidates = 0.0;

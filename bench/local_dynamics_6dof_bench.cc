@@ -108,8 +108,8 @@ double ThreadCpuUs() {
   return static_cast<double>(ts.tv_sec) * 1e6 + static_cast<double>(ts.tv_nsec) * 1e-3;
 }
 
-TickInput Input(std::int64_t tick) {
-  TickInput in;
+haptic::TickInput Input(std::int64_t tick) {
+  haptic::TickInput in;
   in.tick = tick;
   in.t = static_cast<double>(tick) * kDt;
   in.j = static_cast<int>(tick % 20);
@@ -136,8 +136,8 @@ void BM_LocalDynamics6dofTick1000Contacts8Objects(benchmark::State& state) {
   double contacts = 0.0, sweeps = 0.0, fz_jump = 0.0, fz_before = 0.0;
   std::int64_t tick = 0;
   for (auto _ : state) {
-    const TickInput in = Input(tick);
-    TickOutput out;
+    const haptic::TickInput in = Input(tick);
+    haptic::TickOutput out;
     const double c0 = ThreadCpuUs();
     const auto t0 = std::chrono::steady_clock::now();
     if (in.j == 0) {

@@ -63,10 +63,13 @@ device::DeviceState Reading(double t) {
   return reading;
 }
 
-class StepTimes final : public Recorder {
+class StepTimes final : public physics::Recorder {
  public:
-  void OnTick(const TickRecord&) override {}
-  void OnStep(const StepRecord& step, const world::World&) override { last_ms = step.compute_ms; }
+  void OnTick(const ir::TickRecord&) override {}
+
+  void OnStep(const physics::StepRecord& step, const world::World&) override {
+    last_ms = step.compute_ms;
+  }
   double last_ms = 0.0;
 };
 
@@ -83,7 +86,7 @@ Run& SharedRun(int cubes) {
   if (run) return *run;
   run = std::make_unique<Run>();
   run->engine = [cubes] {
-    EngineSettings s;
+    settings::EngineSettings s;
     s.method = "local-dynamics";
     s.physics_dt = kPhysicsDt;
     s.haptic_dt = kHapticDt;

@@ -84,15 +84,15 @@ std::string SceneXml(const Layout& layout, int pointers, int balls) {
 }
 
 // Counts the contacts the pointers rendered in the latest tick (checks the scene's 500).
-class ContactCount final : public Recorder {
+class ContactCount final : public physics::Recorder {
  public:
-  void OnTick(const TickRecord& tick) override {
+  void OnTick(const ir::TickRecord& tick) override {
     if (tick.tick != tick_) contacts = 0;
     tick_ = tick.tick;
     contacts += tick.contacts;
   }
 
-  void OnStep(const StepRecord&, const world::World&) override {}
+  void OnStep(const physics::StepRecord&, const world::World&) override {}
 
   int contacts = 0;
 
@@ -104,7 +104,7 @@ void BM_MultiPointerTick(benchmark::State& bench, Layout layout) {
   const int pointers = Smoke() ? 2 : 10;
   const int balls = Smoke() ? 10 : 50;
   world::LoadOptions options{.pointer_body = "p0"};
-  EngineSettings s;
+  settings::EngineSettings s;
   s.method = layout.method;
   s.haptic_dt = 0.001;
   s.physics_dt = 1.0;  // one physics step for the whole benchmark
@@ -116,7 +116,8 @@ void BM_MultiPointerTick(benchmark::State& bench, Layout layout) {
   for (int i = 0; i < pointers; ++i) {
     const std::string body = "p" + std::to_string(i);
     if (i > 0) options.more_pointer_bodies.push_back(body);
-    s.pointers.push_back(PointerLaneSettings{PointerSettings{body, 0.0}, s.rendering});
+    s.pointers.push_back(
+        settings::PointerLaneSettings{settings::PointerSettings{body, 0.0}, s.rendering});
     devices.push_back(device::MakeFixedDevice(Pose{PointerCentre(layout, i), Quat::Identity()}));
   }
   internal::EngineState state(world::World::LoadString(SceneXml(layout, pointers, balls), options),

@@ -39,8 +39,8 @@ function(mrh_forbid_links target)
   mrh_link_closure(${target} closure)
   foreach(bad ${ARG_FORBIDDEN})
     if(bad IN_LIST closure)
-      message(FATAL_ERROR "${target} links ${bad} (closure: ${closure}); the haptic module must "
-                          "link only core, ir, render and device (docs/architecture.md)")
+      message(FATAL_ERROR "${target} links ${bad} (closure: ${closure}), which crosses a module "
+                          "boundary (docs/architecture.md, \"Modules\")")
     endif()
   endforeach()
 endfunction()

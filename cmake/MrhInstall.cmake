@@ -11,7 +11,9 @@ set(MRH_MUJOCO_LIBRARY_NAME libmujoco.so.${MRH_MUJOCO_VERSION})
 
 get_property(mrh_modules GLOBAL PROPERTY MRH_MODULES)
 
-install(DIRECTORY include/mrh DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+# The modules apart from the library (experiments, psychophysics) stay out of the package.
+install(DIRECTORY include/mrh DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
+        PATTERN experiments EXCLUDE PATTERN psychophysics EXCLUDE)
 install(TARGETS mrhaptics ${mrh_modules} EXPORT mrhapticsTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}

@@ -12,8 +12,11 @@ function(mrh_set_warnings target)
   endif()
 endfunction()
 
+# APART: a module the CLI links but library users do not (experiments, psychophysics): it is
+# left out of mrhaptics::mrhaptics and of the installed package, as samples are kept apart from
+# a physics library.
 function(mrh_module name)
-  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS;PRIVATE_DEPS" ${ARGN})
+  cmake_parse_arguments(ARG "APART" "" "SOURCES;DEPS;PRIVATE_DEPS" ${ARGN})
   add_library(mrh_${name} STATIC ${ARG_SOURCES})
   add_library(mrhaptics::${name} ALIAS mrh_${name})
   target_include_directories(mrh_${name} PUBLIC
@@ -22,7 +25,11 @@ function(mrh_module name)
     PRIVATE ${PROJECT_SOURCE_DIR}/src)
   target_link_libraries(mrh_${name} PUBLIC ${ARG_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
   mrh_set_warnings(mrh_${name})
-  set_property(GLOBAL APPEND PROPERTY MRH_MODULES mrh_${name})
+  if(ARG_APART)
+    set_property(GLOBAL APPEND PROPERTY MRH_APART_MODULES mrh_${name})
+  else()
+    set_property(GLOBAL APPEND PROPERTY MRH_MODULES mrh_${name})
+  endif()
 endfunction()
 
 # mrh_test(NAME LABEL SOURCES ... DEPS ...): one GoogleTest executable per module.

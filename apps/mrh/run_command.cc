@@ -67,12 +67,12 @@ fs::path OutputDir(const RunOptions& o, const session::Session& s) {
 
 void PrintSummary(const engine::RunStats& s) {
   fmt::print("method:    {} ({}, physics {} ms, haptic {} ms)\n", s.method,
-             engine::ModeName(s.mode), s.physics_dt * 1e3, s.haptic_dt * 1e3);
+             settings::ModeName(s.mode), s.physics_dt * 1e3, s.haptic_dt * 1e3);
   fmt::print("ran:       {} ticks, {} steps, {:.3f} s simulated in {:.3f} s wall\n", s.ticks,
              s.steps, s.sim_time, s.wall_time);
   fmt::print("rates:     haptic {:.1f} Hz, physics {:.1f} Hz\n", s.haptic_rate_hz,
              s.physics_rate_hz);
-  if (s.mode == engine::Mode::kRealtime) {
+  if (s.mode == settings::Mode::kRealtime) {
     fmt::print(
         "timing:    {} overruns, jitter p50 {:.1f} / p99 {:.1f} / max {:.1f} us, "
         "step p99 {:.2f} ms{}\n",
@@ -80,7 +80,7 @@ void PrintSummary(const engine::RunStats& s) {
         s.realtime_priority ? "" : " (no real-time priority)");
   }
   fmt::print("max:       force {:.4g} N, torque {:.4g} N m\n", s.max_force, s.max_torque);
-  for (const engine::BodyImpulseTotal& impulse : s.impulses) {
+  for (const physics::BodyImpulseTotal& impulse : s.impulses) {
     fmt::print("impulse:   {:<16} |J| = {:.4g} N s  ({:.4g}, {:.4g}, {:.4g})\n",
                impulse.name.empty() ? fmt::format("body{}", impulse.body) : impulse.name,
                impulse.linear.norm(), impulse.linear.x(), impulse.linear.y(), impulse.linear.z());
@@ -174,7 +174,7 @@ int RunCommand(const RunOptions& o) {
   // A device whose vendor scheduler owns the servo thread runs the engine inside its callback
   // (real time); otherwise the engine owns the loop.
   auto* servo = dynamic_cast<device::ServoDevice*>(device);
-  const bool on_servo_thread = servo != nullptr && s.engine.mode == engine::Mode::kRealtime;
+  const bool on_servo_thread = servo != nullptr && s.engine.mode == settings::Mode::kRealtime;
   std::unique_ptr<engine::Engine> engine;
   if (several) {
     engine = session::MakeEngine(s);
@@ -186,7 +186,7 @@ int RunCommand(const RunOptions& o) {
 
   ProgressBar bar(
       ProgressSettings{.enabled = !o.quiet && (o.progress || ::isatty(STDERR_FILENO) == 1),
-                       .realtime = s.engine.mode == engine::Mode::kRealtime,
+                       .realtime = s.engine.mode == settings::Mode::kRealtime,
                        .duration = s.engine.duration});
   const auto update = [&](double f) {
     bar.Update(f);

@@ -30,7 +30,7 @@ class EngineClient final : public device::ServoClient {
 }  // namespace
 
 engine::RunStats RunOnServoThread(const session::Session& session, device::ServoDevice* device,
-                                  engine::Recorder* recorder,
+                                  physics::Recorder* recorder,
                                   const engine::Engine::ProgressFn& progress) {
   engine::Engine engine(session::LoadWorld(session),
                         std::make_unique<device::ExternalDevice>(device->specifications()),

@@ -15,7 +15,7 @@ namespace mrh::cli {
 /// thread waits for settings.duration of wall time calling `progress`. Real-time mode only.
 /// @throws what Engine::Start and Device::Open throw.
 engine::RunStats RunOnServoThread(const session::Session& session, device::ServoDevice* device,
-                                  engine::Recorder* recorder,
+                                  physics::Recorder* recorder,
                                   const engine::Engine::ProgressFn& progress);
 
 }  // namespace mrh::cli

@@ -12,7 +12,7 @@
 namespace mrh::engine {
 namespace internal {
 struct EmbeddedRun {
-  EmbeddedRun(EngineState* state, Recorder* recorder)
+  EmbeddedRun(EngineState* state, physics::Recorder* recorder)
       : physics(state->MakePhysicsSide(recorder)) {}
   PhysicsSide physics;
   device::ExternalDevice* device = nullptr;
@@ -54,7 +54,7 @@ device::ExternalDevice* FindExternal(internal::EngineState& s) {
 
 }  // namespace
 
-void Engine::Start(Recorder* recorder) {
+void Engine::Start(physics::Recorder* recorder) {
   internal::EngineState& s = *impl_->state;
   device::ExternalDevice* external = FindExternal(s);
   if (s.has_run) throw RuntimeError("engine already ran; build a new engine for another run");
@@ -64,7 +64,7 @@ void Engine::Start(Recorder* recorder) {
   internal::EmbeddedRun& run = *impl_->embedded;
   run.device = external;
   internal::StartPhysics(s, run.physics);
-  if (s.settings.mode == Mode::kRealtime) {
+  if (s.settings.mode == settings::Mode::kRealtime) {
     run.physics_thread = std::thread([&run] { internal::RunPhysicsThread(run.physics, run.done); });
   }
 }
@@ -73,7 +73,7 @@ Wrench Engine::Tick(double t, const device::DeviceState& reading) noexcept {
   internal::EngineState& s = *impl_->state;
   MRH_DEMAND(impl_->embedded != nullptr);
   internal::EmbeddedRun& run = *impl_->embedded;
-  const bool lockstep = s.settings.mode == Mode::kLockstep;
+  const bool lockstep = s.settings.mode == settings::Mode::kLockstep;
   // Lockstep: the same order as RunLockstep — step k, the n ticks of period k, then exchange.
   if (lockstep && run.ticks_in_period == 0) run.physics.Step(run.period);
   run.device->Feed(reading);

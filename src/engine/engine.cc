@@ -24,7 +24,8 @@ constexpr std::size_t kReportRingPeriods = 256;
 // Tick records buffered between drains (~32 s at 1 kHz).
 constexpr std::size_t kTickRecordCapacity = 1u << 15;
 
-double PointerRadius(const world::World& world, int pointer_body, const PointerSettings& p) {
+double PointerRadius(const world::World& world, int pointer_body,
+                     const settings::PointerSettings& p) {
   if (p.radius > 0.0) return p.radius;
   for (int g : world.body(pointer_body).geoms) {
     const world::GeomInfo& geom = world.geom(g);
@@ -65,7 +66,7 @@ PointerLane::PointerLane(std::unique_ptr<device::Device> d, const device::Calibr
 
 EngineState::EngineState(world::World w, std::vector<std::unique_ptr<device::Device>> devices,
                          const std::vector<device::Calibration>& calibrations,
-                         const EngineSettings& s)
+                         const settings::EngineSettings& s)
     : settings(s),
       world(std::move(w)),
       reports(kReportRingPeriods),
@@ -98,7 +99,7 @@ EngineState::EngineState(world::World w, std::vector<std::unique_ptr<device::Dev
   for (int i = 1; i < n; ++i) {
     auto lane = std::make_unique<PointerLane>(std::move(devices[static_cast<std::size_t>(i)]),
                                               calibrations[static_cast<std::size_t>(i)]);
-    const PointerSettings& p = settings.pointers[static_cast<std::size_t>(i)].pointer;
+    const settings::PointerSettings& p = settings.pointers[static_cast<std::size_t>(i)].pointer;
     lane->pointer_body = FindPointerBody(world, fmt::format("pointers[{}].body", i), p.body, false);
     CheckLanePointer(world, i, lane->pointer_body);
     lane->pointer_radius = PointerRadius(world, lane->pointer_body, p);
@@ -134,12 +135,12 @@ std::vector<std::unique_ptr<device::Device>> OneDevice(std::unique_ptr<device::D
 }  // namespace
 
 EngineState::EngineState(world::World w, std::unique_ptr<device::Device> d,
-                         const device::Calibration& c, const EngineSettings& s)
+                         const device::Calibration& c, const settings::EngineSettings& s)
     : EngineState(std::move(w), OneDevice(std::move(d)), std::vector{c}, s) {}
 
 void EngineState::MakeMethodForSettings() {
-  MethodContext context{&world, &settings, pointer_body, pointer_radius,
-                        device->specifications().max_force};
+  physics::MethodContext context{&world, &settings, pointer_body, pointer_radius,
+                                 device->specifications().max_force};
   if (!lanes.empty()) {
     context.pointers.push_back({pointer_body, pointer_radius, &settings.pointers[0].rendering});
     for (std::size_t i = 0; i < lanes.size(); ++i) {
@@ -180,8 +181,8 @@ void EngineState::MakeLaneMethods() {
     lane.settings.pointer = settings.pointers[i + 1].pointer;
     lane.settings.rendering = settings.pointers[i + 1].rendering;
     lane.settings.pointers.clear();
-    MethodContext context{&world, &lane.settings, lane.pointer_body, lane.pointer_radius,
-                          lane.device->specifications().max_force};
+    physics::MethodContext context{&world, &lane.settings, lane.pointer_body, lane.pointer_radius,
+                                   lane.device->specifications().max_force};
     try {
       lane.haptic_method = MakeMethod(settings.method, context).haptic;
     } catch (const InvalidArgument& e) {
@@ -222,7 +223,7 @@ void StartPhysics(EngineState& state, PhysicsSide& physics) {
 }  // namespace internal
 
 Engine::Engine(world::World world, std::unique_ptr<device::Device> device,
-               const device::Calibration& calibration, const EngineSettings& settings) {
+               const device::Calibration& calibration, const settings::EngineSettings& settings) {
   if (!device) throw InvalidArgument("engine: no device given");
   std::vector<std::unique_ptr<device::Device>> devices;
   devices.push_back(std::move(device));
@@ -233,7 +234,7 @@ Engine::Engine(world::World world, std::unique_ptr<device::Device> device,
 
 Engine::Engine(world::World world, std::vector<std::unique_ptr<device::Device>> devices,
                const std::vector<device::Calibration>& calibrations,
-               const EngineSettings& settings) {
+               const settings::EngineSettings& settings) {
   impl_ = std::make_unique<Impl>();
   impl_->state = std::make_unique<internal::EngineState>(std::move(world), std::move(devices),
                                                          calibrations, settings);
@@ -254,7 +255,9 @@ Engine::~Engine() = default;
 
 const world::World& Engine::world() const { return impl_->state->world; }
 
-const EngineSettings& Engine::settings() const { return impl_->state->settings; }
+const settings::EngineSettings& Engine::settings() const {
+  return impl_->state->settings;
+}
 
 double Engine::pointer_radius() const { return impl_->state->pointer_radius; }
 
@@ -289,15 +292,16 @@ void Engine::SetDisplayGain(double gain) {
 
 double Engine::display_gain() const { return impl_->state->haptic->display_gain(); }
 
-RunStats Engine::Run(Recorder* recorder, const ProgressFn& progress) {
+RunStats Engine::Run(physics::Recorder* recorder, const ProgressFn& progress) {
   internal::EngineState& s = *impl_->state;
   if (s.has_run) {
     throw RuntimeError("Engine::Run called twice; build a new engine for another run");
   }
   s.has_run = true;
   s.OpenDevices();
-  RunStats stats = s.settings.mode == Mode::kLockstep ? internal::RunLockstep(s, recorder, progress)
-                                                      : internal::RunRealtime(s, recorder, progress);
+  RunStats stats = s.settings.mode == settings::Mode::kLockstep
+                       ? internal::RunLockstep(s, recorder, progress)
+                       : internal::RunRealtime(s, recorder, progress);
   s.CloseDevices();
   return stats;
 }

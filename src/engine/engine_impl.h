@@ -31,7 +31,7 @@ using physics::PhysicsSide;
 struct PointerLane {
   PointerLane(std::unique_ptr<device::Device> device, const device::Calibration& calibration);
 
-  EngineSettings settings;  ///< the engine's, with this pointer's body and rendering
+  settings::EngineSettings settings;  ///< the engine's, with this pointer's body and rendering
   std::unique_ptr<device::Device> device;
   device::Calibration calibration;
   std::unique_ptr<haptic::MethodHaptic> haptic_method;
@@ -45,10 +45,11 @@ struct PointerLane {
 struct EngineState {
   /// devices[i] and calibrations[i] drive pointer i (one of each for one pointer).
   EngineState(world::World world, std::vector<std::unique_ptr<device::Device>> devices,
-              const std::vector<device::Calibration>& calibrations, const EngineSettings& settings);
+              const std::vector<device::Calibration>& calibrations,
+              const settings::EngineSettings& settings);
   /// One pointer.
   EngineState(world::World world, std::unique_ptr<device::Device> device,
-              const device::Calibration& calibration, const EngineSettings& settings);
+              const device::Calibration& calibration, const settings::EngineSettings& settings);
   void MakeMethodForSettings();
   /// Builds pointers 1, 2, ...'s haptic halves (after MakeMethodForSettings).
   void MakeLaneMethods();
@@ -62,9 +63,9 @@ struct EngineState {
   void CloseDevices();
 
   /// A physics side over this state's world, method and exchange.
-  PhysicsSide MakePhysicsSide(Recorder* recorder);
+  PhysicsSide MakePhysicsSide(physics::Recorder* recorder);
 
-  EngineSettings settings;
+  settings::EngineSettings settings;
   world::World world;
   std::unique_ptr<device::Device> device;
   device::Calibration calibration;
@@ -79,7 +80,7 @@ struct EngineState {
 
   TripleBuffer<ir::PhysicsSnapshot> snapshots;
   SpscRing<ir::HapticReport> reports;
-  SpscRing<TickRecord> tick_records;
+  SpscRing<ir::TickRecord> tick_records;
   std::optional<HapticSide> haptic;
   /// Pointers 1, 2, ... (empty with one pointer).
   std::vector<std::unique_ptr<PointerLane>> lanes;
@@ -101,7 +102,7 @@ void StartPhysics(EngineState& state, PhysicsSide& physics);
 /// share, the method's status bits, the method, mode and time steps, sim_time and wall_time (s),
 /// and the tick and step rates per `rate_time` s (sim time in lockstep, wall time otherwise; no
 /// rates when it is 0). Moves the physics side's warnings and impulses into `stats`.
-void FillRunStats(EngineState& state, PhysicsSide& physics, Mode mode, double sim_time,
+void FillRunStats(EngineState& state, PhysicsSide& physics, settings::Mode mode, double sim_time,
                   double wall_time, double rate_time, RunStats* stats);
 
 using mrh::Percentile;
@@ -110,8 +111,10 @@ using mrh::Percentile;
 struct EmbeddedRun;
 void DestroyEmbeddedRun(EmbeddedRun* run);
 
-RunStats RunLockstep(EngineState& state, Recorder* recorder, const Engine::ProgressFn& progress);
-RunStats RunRealtime(EngineState& state, Recorder* recorder, const Engine::ProgressFn& progress);
+RunStats RunLockstep(EngineState& state, physics::Recorder* recorder,
+                     const Engine::ProgressFn& progress);
+RunStats RunRealtime(EngineState& state, physics::Recorder* recorder,
+                     const Engine::ProgressFn& progress);
 
 }  // namespace mrh::engine::internal
 

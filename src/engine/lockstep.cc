@@ -16,7 +16,8 @@ constexpr double kProgressInterval = 0.1;
 // Physics step k and haptic period k are independent (step k reads period k−1's report; period k
 // renders step k−1's snapshot), so running step k and then the n ticks of period k, and only
 // then exchanging, reproduces the concurrent schedule exactly and deterministically.
-RunStats RunLockstep(EngineState& state, Recorder* recorder, const Engine::ProgressFn& progress) {
+RunStats RunLockstep(EngineState& state, physics::Recorder* recorder,
+                     const Engine::ProgressFn& progress) {
   const auto wall0 = std::chrono::steady_clock::now();
   const int n = state.ticks_per_step;
   const double dt = state.settings.haptic_dt;
@@ -47,7 +48,7 @@ RunStats RunLockstep(EngineState& state, Recorder* recorder, const Engine::Progr
   const double sim_time = static_cast<double>(tick) * dt;
   const double wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  FillRunStats(state, physics, Mode::kLockstep, sim_time, wall_time, sim_time, &stats);
+  FillRunStats(state, physics, settings::Mode::kLockstep, sim_time, wall_time, sim_time, &stats);
   if (progress) progress(1.0);
   return stats;
 }

@@ -36,8 +36,8 @@ namespace {
 
 // Each built-in method is a physics half (mrh_physics) and a haptic half (mrh_haptic) built
 // from plain parameters: they share no object.
-Method PointPenalty(const MethodContext& c, bool single_rate) {
-  const RenderingSettings& r = c.settings->rendering;
+Method PointPenalty(const physics::MethodContext& c, bool single_rate) {
+  const settings::RenderingSettings& r = c.settings->rendering;
   return Method{single_rate ? "single-rate" : "impulse",
                 single_rate,
                 physics::MakePointPenaltyPhysics(c),
@@ -47,9 +47,13 @@ Method PointPenalty(const MethodContext& c, bool single_rate) {
                 /*multi_pointer=*/true};
 }
 
-Method SingleRate(const MethodContext& c) { return PointPenalty(c, true); }
+Method SingleRate(const physics::MethodContext& c) {
+  return PointPenalty(c, true);
+}
 
-Method Impulse(const MethodContext& c) { return PointPenalty(c, false); }
+Method Impulse(const physics::MethodContext& c) {
+  return PointPenalty(c, false);
+}
 
 // A method of several pointers: pointer 0's haptic half first, the others' in more_haptic.
 Method PointerGroupMethod(std::string name, std::unique_ptr<physics::MethodPhysics> physics,
@@ -64,7 +68,7 @@ Method PointerGroupMethod(std::string name, std::unique_ptr<physics::MethodPhysi
 
 // Every pointer's proxy settings (pointer 0's alone with one pointer): its geometry and gains,
 // the device bound on one contact pair.
-std::vector<render::ProxyRendererSettings> PointerProxySettings(const MethodContext& c) {
+std::vector<render::ProxyRendererSettings> PointerProxySettings(const physics::MethodContext& c) {
   if (c.pointers.size() < 2) return {physics::ProxySettingsFor(c)};
   std::vector<render::ProxyRendererSettings> settings;
   for (const physics::PointerContext& p : c.pointers) {
@@ -75,7 +79,7 @@ std::vector<render::ProxyRendererSettings> PointerProxySettings(const MethodCont
   return settings;
 }
 
-Method Proxy(const MethodContext& c) {
+Method Proxy(const physics::MethodContext& c) {
   // The renderer settings first: they carry the session-key errors.
   const std::vector<render::ProxyRendererSettings> settings = PointerProxySettings(c);
   // Several pointers: the haptic halves share nothing (the objects move on the physics side).
@@ -89,8 +93,8 @@ Method Proxy(const MethodContext& c) {
 }
 
 // B5: proxy-6dof's physics half (reaction one step late, geometric IR), per-contact springs.
-Method PenaltySum(const MethodContext& c) {
-  const RenderingSettings& r = c.settings->rendering;
+Method PenaltySum(const physics::MethodContext& c) {
+  const settings::RenderingSettings& r = c.settings->rendering;
   return Method{"penalty-sum", false, physics::MakeProxyPhysics(c),
                 haptic::MakePenaltySumHaptic(render::PenaltySumSettings{.k = r.stiffness,
                                                                         .d = r.damping}),
@@ -98,7 +102,7 @@ Method PenaltySum(const MethodContext& c) {
 }
 
 // B3: single-rate; the tool is a free body of the world (session::LoadWorld).
-Method VirtualCoupling(const MethodContext& c) {
+Method VirtualCoupling(const physics::MethodContext& c) {
   return Method{"virtual-coupling", true, physics::MakeVirtualCouplingPhysics(c),
                 haptic::MakeVirtualCouplingHaptic(physics::ResolveCouplingGains(c)),
                 {"virtual_coupling.bad_input"}};  // haptic::kVirtualCouplingBadInput
@@ -106,7 +110,7 @@ Method VirtualCoupling(const MethodContext& c) {
 
 // B2: single-rate; the whole scene is one penalty simulation (session::LoadWorld switches
 // MuJoCo's contacts off), the device connected directly to the pointer.
-Method ContactVolume(const MethodContext& c) {
+Method ContactVolume(const physics::MethodContext& c) {
   return Method{"contact-volume", true, physics::MakeContactVolumePhysics(c),
                 haptic::MakeContactVolumeHaptic(),
                 {"contact_volume.bad_input"}};  // haptic::kContactVolumeBadInput
@@ -114,8 +118,8 @@ Method ContactVolume(const MethodContext& c) {
 
 // rendering.local_model picks the local model: "contact" (default; free-jointed scenes only)
 // or the thesis' "perturbation".
-Method LocalDynamics(const MethodContext& c) {
-  const RenderingSettings& r = c.settings->rendering;
+Method LocalDynamics(const physics::MethodContext& c) {
+  const settings::RenderingSettings& r = c.settings->rendering;
   if (physics::UsesContactLocalModel(c) && c.pointers.size() >= 2) {
     // Several pointers: one island, every pointer's reaction in the same tick.
     std::vector<haptic::PointerGains> gains;
@@ -150,7 +154,7 @@ Method LocalDynamics(const MethodContext& c) {
 }
 
 // Issue 14: the 6-DOF proxy against the neighbors' contact island simulated at the haptic rate.
-Method LocalDynamics6dof(const MethodContext& c) {
+Method LocalDynamics6dof(const physics::MethodContext& c) {
   const std::vector<render::ProxyRendererSettings> settings = PointerProxySettings(c);
   // render::ProxyStatusBits, then the local island's fault bit
   std::vector<std::string> status_bits = {"proxy.rows_full", "proxy.not_converged",
@@ -220,7 +224,7 @@ std::vector<std::pair<std::string, std::string>> ListMethods() {
   return out;
 }
 
-Method MakeMethod(const std::string& name, const MethodContext& context) {
+Method MakeMethod(const std::string& name, const physics::MethodContext& context) {
   RegisterBuiltins();
   MethodFactory factory;
   {

@@ -18,7 +18,7 @@ BodyPoses InitialBodyPoses(const world::World& world) {
   return poses;
 }
 
-void PoseTap::OnTick(const haptic::TickRecord& tick) {
+void PoseTap::OnTick(const ir::TickRecord& tick) {
   if (next_ != nullptr) next_->OnTick(tick);
 }
 

@@ -21,7 +21,7 @@ class PoseTap final : public physics::Recorder {
 
   void set_next(physics::Recorder* next) { next_ = next; }
 
-  void OnTick(const haptic::TickRecord& tick) override;
+  void OnTick(const ir::TickRecord& tick) override;
   void OnStep(const physics::StepRecord& step, const world::World& world) override;
   void OnSnapshot(const ir::PhysicsSnapshot& snapshot) override;
 

@@ -88,7 +88,8 @@ void FillJitter(const HapticTiming& timing, RunStats* stats) {
 
 }  // namespace
 
-RunStats RunRealtime(EngineState& s, Recorder* recorder, const Engine::ProgressFn& progress) {
+RunStats RunRealtime(EngineState& s, physics::Recorder* recorder,
+                     const Engine::ProgressFn& progress) {
   RunStats stats;
   std::string why;
   const bool locked = s.settings.realtime_priority && LockAllMemory(&why);
@@ -112,7 +113,7 @@ RunStats RunRealtime(EngineState& s, Recorder* recorder, const Engine::ProgressF
   }
   for (const std::string& w : stats.warnings) spdlog::warn("{}", w);
   const double wall_time = static_cast<double>(NowNs() - wall0) / kNsPerS;
-  FillRunStats(s, physics, Mode::kRealtime, 0.0, wall_time, wall_time, &stats);
+  FillRunStats(s, physics, settings::Mode::kRealtime, 0.0, wall_time, wall_time, &stats);
   stats.sim_time = static_cast<double>(stats.steps) * s.settings.physics_dt;  // as stepped
   FillJitter(timing, &stats);
   stats.realtime_priority = locked && fifo_ok.load();

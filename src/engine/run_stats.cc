@@ -9,7 +9,7 @@
 
 namespace mrh::engine::internal {
 
-PhysicsSide EngineState::MakePhysicsSide(Recorder* recorder) {
+PhysicsSide EngineState::MakePhysicsSide(physics::Recorder* recorder) {
   body_pose_tap.set_next(recorder);
   PhysicsSide::Exchange exchange{&snapshots, &reports, &tick_records};
   for (const auto& lane : lanes) {
@@ -119,7 +119,7 @@ void FillPointerStats(EngineState& state, RunStats* stats) {
 
 }  // namespace
 
-void FillRunStats(EngineState& state, PhysicsSide& physics, Mode mode, double sim_time,
+void FillRunStats(EngineState& state, PhysicsSide& physics, settings::Mode mode, double sim_time,
                   double wall_time, double rate_time, RunStats* stats) {
   FillPhysicsStats(physics, stats);
   FillHapticStats(state.haptic->counters(), stats);

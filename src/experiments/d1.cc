@@ -132,7 +132,7 @@ Checks CheckD1(const D1Run& run, const D1Run& rest, const D1Run* ref, bool realt
 nlohmann::json Numbers(const D1Run& run, const D1Run& rest, const D1Run* ref, double rss_mb) {
   const engine::RunStats& s = run.stats;
   nlohmann::json n = {
-      {"mode", engine::ModeName(s.mode)},
+      {"mode", settings::ModeName(s.mode)},
       {"objects", run.objects},
       {"physics_dt_ms", s.physics_dt * 1e3},
       {"duration_s", s.sim_time},

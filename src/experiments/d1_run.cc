@@ -35,7 +35,7 @@ TableTop FindTable(const world::World& world) {
 }
 
 // Follows the objects (free bodies) after every step and the pointer every tick.
-class D1Recorder final : public engine::Recorder {
+class D1Recorder final : public physics::Recorder {
  public:
   D1Recorder(const world::World& world, D1Run* run) : run_(run) {
     const TableTop table = FindTable(world);
@@ -53,7 +53,7 @@ class D1Recorder final : public engine::Recorder {
     run->objects = static_cast<int>(bodies_.size());
   }
 
-  void OnTick(const engine::TickRecord& tick) override {
+  void OnTick(const ir::TickRecord& tick) override {
     ++run_->recorded_ticks;
     run_->last_tick_t = std::max(run_->last_tick_t, tick.t);
     if (tick.contacts > 0) {
@@ -71,7 +71,7 @@ class D1Recorder final : public engine::Recorder {
     last_p_ = tick.X_WP.p;
   }
 
-  void OnStep(const engine::StepRecord& step, const world::World& world) override {
+  void OnStep(const physics::StepRecord& step, const world::World& world) override {
     D1Step row{step.t, step.compute_ms,    step.sim_contacts,    step.neighbors,
                0.0,    period_hand_speed_, period_contact_ticks_};
     for (std::size_t i = 0; i < bodies_.size(); ++i) {
@@ -125,7 +125,7 @@ D1Run RunD1Session(const session::Session& session) {
       std::ceil(session.engine.duration / session.engine.physics_dt) + 16));
   D1Recorder recorder(engine->world(), &run);
   run.stats = engine->Run(&recorder);
-  for (const engine::BodyImpulseTotal& impulse : run.stats.impulses) {
+  for (const physics::BodyImpulseTotal& impulse : run.stats.impulses) {
     if (impulse.linear.norm() > 0.0 || impulse.angular.norm() > 0.0) ++run.touched_objects;
   }
   return run;

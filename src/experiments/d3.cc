@@ -37,14 +37,14 @@ const std::vector<Block> kBlocks{{"aluminium", -0.15}, {"wood", 0.0}, {"rubber",
 constexpr double kFrequencyTol = 0.05, kDecayTol = 0.25, kAmplitudeTol = 0.15;
 constexpr double kStiffnessTol = 0.01;
 
-class Tap final : public engine::Recorder {
+class Tap final : public physics::Recorder {
  public:
-  void OnTick(const engine::TickRecord& tick) override {
+  void OnTick(const ir::TickRecord& tick) override {
     t.push_back(tick.t);
     fz.push_back(tick.rendered_W.f.z());
   }
 
-  void OnStep(const engine::StepRecord& /*step*/, const world::World& /*world*/) override {}
+  void OnStep(const physics::StepRecord& /*step*/, const world::World& /*world*/) override {}
 
   std::vector<double> t, fz;
 };
@@ -101,8 +101,8 @@ int RunD3(const std::filesystem::path& out, bool quiet) {
   Checks checks;
   nlohmann::json summary;
   for (const Block& block : kBlocks) {
-    const engine::MaterialSettings& m = base.engine.rendering.materials.at(block.material);
-    const engine::VibrationSettings& vib = *m.vibration;
+    const settings::MaterialSettings& m = base.engine.rendering.materials.at(block.material);
+    const settings::VibrationSettings& vib = *m.vibration;
     const double k = m.stiffness.value_or(base.engine.rendering.stiffness);
     for (const double v : kSpeeds) {
       const TapResult r = RunTap(base, block.x, v);

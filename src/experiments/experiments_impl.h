@@ -488,7 +488,7 @@ ProxyRun RunProxySession(const session::Session& session, const std::filesystem:
 
 /// T3.1's session (same device motion) run with method penalty-sum (B5) in lockstep through the
 /// public engine API: one record per tick. Defined in t3_1_penalty_sum.cc.
-std::vector<engine::TickRecord> RunPenaltySumTicks(const session::Session& session);
+std::vector<ir::TickRecord> RunPenaltySumTicks(const session::Session& session);
 
 /// The T3.1 windows the penalty-sum check reads: k (N/m), the held edge/face depths (m), the
 /// edge hold [t0, t1) and the time after which the face is held (s).
@@ -501,7 +501,7 @@ struct PenaltySumWindows {
 /// B5 vs the proxy (SPEC §1.4 B5): checks the sum renders 2kδ on the held edge and 4kδ on the
 /// held face (the proxy: k_t δ on both), and writes the forces and force-per-depth stiffnesses
 /// into `numbers`. Returns the checks.
-nlohmann::json CheckPenaltySumT31(const std::vector<engine::TickRecord>& ticks,
+nlohmann::json CheckPenaltySumT31(const std::vector<ir::TickRecord>& ticks,
                                   const PenaltySumWindows& windows, nlohmann::json* numbers);
 
 /// T3.1: edge contact → roll → face contact of a 0.2 m cube at the thesis gains (figs.

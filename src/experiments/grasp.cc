@@ -72,13 +72,13 @@ session::Session MakeSession(const GraspRun& run) {
       fmt::format("grasp ({} at {} ms)", run.method, run.physics_dt * 1e3));
 }
 
-struct Tap final : engine::Recorder {
-  void OnTick(const engine::TickRecord& tick) override {
+struct Tap final : physics::Recorder {
+  void OnTick(const ir::TickRecord& tick) override {
     if (tick.pointer == 0) t.push_back(tick.t);
     f[tick.pointer == 0 ? 0 : 1].push_back(tick.displayed_W.f);
   }
 
-  void OnStep(const engine::StepRecord& step, const world::World& world) override {
+  void OnStep(const physics::StepRecord& step, const world::World& world) override {
     if (box < 0) {
       box = world.FindBody("box");
       mass = world.body(box).mass;

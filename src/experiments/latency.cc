@@ -61,11 +61,11 @@ struct Result {
   std::int64_t latency() const { return response < 0 ? -1 : response - onset; }
 };
 
-class ForceTap final : public engine::Recorder {
+class ForceTap final : public physics::Recorder {
  public:
-  void OnTick(const engine::TickRecord& tick) override { f.push_back(-tick.rendered_W.f.x()); }
+  void OnTick(const ir::TickRecord& tick) override { f.push_back(-tick.rendered_W.f.x()); }
 
-  void OnStep(const engine::StepRecord&, const world::World&) override {}
+  void OnStep(const physics::StepRecord&, const world::World&) override {}
 
   std::vector<double> f;  // force on the cube along +x (N)
 };

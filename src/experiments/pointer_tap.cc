@@ -10,13 +10,13 @@
 
 namespace mrh::experiments::internal {
 
-void PointerTap::OnTick(const engine::TickRecord& tick) {
+void PointerTap::OnTick(const ir::TickRecord& tick) {
   const auto i = static_cast<std::size_t>(tick.pointer);
   if (forces_.size() <= i) forces_.resize(i + 1);
   forces_[i].push_back({tick.t, tick.displayed_W.f});
 }
 
-void PointerTap::OnStep(const engine::StepRecord& step, const world::World& world) {
+void PointerTap::OnStep(const physics::StepRecord& step, const world::World& world) {
   if (ids_.empty()) {
     for (const std::string& name : names_) {
       const int id = world.FindBody(name);

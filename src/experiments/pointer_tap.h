@@ -14,14 +14,14 @@ namespace mrh::experiments::internal {
 
 /// Keeps every tick's displayed force of every pointer and, after every physics step, the
 /// centres of mass of the bodies named at construction. Not for the RT path: it allocates.
-class PointerTap final : public engine::Recorder {
+class PointerTap final : public physics::Recorder {
  public:
   /// `bodies`: scene body names whose centre of mass is recorded, in this order.
   explicit PointerTap(std::vector<std::string> bodies) : names_(std::move(bodies)) {}
 
-  void OnTick(const engine::TickRecord& tick) override;
+  void OnTick(const ir::TickRecord& tick) override;
   /// @throws mrh::InvalidArgument naming a body the scene does not have.
-  void OnStep(const engine::StepRecord& step, const world::World& world) override;
+  void OnStep(const physics::StepRecord& step, const world::World& world) override;
 
   struct Sample {
     double t;  ///< s

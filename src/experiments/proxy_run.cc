@@ -63,20 +63,20 @@ class SamplingDevice final : public device::Device {
 };
 
 // Keeps the pointer pose and time of every tick and forwards to the CSV recorder, if any.
-class PoseTap final : public engine::Recorder {
+class PoseTap final : public physics::Recorder {
  public:
   explicit PoseTap(report::CsvRecorder* csv) : csv_(csv) {}
 
-  void OnTick(const engine::TickRecord& tick) override {
+  void OnTick(const ir::TickRecord& tick) override {
     if (csv_ != nullptr) csv_->OnTick(tick);
     ticks.push_back(tick);
   }
 
-  void OnStep(const engine::StepRecord& step, const world::World& world) override {
+  void OnStep(const physics::StepRecord& step, const world::World& world) override {
     if (csv_ != nullptr) csv_->OnStep(step, world);
   }
 
-  std::vector<engine::TickRecord> ticks;
+  std::vector<ir::TickRecord> ticks;
 
  private:
   report::CsvRecorder* csv_;
@@ -91,8 +91,8 @@ ProxyRun RunProxySession(const session::Session& session, const std::filesystem:
         fmt::format("{}: method = \"{}\"; expected \"proxy-6dof\" for a chapter-3 experiment",
                     session.file.string(), session.engine.method));
   }
-  engine::EngineSettings settings = session.engine;
-  settings.mode = engine::Mode::kLockstep;
+  settings::EngineSettings settings = session.engine;
+  settings.mode = settings::Mode::kLockstep;
   auto sampler = std::make_unique<SamplingDevice>(session::MakeDevice(session));
   SamplingDevice* device = sampler.get();
   engine::Engine engine(session::LoadWorld(session), std::move(sampler), session.device.calibration,

@@ -109,7 +109,7 @@ constexpr const char* kT31Plot =
 // Writes t3_1.csv and t3_1.png. `budget`: the same motion rendered with the default 50 PGS
 // sweeps (comparison columns). `sum`: the same motion rendered by penalty-sum (B5), per tick.
 void WriteT31Files(const std::filesystem::path& out, const std::vector<Row>& rows,
-                   const std::vector<Row>& budget, const std::vector<engine::TickRecord>& sum,
+                   const std::vector<Row>& budget, const std::vector<ir::TickRecord>& sum,
                    bool quiet) {
   Table csv({"t", "height_m", "angle_deg", "f_z_N", "tau_x_Nm", "f_analytic_N", "tau_analytic_Nm",
              "contacts", "vertices_below", "pgs_sweeps", "converged", "f_z_50_sweeps_N",
@@ -118,7 +118,7 @@ void WriteT31Files(const std::filesystem::path& out, const std::vector<Row>& row
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const Row& r = rows[i];
     const Row b = i < budget.size() ? budget[i] : Row{};
-    const engine::TickRecord p = i < sum.size() ? sum[i] : engine::TickRecord{};
+    const ir::TickRecord p = i < sum.size() ? sum[i] : ir::TickRecord{};
     csv.AddFormatted(
         "{:.3f},{:.9f},{:.5f},{:.7f},{:.7f},{},{},{},{},{},{},{:.7f},{:.7f},"
         "{:.7f},{:.7f},{}",
@@ -138,7 +138,7 @@ bool In(double t, const double (&range)[2]) {
 // error left is at most m·κ·tol in displacement, with κ = R_w/h² the ratio of C's translation
 // and rotation eigenvalues for an edge or a face (m rows).
 struct T31Tolerances {
-  const engine::RenderingSettings& r;
+  const settings::RenderingSettings& r;
   double R_w;
 
   double Force(int m) const { return r.stiffness * m * Kappa() * r.solver_tolerance; }
@@ -158,7 +158,7 @@ struct T31Tally {
 };
 
 T31Tally TallyT31(const std::vector<Row>& rows, const T31Tolerances& tol) {
-  const engine::RenderingSettings& r = tol.r;
+  const settings::RenderingSettings& r = tol.r;
   T31Tally s;
   for (const Row& row : rows) {
     if (In(row.t, kEdgeHold) && row.contacts == 2) {
@@ -188,7 +188,7 @@ T31Tally TallyT31(const std::vector<Row>& rows, const T31Tolerances& tol) {
 }
 
 // SPEC T3.1 acceptance against the analytic proxy; writes the measured numbers into `numbers`.
-Checks CheckT31(const std::vector<Row>& rows, const engine::RenderingSettings& r, double R_w,
+Checks CheckT31(const std::vector<Row>& rows, const settings::RenderingSettings& r, double R_w,
                 nlohmann::json* numbers) {
   const T31Tally s = TallyT31(rows, T31Tolerances{r, R_w});
   const double peak_an = r.rot_stiffness * kEdgeDepth * kHalf / (R_w + kHalf * kHalf);
@@ -215,7 +215,7 @@ Checks CheckT31(const std::vector<Row>& rows, const engine::RenderingSettings& r
 
 // The session's isotropic rotation weight R_w (m²). @throws mrh::InvalidArgument naming the
 // file if it is not isotropic (the analytic checks assume it).
-double IsotropicRotationWeight(const engine::RenderingSettings& r,
+double IsotropicRotationWeight(const settings::RenderingSettings& r,
                                const std::filesystem::path& file) {
   const double R_w = r.rotation_weight ? r.rotation_weight->x() : 0.0;
   if (!r.rotation_weight || !(*r.rotation_weight - Vec3::Constant(R_w)).isZero(0.0)) {
@@ -227,7 +227,7 @@ double IsotropicRotationWeight(const engine::RenderingSettings& r,
   return R_w;
 }
 
-std::vector<Row> AnalyseRun(const ProxyRun& run, const engine::RenderingSettings& r, double R_w) {
+std::vector<Row> AnalyseRun(const ProxyRun& run, const settings::RenderingSettings& r, double R_w) {
   std::vector<Row> rows;
   for (const ProxyTick& tick : run.ticks) {
     rows.push_back(Analyse(tick, r.stiffness, r.rot_stiffness, R_w));
@@ -240,7 +240,7 @@ std::vector<Row> AnalyseRun(const ProxyRun& run, const engine::RenderingSettings
 std::vector<Row> RunBudget(const session::Session& session, double R_w, bool quiet,
                            double* tau_error) {
   session::Session budget_session = session;
-  budget_session.engine.rendering.max_iterations = engine::RenderingSettings{}.max_iterations;
+  budget_session.engine.rendering.max_iterations = settings::RenderingSettings{}.max_iterations;
   const std::vector<Row> rows =
       AnalyseRun(RunProxySession(budget_session, {}, "", quiet), session.engine.rendering, R_w);
   *tau_error = 0.0;
@@ -269,13 +269,13 @@ int RunT31(const std::filesystem::path& out, bool quiet) {
   const session::Session session = session::LoadSession(file);
   if (!quiet) std::cout << "t3.1: running " << file.string() << "...\n";
   const ProxyRun run = RunProxySession(session, out / "run", "T3.1 proxy-6dof", quiet);
-  const engine::RenderingSettings& r = session.engine.rendering;
+  const settings::RenderingSettings& r = session.engine.rendering;
   const double R_w = IsotropicRotationWeight(r, file);
   const std::vector<Row> rows = AnalyseRun(run, r, R_w);
   double budget_tau_error = 0.0;
   const std::vector<Row> budget = RunBudget(session, R_w, quiet, &budget_tau_error);
   // B5 on the same motion (SPEC §1.4 B5): the sum's stiffness doubles as contacts go 2 → 4.
-  const std::vector<engine::TickRecord> sum = RunPenaltySumTicks(session);
+  const std::vector<ir::TickRecord> sum = RunPenaltySumTicks(session);
   WriteT31Files(out, rows, budget, sum, quiet);
   nlohmann::json summary;
   summary["experiment"] = "t3.1";

@@ -11,19 +11,21 @@
 namespace mrh::experiments::internal {
 namespace {
 
-class TickTap final : public engine::Recorder {
+class TickTap final : public physics::Recorder {
  public:
-  void OnTick(const engine::TickRecord& tick) override { ticks.push_back(tick); }
-  void OnStep(const engine::StepRecord&, const world::World&) override {}
-  std::vector<engine::TickRecord> ticks;
+  void OnTick(const ir::TickRecord& tick) override { ticks.push_back(tick); }
+
+  void OnStep(const physics::StepRecord&, const world::World&) override {}
+
+  std::vector<ir::TickRecord> ticks;
 };
 
 }  // namespace
 
-std::vector<engine::TickRecord> RunPenaltySumTicks(const session::Session& session) {
+std::vector<ir::TickRecord> RunPenaltySumTicks(const session::Session& session) {
   session::Session s = session;
   s.engine.method = "penalty-sum";
-  s.engine.mode = engine::Mode::kLockstep;
+  s.engine.mode = settings::Mode::kLockstep;
   engine::Engine engine(session::LoadWorld(s), session::MakeDevice(s), s.device.calibration,
                         s.engine);
   TickTap tap;
@@ -32,7 +34,7 @@ std::vector<engine::TickRecord> RunPenaltySumTicks(const session::Session& sessi
   return std::move(tap.ticks);
 }
 
-nlohmann::json CheckPenaltySumT31(const std::vector<engine::TickRecord>& ticks,
+nlohmann::json CheckPenaltySumT31(const std::vector<ir::TickRecord>& ticks,
                                   const PenaltySumWindows& w, nlohmann::json* numbers) {
   // Σ k δ over the penetrating vertices: m k δ for m vertices at equal depth δ. Relative
   // tolerance: rounding of metre-scale poses (1e-12 m) against δ ~ 3e-4 m.
@@ -40,7 +42,7 @@ nlohmann::json CheckPenaltySumT31(const std::vector<engine::TickRecord>& ticks,
   double edge_f = 0.0, face_f = 0.0;
   int edge_ticks = 0, face_ticks = 0;
   bool edge_ok = true, face_ok = true;
-  for (const engine::TickRecord& tick : ticks) {
+  for (const ir::TickRecord& tick : ticks) {
     const double f = tick.rendered_W.f.z();
     // As the proxy's onset check: the edge ticks with both vertices in the IR (the first tick
     // of the hold still renders the IR of the previous step, one vertex).

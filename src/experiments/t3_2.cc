@@ -186,7 +186,7 @@ int CountStaticIntervals(const std::vector<Row>& rows) {
 // ε: how far a proxy rotation can bend a row's displacement relative to the translation,
 // max_k (r_k × a_k)ᵀ R_w⁻¹ (r_k × a_k) <= |r|²max / R_w,min (SPEC U1: c_kk − 1). With all friction
 // rows sliding the cone ratio is μ up to ε; the same ε bounds the friction direction's angle.
-double RotationShare(const ProxyRun& run, const engine::RenderingSettings& s) {
+double RotationShare(const ProxyRun& run, const settings::RenderingSettings& s) {
   double lever2 = 0.0;
   for (const ProxyTick& tick : run.ticks) {
     for (const Vec3& p : tick.constrained_p_PV) lever2 = std::max(lever2, p.squaredNorm());
@@ -272,7 +272,7 @@ Checks CheckT32(const std::vector<Row>& rows, double mu, double eps, nlohmann::j
 // net force. The active-set solver reaches it; PGS ("pgs") converges on the rotation modes at
 // a rate ~ |r × t|²/R_w ≈ 3e-6 per sweep here, so within its budget the proxy translates
 // instead (a spurious net friction force, almost no torque), and this check fails.
-bool CheckTwist(const engine::RenderingSettings& r, nlohmann::json* numbers) {
+bool CheckTwist(const settings::RenderingSettings& r, nlohmann::json* numbers) {
   const double depth = r.stiffness > 0.0 ? kPressForce / r.stiffness : 0.0;
   const double twist_torque = r.rot_stiffness * r.friction * depth / kCornerRadius;
   (*numbers)["twist_torque_converged_Nm"] = twist_torque;
@@ -320,7 +320,7 @@ int RunT32(const std::filesystem::path& out, bool quiet) {
   nlohmann::json summary;
   summary["experiment"] = "t3.2";
   summary["machine"] = MachineTag();
-  const engine::RenderingSettings& r = session.engine.rendering;
+  const settings::RenderingSettings& r = session.engine.rendering;
   Checks checks = CheckT32(rows, r.friction, RotationShare(run, r), &summary["numbers"]);
   checks.Add("rotational_friction_twists_without_net_force", CheckTwist(r, &summary["numbers"]));
   if (!quiet) PrintT32(summary["numbers"], r.friction);

@@ -85,10 +85,10 @@ struct Ratio {
   double ratio_p99 = 0.0;  // with the p99 step
 };
 
-struct StepSum final : engine::Recorder {
-  void OnTick(const engine::TickRecord&) override {}
+struct StepSum final : physics::Recorder {
+  void OnTick(const ir::TickRecord&) override {}
 
-  void OnStep(const engine::StepRecord& step, const world::World&) override {
+  void OnStep(const physics::StepRecord& step, const world::World&) override {
     total_ms += step.compute_ms;
   }
 

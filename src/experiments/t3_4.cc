@@ -57,8 +57,8 @@ std::string PrismScene(int sides) {
 
 // The T3.1 gains, R_w from the prism's unit-mass inertia × 500 (the T3.1 multiplier), the
 // default solver (active-set, 50 steps, 1e-10 m), as a session would run them.
-engine::EngineSettings PrismSettings(bool friction) {
-  engine::EngineSettings s;
+settings::EngineSettings PrismSettings(bool friction) {
+  settings::EngineSettings s;
   s.method = "proxy-6dof";
   s.physics_dt = kPhysicsDt;
   s.haptic_dt = kHapticDt;
@@ -93,7 +93,7 @@ struct PrismRig {
                                        fmt::format("scenes/t3_4.xml ({}-gon)", sides))),
         settings(PrismSettings(friction)) {
     world.set_timestep(kPhysicsDt);
-    const engine::MethodContext context{&world, &settings, world.pointer_body(), kRadius};
+    const physics::MethodContext context{&world, &settings, world.pointer_body(), kRadius};
     pair = engine::MakeMethod("proxy-6dof", context);
   }
 
@@ -101,13 +101,13 @@ struct PrismRig {
   PrismRig& operator=(const PrismRig&) = delete;
 
   world::World world;
-  engine::EngineSettings settings;
+  settings::EngineSettings settings;
   engine::Method pair;
 };
 
 // The input of haptic tick `tick`, j-th of the n of its period.
-engine::TickInput PrismTickInput(std::int64_t tick, int j, int n) {
-  engine::TickInput in;
+haptic::TickInput PrismTickInput(std::int64_t tick, int j, int n) {
+  haptic::TickInput in;
   in.tick = tick;
   in.t = static_cast<double>(tick) * kHapticDt;
   in.j = j;
@@ -121,7 +121,7 @@ engine::TickInput PrismTickInput(std::int64_t tick, int j, int n) {
 // One tick timed as the haptic thread runs it (engine::HapticSide::Tick): the first tick of a
 // period adopts the new snapshot, the last one closes the period's report. Returns seconds.
 double TimedTick(haptic::MethodHaptic& method, const ir::PhysicsSnapshot& current,
-                 const engine::TickInput& in, ir::HapticReport* report, engine::TickOutput* out) {
+                 const haptic::TickInput& in, ir::HapticReport* report, haptic::TickOutput* out) {
   const auto t0 = std::chrono::steady_clock::now();
   if (in.j == 0) method.Adopt(current);
   method.HapticTick(in, out);
@@ -137,8 +137,8 @@ struct PrismTimes {
 };
 
 // Counts one tick after the first period: force against the analytic prism, time, contacts.
-void CountTick(const engine::TickOutput& out, const render::ProxyDiagnostics& d, double seconds,
-               int j, const engine::RenderingSettings& rendering, Result* r, PrismTimes* times) {
+void CountTick(const haptic::TickOutput& out, const render::ProxyDiagnostics& d, double seconds,
+               int j, const settings::RenderingSettings& rendering, Result* r, PrismTimes* times) {
   // The base is δ deep and slides at constant speed: the proxy lifts it by δ and, with
   // friction, trails on the cone boundary, f = k_t δ (−μ x̂ + ẑ) once slipping (after
   // μδ/v = 5 ms of sticking, inside the uncounted first period).
@@ -189,7 +189,7 @@ Result RunPrism(int sides, bool friction, double duration) {
   for (int k = 0; k < periods; ++k) {
     physics.PhysicsStep(report, next.get());
     for (int j = 0; j < n; ++j, ++tick) {
-      engine::TickOutput out;
+      haptic::TickOutput out;
       const double seconds = TimedTick(method, *current, PrismTickInput(tick, j, n), &report, &out);
       r.finite = r.finite && IsFinite(out.w_W);
       if (k == 0) continue;

@@ -93,7 +93,7 @@ void Penetration(const ProxyTick& tick, SweepPoint* point) {
   }
 }
 
-SweepPoint Measure(double multiplier, const ProxyRun& run, const engine::RenderingSettings& r) {
+SweepPoint Measure(double multiplier, const ProxyRun& run, const settings::RenderingSettings& r) {
   SweepPoint p;
   p.multiplier = multiplier;
   p.R_w = multiplier * (2.0 * kHalf) * (2.0 * kHalf) / 6.0;  // unit-mass cube inertia a²/6
@@ -195,7 +195,7 @@ std::string WriteT35Files(const std::filesystem::path& out, const std::vector<Sw
 // The analytic comparison uses the ticks where PGS converged with one edge loaded; its
 // tolerance is T3.1's: a displacement error of at most m·κ·tol (κ = R_w/h², m = 2 rows) turns
 // into k_r·m·κ·tol·√2·h/R_w = k_r·2·tol·√2/h of torque.
-Checks CheckT35(const std::vector<SweepPoint>& points, const engine::RenderingSettings& r) {
+Checks CheckT35(const std::vector<SweepPoint>& points, const settings::RenderingSettings& r) {
   const double tau_tol = r.rot_stiffness * 2.0 * r.solver_tolerance * std::sqrt(2.0) / kHalf;
   bool torque_follows = true, torque_falls = true;
   for (std::size_t i = 0; i < points.size(); ++i) {

@@ -65,15 +65,15 @@ session::Session MakeSession(const Case& c, const Variant& v) {
 }
 
 // Rendered |f|, |τ| per tick; the first box's x and tilt angle and every box's COM per step.
-struct Tap final : engine::Recorder {
-  void OnTick(const engine::TickRecord& tick) override {
+struct Tap final : physics::Recorder {
+  void OnTick(const ir::TickRecord& tick) override {
     t.push_back(tick.t);
     f.push_back(tick.rendered_W.f.norm());
     tau.push_back(tick.rendered_W.tau.norm());
     tau_W.push_back(tick.rendered_W.tau);
   }
 
-  void OnStep(const engine::StepRecord& step, const world::World& world) override {
+  void OnStep(const physics::StepRecord& step, const world::World& world) override {
     if (boxes.empty()) {
       for (const char* name : {"box", "box2"}) {
         const int b = world.FindBody(name);

@@ -54,14 +54,14 @@ session::Session MakeSession(const Case& c, const Variant& v) {
 }
 
 // Rendered |f| per tick; the object's state per step.
-struct Tap final : engine::Recorder {
-  void OnTick(const engine::TickRecord& tick) override {
+struct Tap final : physics::Recorder {
+  void OnTick(const ir::TickRecord& tick) override {
     t.push_back(tick.t);
     f.push_back(tick.rendered_W.f.norm());
     f_W.push_back(tick.rendered_W.f);
   }
 
-  void OnStep(const engine::StepRecord& step, const world::World& world) override {
+  void OnStep(const physics::StepRecord& step, const world::World& world) override {
     if (object < 0) {
       object = world.FindBody("object");
       mass = world.body(object).mass;

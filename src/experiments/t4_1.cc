@@ -60,17 +60,17 @@ struct Case {
 };
 
 // Keeps the force on the cube (−f_d, eq. 4.12) and optionally forwards to a CSV recorder.
-class ForceTap final : public engine::Recorder {
+class ForceTap final : public physics::Recorder {
  public:
   explicit ForceTap(report::CsvRecorder* csv) : csv_(csv) {}
 
-  void OnTick(const engine::TickRecord& tick) override {
+  void OnTick(const ir::TickRecord& tick) override {
     if (csv_ != nullptr) csv_->OnTick(tick);
     t.push_back(tick.t);
     f_cube.push_back(-tick.rendered_W.f.x());
   }
 
-  void OnStep(const engine::StepRecord& step, const world::World& world) override {
+  void OnStep(const physics::StepRecord& step, const world::World& world) override {
     if (csv_ != nullptr) csv_->OnStep(step, world);
   }
 
@@ -137,7 +137,7 @@ MethodResult RunCase(const session::Session& session, const Case& c,
   r.method = session.engine.method;
   r.c = c;
   const int cube = engine->world().FindBody("cube");
-  for (const engine::BodyImpulseTotal& total : stats.impulses) {
+  for (const physics::BodyImpulseTotal& total : stats.impulses) {
     if (total.body == cube) r.impulse = -total.linear.x();
   }
   r.momentum = c.mass * (c.speed - engine->world().body_state(cube).V_WCm.v.x());
@@ -161,10 +161,10 @@ ir::Mat63 MeasureAccelerance() {
   s.engine.rendering.local_model = "perturbation";  // the thesis' A (issue 13's model has none)
   world::World world = session::LoadWorld(s);
   world.set_timestep(s.engine.physics_dt);
-  engine::MethodContext context{.world = &world,
-                                .settings = &s.engine,
-                                .pointer_body = world.pointer_body(),
-                                .pointer_radius = s.engine.pointer.radius};
+  physics::MethodContext context{.world = &world,
+                                 .settings = &s.engine,
+                                 .pointer_body = world.pointer_body(),
+                                 .pointer_radius = s.engine.pointer.radius};
   auto method = engine::MakeMethod("local-dynamics", context);
   ir::HapticReport report;
   report.X_WP = s.device.calibration.ToWorld(s.device.pose);

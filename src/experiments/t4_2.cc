@@ -37,16 +37,16 @@ constexpr const char* kConventional = "impulse";  // B4
 constexpr double kAgreementSigmas = 3.0;
 
 // The momentum each stimulus takes from the hand: ∫ f dt of the wrench displayed to the device.
-class MomentumTap final : public engine::Recorder {
+class MomentumTap final : public physics::Recorder {
  public:
   explicit MomentumTap(double dt) : dt_(dt) {}
 
-  void OnTick(const engine::TickRecord& tick) override {
+  void OnTick(const ir::TickRecord& tick) override {
     p_ += tick.displayed_W.f * dt_;
     peak_ = std::max(peak_, tick.displayed_W.f.norm());
   }
 
-  void OnStep(const engine::StepRecord&, const world::World&) override {}
+  void OnStep(const physics::StepRecord&, const world::World&) override {}
 
   double momentum() const { return p_.norm(); }
 
@@ -276,7 +276,7 @@ int RunT42(const std::filesystem::path& out, bool quiet, const T42Options& optio
     SimulatedObserver observer(options.observer_seed + i, options.weber,
                                options.cache ? &cache : nullptr);
     (void)psychophysics::RunStudy(
-        study, {.subject = name, .out = dir, .mode = engine::Mode::kLockstep, .sync = false},
+        study, {.subject = name, .out = dir, .mode = settings::Mode::kLockstep, .sync = false},
         &observer);
     const auto more = psychophysics::ReadTrials(dir / "trials.csv");
     rows.insert(rows.end(), more.begin(), more.end());

@@ -121,11 +121,11 @@ std::function<void(const physics::MethodPhysics&)> WorkRecorder(
   };
 }
 
-class StepTap final : public engine::Recorder {
+class StepTap final : public physics::Recorder {
  public:
-  void OnTick(const engine::TickRecord&) override {}
+  void OnTick(const ir::TickRecord&) override {}
 
-  void OnStep(const engine::StepRecord& step, const world::World&) override {
+  void OnStep(const physics::StepRecord& step, const world::World&) override {
     samples.push_back({.t = step.t,
                        .compute_ms = step.compute_ms,
                        .sim_contacts = step.sim_contacts,
@@ -224,11 +224,11 @@ AccuracyResult RunAccuracy(const std::filesystem::path& scene, int cubes, const 
   const std::string method = "t4.3:accuracy:" + name;
   engine::RegisterMethod(
       method, "t4.3: local-dynamics, measurements repeated by a reference",
-      [used, reference](const engine::MethodContext& context) {
+      [used, reference](const physics::MethodContext& context) {
         physics::LocalDynamicsOptions o;
         o.perturber = used;
         o.reference = reference;
-        const engine::RenderingSettings& r = context.settings->rendering;
+        const settings::RenderingSettings& r = context.settings->rendering;
         return engine::Method{
             "local-dynamics",
             false,

@@ -80,7 +80,7 @@ class TimedHaptic final : public haptic::MethodHaptic {
     Keep(&sink_->adopt_wall_us, Us(t0), max_steps_ + 1);
   }
 
-  void HapticTick(const engine::TickInput& in, engine::TickOutput* out) noexcept override {
+  void HapticTick(const haptic::TickInput& in, haptic::TickOutput* out) noexcept override {
     const auto t0 = Clock::now();
     inner_->HapticTick(in, out);
     const double us = Us(t0);
@@ -108,14 +108,14 @@ class TimedHaptic final : public haptic::MethodHaptic {
 std::string RegisterTimedMethod(const std::string& inner, std::shared_ptr<MethodTimings> sink,
                                 std::size_t max_ticks, std::size_t max_steps) {
   const std::string name = "timed:" + inner;
-  engine::RegisterMethod(name, "experiments: " + inner + " with per-call timing",
-                         [inner, sink, max_ticks, max_steps](const engine::MethodContext& context) {
-                           engine::Method m = engine::MakeMethod(inner, context);
-                           m.physics = std::make_unique<TimedPhysics>(std::move(m.physics), sink);
-                           m.haptic = std::make_unique<TimedHaptic>(std::move(m.haptic), sink,
-                                                                    max_ticks, max_steps);
-                           return m;
-                         });
+  engine::RegisterMethod(
+      name, "experiments: " + inner + " with per-call timing",
+      [inner, sink, max_ticks, max_steps](const physics::MethodContext& context) {
+        engine::Method m = engine::MakeMethod(inner, context);
+        m.physics = std::make_unique<TimedPhysics>(std::move(m.physics), sink);
+        m.haptic = std::make_unique<TimedHaptic>(std::move(m.haptic), sink, max_ticks, max_steps);
+        return m;
+      });
   return name;
 }
 

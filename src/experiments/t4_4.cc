@@ -53,14 +53,14 @@ struct StepState {
   double felt_mass_A = 0.0;  // 1 / A_xx of cube1 in the snapshot (kg), 0 if none
 };
 
-class Tap final : public engine::Recorder {
+class Tap final : public physics::Recorder {
  public:
-  void OnTick(const engine::TickRecord& tick) override {
+  void OnTick(const ir::TickRecord& tick) override {
     t.push_back(tick.t);
     f.push_back(tick.rendered_W.f);
   }
 
-  void OnStep(const engine::StepRecord& step, const world::World& world) override {
+  void OnStep(const physics::StepRecord& step, const world::World& world) override {
     if (cube1_ < 0) {
       cube1_ = world.FindBody("cube1");
       edge_ = world.FindBody("edge_cube");

@@ -100,17 +100,16 @@ session::Session MakeSession(const std::filesystem::path& scene, const std::stri
   return session::ParseSession(json.dump(2), scene.parent_path(), {}, "t4.5 " + method);
 }
 
-class StepTap final : public engine::Recorder {
+class StepTap final : public physics::Recorder {
  public:
-  void OnTick(const engine::TickRecord&) override {}
+  void OnTick(const ir::TickRecord&) override {}
 
-  void OnStep(const engine::StepRecord& step, const world::World&) override {
+  void OnStep(const physics::StepRecord& step, const world::World&) override {
     neighbors.push_back(step.neighbors);
   }
 
   std::vector<int> neighbors;
 };
-
 
 struct Result {
   std::string method;

@@ -26,12 +26,13 @@ constexpr double kTo = 5.0;          // s
 constexpr double kPositionAt = 5.0;  // s, box position compared 4 s after the touch
 constexpr const char* kPerturbation = "local-dynamics/perturbation";
 
-struct Tap final : engine::Recorder {
-  void OnTick(const engine::TickRecord& tick) override {
+struct Tap final : physics::Recorder {
+  void OnTick(const ir::TickRecord& tick) override {
     t.push_back(tick.t);
     f.push_back(tick.rendered_W.f.norm());
   }
-  void OnStep(const engine::StepRecord& step, const world::World& world) override {
+
+  void OnStep(const physics::StepRecord& step, const world::World& world) override {
     if (box < 0) box = world.FindBody("box");
     const world::BodyState s = world.body_state(box);
     steps.push_back({step.t, s.p_WCm, s.V_WCm.w.norm()});

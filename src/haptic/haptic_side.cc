@@ -84,7 +84,7 @@ void HapticSide::Tick(double t) noexcept {
 // method's status bits counted per bit.
 void HapticSide::Record(double t, const TickOutput& out, const Wrench& displayed,
                         std::uint32_t safety_bits) noexcept {
-  TickRecord record;
+  ir::TickRecord record;
   record.tick = counters_.ticks;
   record.pointer = exchange_.pointer;
   record.t = t;

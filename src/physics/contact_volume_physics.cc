@@ -35,7 +35,7 @@ ContactVolumePhysics::ContactVolumePhysics(const MethodContext& context)
         "\"contact-volume\")",
         world_->origin()));
   }
-  const engine::RenderingSettings& r = context.settings->rendering;
+  const settings::RenderingSettings& r = context.settings->rendering;
   gains_ = PenaltyGains{.k = r.stiffness, .d = r.damping, .mu_static = r.friction,
                         .mu_dynamic = r.friction};
   MakePieces(r);
@@ -43,7 +43,7 @@ ContactVolumePhysics::ContactVolumePhysics(const MethodContext& context)
   X_WG_.resize(pieces_.size());
 }
 
-void ContactVolumePhysics::MakePieces(const engine::RenderingSettings& rendering) {
+void ContactVolumePhysics::MakePieces(const settings::RenderingSettings& rendering) {
   for (int g = 0; g < world_->num_geoms(); ++g) {
     const world::GeomInfo& info = world_->geom(g);
     const bool on_pointer = info.body == pointer_;

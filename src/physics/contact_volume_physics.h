@@ -60,7 +60,7 @@ class ContactVolumePhysics final : public MethodPhysics {
     FrictionAnchor anchor;
   };
 
-  void MakePieces(const engine::RenderingSettings& rendering);
+  void MakePieces(const settings::RenderingSettings& rendering);
   void MakePairs();
   bool Overlap(const Pair& pair) const;
   void Analyse(const Twist& V_WP);

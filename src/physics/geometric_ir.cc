@@ -7,7 +7,7 @@
 namespace mrh::physics {
 
 void BuildGeometricIr(const world::World& world, int pointer_body,
-                      const engine::RenderingSettings& rendering, const Pose& X_WP,
+                      const settings::RenderingSettings& rendering, const Pose& X_WP,
                       ir::PhysicsSnapshot* out) {
   internal::GeometricIrBuilder builder(world, pointer_body, rendering);
   builder.Build(world, X_WP, out);

@@ -36,7 +36,7 @@ bool BodyMoves(const world::BodyInfo& body) {
 }  // namespace
 
 GeometricIrBuilder::GeometricIrBuilder(const world::World& world, int pointer_body,
-                                       const RenderingSettings& rendering)
+                                       const settings::RenderingSettings& rendering)
     : pointer_body_(pointer_body),
       rendering_(rendering),
       // Below neighbor_distance the broad phase could drop a true neighbor (an AABB gap never

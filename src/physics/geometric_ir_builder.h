@@ -8,12 +8,12 @@
 
 #include "body_motions.h"
 #include "material_table.h"
-#include "mrh/engine/settings.h"
 #include "mrh/geometry/broadphase.h"
 #include "mrh/geometry/contact_region.h"
 #include "mrh/geometry/distance.h"
 #include "mrh/geometry/polyhedron.h"
 #include "mrh/ir/snapshot.h"
+#include "mrh/settings/settings.h"
 #include "normal_feature.h"
 
 namespace mrh::world {
@@ -22,7 +22,7 @@ class World;
 
 namespace mrh::physics::internal {
 
-using engine::RenderingSettings;
+using settings::RenderingSettings;
 
 /// Work done by the last GeometricIrBuilder::Build, for experiments and benchmarks. Times are
 /// wall-clock seconds of the physics thread.
@@ -57,7 +57,7 @@ class GeometricIrBuilder {
   /// @throws mrh::SceneError if the pointer body has no geom, a pointer geom is a plane, or a
   /// geom cannot be represented (the message names the geom).
   GeometricIrBuilder(const world::World& world, int pointer_body,
-                     const RenderingSettings& rendering);
+                     const settings::RenderingSettings& rendering);
 
   /// Remembers every body's pose before a step (the interpolation start, BodyMotion::X_WB_prev).
   void CapturePreviousPoses(const world::World& world);
@@ -102,7 +102,7 @@ class GeometricIrBuilder {
   void FillPair(const Neighbor& n, const Pose& X_WP, int motion, ir::PhysicsSnapshot* out);
 
   int pointer_body_;
-  RenderingSettings rendering_;
+  settings::RenderingSettings rendering_;
   double inflation_;  // pointer box margin (m)
   std::vector<Piece> pointer_;
   std::vector<Piece> objects_;

@@ -19,7 +19,7 @@ using physics::LocalDynamicsCounters;
 using physics::LocalDynamicsOptions;
 using physics::LocalDynamicsTiming;
 
-using engine::RenderingSettings;
+using settings::RenderingSettings;
 
 /// Method `local-dynamics` (SPEC §4): the physics half overwrites the neighbors with the local
 /// states of the previous period (eq. 4.16–4.17) and moves the rest of each neighbor's contact
@@ -99,7 +99,7 @@ class LocalDynamicsPhysics final : public MethodPhysics {
   world::World* world_;
   int pointer_body_;
   double physics_dt_;
-  RenderingSettings rendering_;
+  settings::RenderingSettings rendering_;
   CorrectionModel correction_;
   std::optional<PointIrBuilder> builder_;
   world::Perturber perturber_;

@@ -15,7 +15,8 @@
 namespace mrh::physics {
 namespace {
 
-ir::ContactMaterial Resolve(const engine::MaterialSettings& m, const engine::RenderingSettings& r) {
+ir::ContactMaterial Resolve(const settings::MaterialSettings& m,
+                            const settings::RenderingSettings& r) {
   ir::ContactMaterial out;
   out.has_material = true;
   out.stiffness = m.stiffness.value_or(r.stiffness);
@@ -30,7 +31,7 @@ ir::ContactMaterial Resolve(const engine::MaterialSettings& m, const engine::Ren
 
 }  // namespace
 
-void CheckMaterialsUsed(const world::World& world, const engine::RenderingSettings& rendering) {
+void CheckMaterialsUsed(const world::World& world, const settings::RenderingSettings& rendering) {
   std::set<std::string> used;
   for (int g = 0; g < world.num_geoms(); ++g) {
     if (!world.geom(g).material.empty()) used.insert(world.geom(g).material);
@@ -49,7 +50,8 @@ void CheckMaterialsUsed(const world::World& world, const engine::RenderingSettin
 
 namespace mrh::physics::internal {
 
-MaterialTable::MaterialTable(const world::World& world, const engine::RenderingSettings& rendering)
+MaterialTable::MaterialTable(const world::World& world,
+                             const settings::RenderingSettings& rendering)
     : by_geom_(static_cast<std::size_t>(world.num_geoms())) {
   if (rendering.materials.empty()) return;
   for (int g = 0; g < world.num_geoms(); ++g) {

@@ -4,8 +4,8 @@
 
 #include <vector>
 
-#include "mrh/engine/settings.h"
 #include "mrh/ir/material.h"
+#include "mrh/settings/settings.h"
 
 namespace mrh::world {
 class World;
@@ -20,7 +20,7 @@ namespace mrh::physics::internal {
 class MaterialTable {
  public:
   /// Not RT-safe (allocates). Does not check names; see CheckMaterialsUsed.
-  MaterialTable(const world::World& world, const engine::RenderingSettings& rendering);
+  MaterialTable(const world::World& world, const settings::RenderingSettings& rendering);
 
   /// The geom's material (none for an id outside the world). Thread-safe (const).
   const ir::ContactMaterial& of(int geom) const noexcept;

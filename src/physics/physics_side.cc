@@ -151,7 +151,7 @@ int PhysicsSide::TakeReports() {
 }
 
 void PhysicsSide::DrainTickRecords() {
-  haptic::TickRecord record;
+  ir::TickRecord record;
   while (exchange_.tick_records->TryPop(&record)) {
     if (recorder_ != nullptr) recorder_->OnTick(record);
   }

@@ -48,7 +48,7 @@ void SetRoundCore(const world::GeomInfo& info, ir::PointContact* contact) {
 }  // namespace
 
 PointIrBuilder::PointIrBuilder(const world::World& world, int pointer_body, double radius,
-                               const RenderingSettings& rendering)
+                               const settings::RenderingSettings& rendering)
     : pointer_body_(pointer_body),
       radius_(radius),
       rendering_(rendering),

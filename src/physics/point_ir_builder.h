@@ -4,11 +4,11 @@
 
 #include <vector>
 
-#include "mrh/engine/settings.h"
-#include "mrh/geometry/distance.h"
-#include "mrh/ir/snapshot.h"
 #include "body_motions.h"
 #include "material_table.h"
+#include "mrh/geometry/distance.h"
+#include "mrh/ir/snapshot.h"
+#include "mrh/settings/settings.h"
 
 namespace mrh::world {
 class World;
@@ -16,7 +16,7 @@ class World;
 
 namespace mrh::physics::internal {
 
-using engine::RenderingSettings;
+using settings::RenderingSettings;
 
 /// Builds PhysicsSnapshot bodies and point contacts for a sphere pointer (SPEC §4.4): a bounding
 /// sphere broad phase inflated by `neighbor_margin`, then an FCL signed-distance narrow phase;
@@ -26,7 +26,7 @@ class PointIrBuilder {
  public:
   /// @throws mrh::SceneError if a collidable geom cannot be represented.
   PointIrBuilder(const world::World& world, int pointer_body, double radius,
-                 const RenderingSettings& rendering);
+                 const settings::RenderingSettings& rendering);
 
   /// Remembers every body's pose before a step (the interpolation start).
   void CapturePreviousPoses(const world::World& world);
@@ -44,7 +44,7 @@ class PointIrBuilder {
 
   int pointer_body_;
   double radius_;
-  RenderingSettings rendering_;
+  settings::RenderingSettings rendering_;
   MaterialTable materials_;
   geometry::CollisionShape pointer_shape_;
   std::vector<Candidate> candidates_;

@@ -11,7 +11,7 @@
 namespace mrh::physics::internal {
 
 ProxyLocalReaction::ProxyLocalReaction(world::World& world, int pointer_body,
-                                       const engine::RenderingSettings& rendering,
+                                       const settings::RenderingSettings& rendering,
                                        const render::ProxyRendererSettings& settings,
                                        double physics_dt, double haptic_dt)
     : exporter_(&world),
@@ -25,12 +25,12 @@ ProxyLocalReaction::ProxyLocalReaction(world::World& world, int pointer_body,
 }
 
 ProxyLocalReaction::PointerRun::PointerRun(world::World& world, int pointer_body,
-                                           const engine::RenderingSettings& rendering,
+                                           const settings::RenderingSettings& rendering,
                                            const render::ProxyRendererSettings& settings)
     : builder(world, pointer_body, rendering), renderer(settings) {}
 
 void ProxyLocalReaction::AddPointer(world::World& world, int pointer_body,
-                                    const engine::RenderingSettings& rendering,
+                                    const settings::RenderingSettings& rendering,
                                     const render::ProxyRendererSettings& settings) {
   pointers_.push_back(std::make_unique<PointerRun>(world, pointer_body, rendering, settings));
 }

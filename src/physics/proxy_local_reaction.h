@@ -69,14 +69,15 @@ class ProxyLocalReaction {
   /// @throws mrh::InvalidArgument from the renderer settings.
   /// @throws mrh::SceneError from GeometricIrBuilder.
   ProxyLocalReaction(world::World& world, int pointer_body,
-                     const engine::RenderingSettings& rendering,
+                     const settings::RenderingSettings& rendering,
                      const render::ProxyRendererSettings& settings, double physics_dt,
                      double haptic_dt);
 
   /// Several pointers: one more pointer with its own geometry and proxy settings, run over the
   /// same steps against the same objects and island (pointer index = the order of the calls,
   /// the constructor's being 0). Setup only. @throws as the constructor.
-  void AddPointer(world::World& world, int pointer_body, const engine::RenderingSettings& rendering,
+  void AddPointer(world::World& world, int pointer_body,
+                  const settings::RenderingSettings& rendering,
                   const render::ProxyRendererSettings& settings);
 
   /// Computes the step's reaction for the pointer pose and velocity of `report` and adds it to
@@ -137,7 +138,7 @@ class ProxyLocalReaction {
   // One pointer's physics-side proxy: its own IR builder (so the haptic IR's builder keeps its
   // state), renderer and IRs.
   struct PointerRun {
-    PointerRun(world::World& world, int pointer_body, const engine::RenderingSettings& rendering,
+    PointerRun(world::World& world, int pointer_body, const settings::RenderingSettings& rendering,
                const render::ProxyRendererSettings& settings);
     GeometricIrBuilder builder;
     std::unique_ptr<ir::PhysicsSnapshot> snapshot = std::make_unique<ir::PhysicsSnapshot>();

@@ -13,7 +13,7 @@
 namespace mrh::physics {
 
 Mat3 PointerRotationWeight(const world::World& world, int pointer_body,
-                           const engine::RenderingSettings& rendering) {
+                           const settings::RenderingSettings& rendering) {
   if (rendering.rotation_weight) return rendering.rotation_weight->asDiagonal();
   const world::BodyInfo& pointer = world.body(pointer_body);
   if (!(pointer.mass > 0.0)) {
@@ -34,7 +34,7 @@ Mat3 PointerRotationWeight(const world::World& world, int pointer_body,
 }
 
 render::ProxyRendererSettings ProxySettingsFor(const world::World& world, int pointer_body,
-                                               const engine::RenderingSettings& rendering) {
+                                               const settings::RenderingSettings& rendering) {
   if (rendering.max_iterations > render::kMaxProxyIterations) {
     throw InvalidArgument(
         fmt::format("rendering.max_iterations = {}; expected 1..{} for proxy-6dof (the solver's "
@@ -80,7 +80,7 @@ ProxyPhysics::ProxyPhysics(const MethodContext& context)
       pointer_body_(context.pointer_body),
       physics_dt_(context.settings->physics_dt) {
   builder_.emplace(*world_, pointer_body_, context.settings->rendering);
-  const engine::RenderingSettings& rendering = context.settings->rendering;
+  const settings::RenderingSettings& rendering = context.settings->rendering;
   // "local" at every rate: even at physics_dt = haptic_dt a reaction applied one step late
   // acts as a negative damper k_t·Δt on the pushed object (2 of the default 5 N·s/m), and the
   // tick's split of the load among its contact points reaches it a step after the pose that

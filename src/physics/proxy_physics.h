@@ -13,7 +13,7 @@
 
 namespace mrh::physics::internal {
 
-using engine::RenderingSettings;
+using settings::RenderingSettings;
 
 /// The physics half of the chapter-3 method (SPEC §3.1–3.11), registered as "proxy-6dof".
 ///

@@ -35,7 +35,7 @@ double WeakestInertia(const Mat3& inertia_B) {
 
 // Unset rotational gains: the translational a = k h²/m and c = b h/m on the weakest axis.
 render::CouplingGains ResolveCouplingGains(const world::BodyInfo& tool,
-                                           const engine::RenderingSettings& r) {
+                                           const settings::RenderingSettings& r) {
   const double ratio = WeakestInertia(tool.inertia_B) / tool.mass;  // m²
   return render::CouplingGains{
       .k = r.coupling_stiffness,

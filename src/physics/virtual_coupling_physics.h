@@ -4,9 +4,9 @@
 
 #include <string>
 
-#include "mrh/engine/settings.h"
 #include "mrh/physics/method_physics.h"
 #include "mrh/render/virtual_coupling.h"
+#include "mrh/settings/settings.h"
 #include "mrh/world/world.h"
 
 namespace mrh::physics::internal {
@@ -30,7 +30,7 @@ void CheckCouplingStable(const world::BodyInfo& tool, const render::CouplingGain
 /// rendering.coupling_* with unset rotational gains derived from the tool (see
 /// physics::ResolveCouplingGains). Not RT-safe.
 render::CouplingGains ResolveCouplingGains(const world::BodyInfo& tool,
-                                           const engine::RenderingSettings& r);
+                                           const settings::RenderingSettings& r);
 
 class VirtualCouplingPhysics final : public MethodPhysics {
  public:

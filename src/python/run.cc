@@ -26,23 +26,23 @@ struct Result {
 };
 
 // Hands each record to the column recorder and, when `out` was given, to the CLI's CSV writer.
-class TeeRecorder final : public engine::Recorder {
+class TeeRecorder final : public physics::Recorder {
  public:
-  TeeRecorder(engine::Recorder* first, engine::Recorder* second) : a_(first), b_(second) {}
+  TeeRecorder(physics::Recorder* first, physics::Recorder* second) : a_(first), b_(second) {}
 
-  void OnTick(const engine::TickRecord& tick) override {
+  void OnTick(const ir::TickRecord& tick) override {
     a_->OnTick(tick);
     if (b_ != nullptr) b_->OnTick(tick);
   }
 
-  void OnStep(const engine::StepRecord& step, const world::World& world) override {
+  void OnStep(const physics::StepRecord& step, const world::World& world) override {
     a_->OnStep(step, world);
     if (b_ != nullptr) b_->OnStep(step, world);
   }
 
  private:
-  engine::Recorder* a_;
-  engine::Recorder* b_;
+  physics::Recorder* a_;
+  physics::Recorder* b_;
 };
 
 py::dict ToDict(const std::vector<report::Column>& columns) {
@@ -75,7 +75,7 @@ session::Session SessionForMode(const PythonSession& s, const std::string& mode)
   if (mode != "lockstep" && mode != "realtime") {
     throw InvalidArgument("run: mode = '" + mode + "'; expected \"lockstep\" or \"realtime\"");
   }
-  if (mode == engine::ModeName(s.session.engine.mode)) return s.session;
+  if (mode == settings::ModeName(s.session.engine.mode)) return s.session;
   std::vector<std::string> overrides = s.overrides;
   overrides.push_back("mode=" + mode);
   return session::LoadSession(s.path, overrides);
@@ -83,7 +83,7 @@ session::Session SessionForMode(const PythonSession& s, const std::string& mode)
 
 // A vendor servo thread (OpenHaptics) drives real-time runs only through `mrh run`.
 void CheckDevice(const session::Session& s, const device::Device& device) {
-  if (s.engine.mode == engine::Mode::kRealtime &&
+  if (s.engine.mode == settings::Mode::kRealtime &&
       dynamic_cast<const device::ServoDevice*>(&device) != nullptr) {
     throw InvalidArgument(s.file.string() + ": device.type = \"" + s.device.type +
                           "\" runs real time on the vendor's servo thread, which only `mrh run` "
@@ -101,7 +101,7 @@ Result Run(const PythonSession& ps, const std::string& mode, const std::optional
   std::unique_ptr<engine::Engine> engine = session::MakeEngine(s, std::move(device));
 
   report::ColumnRecorder columns;
-  const engine::EngineSettings& settings = engine->settings();
+  const settings::EngineSettings& settings = engine->settings();
   const auto ticks = std::llround(settings.duration / settings.haptic_dt);
   columns.Reserve(ticks, ticks / settings.ticks_per_step() + 1);
   std::optional<report::CsvRecorder> csv;

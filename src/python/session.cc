@@ -4,7 +4,7 @@
 #include <pybind11/stl/filesystem.h>
 
 #include "bindings.h"
-#include "mrh/engine/settings.h"
+#include "mrh/settings/settings.h"
 
 namespace mrh::python {
 namespace {
@@ -19,7 +19,7 @@ PythonSession LoadSession(const std::filesystem::path& path, std::vector<std::st
 
 std::string Repr(const PythonSession& s) {
   return "<mrhaptics.Session " + s.path.string() + ": method " + s.session.engine.method + ", " +
-         engine::ModeName(s.session.engine.mode) + ", device " + s.session.device.type + ">";
+         settings::ModeName(s.session.engine.mode) + ", device " + s.session.device.type + ">";
 }
 
 }  // namespace
@@ -55,7 +55,7 @@ void BindSession(py::module_& m) {
       .def_property_readonly(
           "mode",
           [](const PythonSession& s) {
-            return engine::ModeName(s.session.engine.mode);
+            return settings::ModeName(s.session.engine.mode);
           },
           "\"lockstep\" or \"realtime\", as the file says (run() picks its own).")
       .def_property_readonly(

@@ -59,14 +59,14 @@ void ColumnRecorder::Reserve(std::int64_t ticks, std::int64_t steps) {
   ReserveAll(steps_, static_cast<std::size_t>(std::max<std::int64_t>(steps, 0)));
 }
 
-void ColumnRecorder::OnTick(const engine::TickRecord& tick) {
+void ColumnRecorder::OnTick(const ir::TickRecord& tick) {
   const Pose& X = tick.X_WP;
   const Wrench& w = tick.displayed_W;
   AppendRow(ticks_, tick.t, X.p.x(), X.p.y(), X.p.z(), X.q.w(), X.q.x(), X.q.y(), X.q.z(), w.f.x(),
             w.f.y(), w.f.z(), w.tau.x(), w.tau.y(), w.tau.z(), tick.contacts, tick.safety_bits);
 }
 
-void ColumnRecorder::OnStep(const engine::StepRecord& step, const world::World& world) {
+void ColumnRecorder::OnStep(const physics::StepRecord& step, const world::World& world) {
   AppendRow(steps_, step.t, step.step, step.compute_ms, step.sim_contacts, step.neighbors,
             step.point_contacts, step.solver_iterations, step.world_step_ms, step.ir_ms,
             step.model_ms, step.sync_ms);

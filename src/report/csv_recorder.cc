@@ -151,7 +151,7 @@ CsvRecorder::CsvRecorder(const std::filesystem::path& dir, std::vector<std::stri
 
 CsvRecorder::~CsvRecorder() = default;
 
-void CsvRecorder::OnTick(const engine::TickRecord& tick) {
+void CsvRecorder::OnTick(const ir::TickRecord& tick) {
   fmt::memory_buffer& out = impl_->ticks.buffer();
   fmt::format_to(std::back_inserter(out), "{}", tick.t);
   AppendVec(out, tick.X_WP.p);
@@ -172,7 +172,7 @@ void CsvRecorder::OnTick(const engine::TickRecord& tick) {
   impl_->ticks.MaybeFlush();
 }
 
-void CsvRecorder::OnStep(const engine::StepRecord& step, const world::World& world) {
+void CsvRecorder::OnStep(const physics::StepRecord& step, const world::World& world) {
   fmt::format_to(std::back_inserter(impl_->steps.buffer()), "{},{},{},{},{},{},{},{},{},{},{}\n",
                  step.t, step.step, step.compute_ms, step.sim_contacts, step.neighbors,
                  step.point_contacts, step.solver_iterations, step.world_step_ms, step.ir_ms,

@@ -187,7 +187,7 @@ bool PlotReport(const std::filesystem::path& dir, const std::string& title, std:
 bool PlotRunReport(const std::filesystem::path& dir, const std::filesystem::path& session_file,
                    const engine::RunStats& stats, std::string* why) {
   const std::string title = fmt::format("{}: {} ({})", session_file.filename().string(),
-                                        stats.method, engine::ModeName(stats.mode));
+                                        stats.method, settings::ModeName(stats.mode));
   // The 3-DOF methods render a force only (their torque column is zero or noise).
   const bool three_dof = stats.method == "single-rate" || stats.method == "impulse" ||
                          stats.method == "local-dynamics";
@@ -195,7 +195,7 @@ bool PlotRunReport(const std::filesystem::path& dir, const std::filesystem::path
   for (const engine::PointerRunStats& pointer : stats.pointers) {
     options.pointers.push_back(pointer.body);
   }
-  for (const engine::BodyImpulseTotal& impulse : stats.impulses) {
+  for (const physics::BodyImpulseTotal& impulse : stats.impulses) {
     if (impulse.linear.norm() > 0.0 || impulse.angular.norm() > 0.0) {
       options.touched_bodies.push_back(impulse.name);
     }

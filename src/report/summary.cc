@@ -32,7 +32,7 @@ json Faults(const engine::RunStats& s) {
 
 json Impulses(const engine::RunStats& s) {
   json out = json::array();
-  for (const engine::BodyImpulseTotal& impulse : s.impulses) {
+  for (const physics::BodyImpulseTotal& impulse : s.impulses) {
     out.push_back(json{{"body", impulse.body},
                        {"name", impulse.name},
                        {"linear", ToJson(impulse.linear)},
@@ -84,7 +84,7 @@ json ToJson(const engine::RunStats& s, const std::string& session, const std::st
       {"session", session},
       {"scene", scene},
       {"method", s.method},
-      {"mode", engine::ModeName(s.mode)},
+      {"mode", settings::ModeName(s.mode)},
       {"physics_dt", s.physics_dt},
       {"haptic_dt", s.haptic_dt},
       {"sim_time", s.sim_time},

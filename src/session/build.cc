@@ -50,7 +50,7 @@ std::vector<std::string> MorePointerBodies(const Session& session) {
 
 // The timestep is left to the engine: it sets physics_dt, or haptic_dt for single-rate methods.
 world::World LoadWorld(const Session& session) {
-  const engine::RenderingSettings& r = session.engine.rendering;
+  const settings::RenderingSettings& r = session.engine.rendering;
   // Virtual coupling (B3) simulates the pointer as a dynamic tool inside MuJoCo.
   const bool tool = session.engine.method == "virtual-coupling";
   world::World world = world::World::LoadFile(

@@ -11,7 +11,7 @@
 #include "mrh/device/device.h"
 #include "mrh/device/safety.h"
 #include "mrh/device/simulated.h"
-#include "mrh/engine/settings.h"
+#include "mrh/settings/settings.h"
 
 namespace mrh::session::internal {
 
@@ -28,78 +28,78 @@ struct Field {
 };
 
 /// Top-level keys stored in engine::EngineSettings.
-inline constexpr std::array<Field<engine::EngineSettings>, 5> kEngineFields{{
-    {"method", &engine::EngineSettings::method, "", "rendering method name"},
-    {"physics_dt", &engine::EngineSettings::physics_dt, "s", "physics (global) step period"},
-    {"haptic_dt", &engine::EngineSettings::haptic_dt, "s", "haptic tick period"},
-    {"duration", &engine::EngineSettings::duration, "s", "length of the run"},
-    {"realtime_priority", &engine::EngineSettings::realtime_priority, "",
+inline constexpr std::array<Field<settings::EngineSettings>, 5> kEngineFields{{
+    {"method", &settings::EngineSettings::method, "", "rendering method name"},
+    {"physics_dt", &settings::EngineSettings::physics_dt, "s", "physics (global) step period"},
+    {"haptic_dt", &settings::EngineSettings::haptic_dt, "s", "haptic tick period"},
+    {"duration", &settings::EngineSettings::duration, "s", "length of the run"},
+    {"realtime_priority", &settings::EngineSettings::realtime_priority, "",
      "ask for SCHED_FIFO + mlockall in real-time mode"},
 }};
 
 /// `pointer` block.
-inline constexpr std::array<Field<engine::PointerSettings>, 2> kPointerFields{{
-    {"body", &engine::PointerSettings::body, "", "mocap body of the scene that is the pointer"},
-    {"radius", &engine::PointerSettings::radius, "m", "sphere radius; 0: from the body's geom"},
+inline constexpr std::array<Field<settings::PointerSettings>, 2> kPointerFields{{
+    {"body", &settings::PointerSettings::body, "", "mocap body of the scene that is the pointer"},
+    {"radius", &settings::PointerSettings::radius, "m", "sphere radius; 0: from the body's geom"},
 }};
 
 /// `rendering` block.
-inline constexpr std::array<Field<engine::RenderingSettings>, 22> kRenderingFields{{
-    {"stiffness", &engine::RenderingSettings::stiffness, "N/m", "penalty spring k (eq. 4.11)"},
-    {"damping", &engine::RenderingSettings::damping, "N*s/m", "penalty damper d (eq. 4.11)"},
-    {"neighbor_distance", &engine::RenderingSettings::neighbor_distance, "m",
+inline constexpr std::array<Field<settings::RenderingSettings>, 22> kRenderingFields{{
+    {"stiffness", &settings::RenderingSettings::stiffness, "N/m", "penalty spring k (eq. 4.11)"},
+    {"damping", &settings::RenderingSettings::damping, "N*s/m", "penalty damper d (eq. 4.11)"},
+    {"neighbor_distance", &settings::RenderingSettings::neighbor_distance, "m",
      "objects this close to the pointer become neighbors"},
-    {"neighbor_margin", &engine::RenderingSettings::neighbor_margin, "m",
+    {"neighbor_margin", &settings::RenderingSettings::neighbor_margin, "m",
      "broad-phase inflation of the pointer's bounds"},
-    {"curved_segments", &engine::RenderingSettings::curved_segments, "",
+    {"curved_segments", &settings::RenderingSettings::curved_segments, "",
      "segments per turn of polyhedral spheres, capsules, cylinders, ellipsoids"},
-    {"rot_stiffness", &engine::RenderingSettings::rot_stiffness, "N*m/rad",
+    {"rot_stiffness", &settings::RenderingSettings::rot_stiffness, "N*m/rad",
      "proxy rotational spring k_r (eq. 3.8)"},
-    {"rot_damping", &engine::RenderingSettings::rot_damping, "N*m*s/rad",
+    {"rot_damping", &settings::RenderingSettings::rot_damping, "N*m*s/rad",
      "proxy rotational damper d_r (eq. 3.8)"},
-    {"rotation_weight_scale", &engine::RenderingSettings::rotation_weight_scale, "",
+    {"rotation_weight_scale", &settings::RenderingSettings::rotation_weight_scale, "",
      "multiplier on the pointer's unit-mass inertia for R_w"},
-    {"friction", &engine::RenderingSettings::friction, "", "friction coefficient mu"},
-    {"torque_model", &engine::RenderingSettings::torque_model, "",
+    {"friction", &settings::RenderingSettings::friction, "", "friction coefficient mu"},
+    {"torque_model", &settings::RenderingSettings::torque_model, "",
      "6-DOF: \"thesis\" (eq. 3.8, default) or \"contact\" (every force a contact force)"},
-    {"proxy_solver", &engine::RenderingSettings::proxy_solver, "",
+    {"proxy_solver", &settings::RenderingSettings::proxy_solver, "",
      "\"active-set\" (exact) or \"pgs\" (thesis eq. 3.6)"},
-    {"max_iterations", &engine::RenderingSettings::max_iterations, "",
+    {"max_iterations", &settings::RenderingSettings::max_iterations, "",
      "proxy solver sweeps (pgs) or steps (active-set) per tick at most"},
-    {"solver_tolerance", &engine::RenderingSettings::solver_tolerance, "m",
+    {"solver_tolerance", &settings::RenderingSettings::solver_tolerance, "m",
      "proxy solver tolerance: multiplier change (pgs) or row violation (active-set)"},
-    {"proxy_reaction", &engine::RenderingSettings::proxy_reaction, "",
+    {"proxy_reaction", &settings::RenderingSettings::proxy_reaction, "",
      "proxy-6dof reaction in the physics step: \"local\" (default) or \"impulse\" (J/dt)"},
-    {"perturbation", &engine::RenderingSettings::perturbation, "",
+    {"perturbation", &settings::RenderingSettings::perturbation, "",
      "measure A and b by perturbation simulations (local-dynamics)"},
-    {"perturbation_force", &engine::RenderingSettings::perturbation_force, "N",
+    {"perturbation_force", &settings::RenderingSettings::perturbation_force, "N",
      "test force when the user's last force is zero"},
-    {"local_model", &engine::RenderingSettings::local_model, "",
+    {"local_model", &settings::RenderingSettings::local_model, "",
      "local-dynamics: \"contact\" (island with friction, default) or \"perturbation\" (A, b)"},
-    {"coupling_stiffness", &engine::RenderingSettings::coupling_stiffness, "N/m",
+    {"coupling_stiffness", &settings::RenderingSettings::coupling_stiffness, "N/m",
      "virtual-coupling spring k_vc"},
-    {"coupling_damping", &engine::RenderingSettings::coupling_damping, "N*s/m",
+    {"coupling_damping", &settings::RenderingSettings::coupling_damping, "N*s/m",
      "virtual-coupling damper b_vc"},
-    {"coupling_rot_stiffness", &engine::RenderingSettings::coupling_rot_stiffness, "N*m/rad",
+    {"coupling_rot_stiffness", &settings::RenderingSettings::coupling_rot_stiffness, "N*m/rad",
      "virtual-coupling rotational spring; unset: k_vc I_min / m_t"},
-    {"coupling_rot_damping", &engine::RenderingSettings::coupling_rot_damping, "N*m*s/rad",
+    {"coupling_rot_damping", &settings::RenderingSettings::coupling_rot_damping, "N*m*s/rad",
      "virtual-coupling rotational damper; unset: b_vc I_min / m_t"},
-    {"tool_mass", &engine::RenderingSettings::tool_mass, "kg",
+    {"tool_mass", &settings::RenderingSettings::tool_mass, "kg",
      "virtual-coupling tool mass; 0: the pointer body's"},
 }};
 
 /// `materials.NAME` block (every key optional; unset gains are the rendering.* ones).
-inline constexpr std::array<Field<engine::MaterialSettings>, 3> kMaterialFields{{
-    {"stiffness", &engine::MaterialSettings::stiffness, "N/m", "spring k of this material"},
-    {"damping", &engine::MaterialSettings::damping, "N*s/m", "damper d of this material"},
-    {"friction", &engine::MaterialSettings::friction, "", "Coulomb mu of this material"},
+inline constexpr std::array<Field<settings::MaterialSettings>, 3> kMaterialFields{{
+    {"stiffness", &settings::MaterialSettings::stiffness, "N/m", "spring k of this material"},
+    {"damping", &settings::MaterialSettings::damping, "N*s/m", "damper d of this material"},
+    {"friction", &settings::MaterialSettings::friction, "", "Coulomb mu of this material"},
 }};
 
 /// `materials.NAME.vibration` block (all three keys required).
-inline constexpr std::array<Field<engine::VibrationSettings>, 3> kVibrationFields{{
-    {"amplitude", &engine::VibrationSettings::amplitude, "N*s/m", "a: N per m/s of impact"},
-    {"decay", &engine::VibrationSettings::decay, "1/s", "B: decay rate of the transient"},
-    {"frequency", &engine::VibrationSettings::frequency, "Hz", "f: frequency of the transient"},
+inline constexpr std::array<Field<settings::VibrationSettings>, 3> kVibrationFields{{
+    {"amplitude", &settings::VibrationSettings::amplitude, "N*s/m", "a: N per m/s of impact"},
+    {"decay", &settings::VibrationSettings::decay, "1/s", "B: decay rate of the transient"},
+    {"frequency", &settings::VibrationSettings::frequency, "Hz", "f: frequency of the transient"},
 }};
 
 /// `rendering` keys the parser handles itself (not plain fields).

@@ -51,15 +51,15 @@ void CheckMethod(const Node& node) {
                         closest ? fmt::format(" (did you mean \"{}\"?)", *closest) : ""));
 }
 
-engine::Mode ParseMode(const Node& node) {
+settings::Mode ParseMode(const Node& node) {
   const std::string mode = node.String();
-  if (mode == "lockstep") return engine::Mode::kLockstep;
-  if (mode == "realtime") return engine::Mode::kRealtime;
+  if (mode == "lockstep") return settings::Mode::kLockstep;
+  if (mode == "realtime") return settings::Mode::kRealtime;
   node.Fail(fmt::format("unknown mode \"{}\"", mode), R"("lockstep" or "realtime")");
 }
 
 // The rendering block: its plain fields plus `rotation_weight` ([Rxx, Ryy, Rzz] in m^2).
-void ReadRendering(const Node& root, engine::RenderingSettings* out) {
+void ReadRendering(const Node& root, settings::RenderingSettings* out) {
   const std::optional<Node> block = root.Find("rendering");
   if (!block) return;
   std::vector<std::string_view> keys = internal::KeysOf(internal::kRenderingFields);
@@ -79,7 +79,7 @@ void ReadRendering(const Node& root, engine::RenderingSettings* out) {
 
 // `materials`: an object of named materials, each a block of optional gains and an optional
 // `vibration` whose three keys are all required (a transient has no rendering.* default).
-void ReadMaterials(const Node& root, engine::RenderingSettings* out) {
+void ReadMaterials(const Node& root, settings::RenderingSettings* out) {
   const std::optional<Node> block = root.Find("materials");
   if (!block) return;
   if (!block->value().is_object()) {
@@ -90,13 +90,13 @@ void ReadMaterials(const Node& root, engine::RenderingSettings* out) {
   for (const auto& [name, value] : block->value().items()) {
     const Node material = block->Require(name, "a material");
     material.ExpectObject(keys, "an object");
-    engine::MaterialSettings settings;
+    settings::MaterialSettings settings;
     internal::ReadFields(material, internal::kMaterialFields, &settings);
     if (const auto vibration = material.Find("vibration")) {
       vibration->ExpectObject(internal::KeysOf(internal::kVibrationFields), "an object");
-      engine::VibrationSettings v;
+      settings::VibrationSettings v;
       for (const auto& field : internal::kVibrationFields) {
-        v.*std::get<double engine::VibrationSettings::*>(field.member) =
+        v.*std::get<double settings::VibrationSettings::*>(field.member) =
             vibration->Require(field.key, "a number").Number(field.unit);
       }
       settings.vibration = v;
@@ -109,14 +109,14 @@ void ReadMaterials(const Node& root, engine::RenderingSettings* out) {
 // without waiting for it (8 s of simulation in 0.02 s, no packet answered): such a session runs
 // in real time unless it says otherwise, and saying "lockstep" is an error.
 void RequireRealtimeForRealDevice(const Node& root, const std::string& type,
-                                  engine::EngineSettings* engine) {
+                                  settings::EngineSettings* engine) {
   if (type != "forcedimension" && type != "openhaptics" && type != "udp") return;
   const auto mode = root.Find("mode");
   if (!mode) {
-    engine->mode = engine::Mode::kRealtime;
-  } else if (engine->mode != engine::Mode::kRealtime) {
+    engine->mode = settings::Mode::kRealtime;
+  } else if (engine->mode != settings::Mode::kRealtime) {
     mode->Fail(
-        fmt::format("\"{}\" with the real device \"{}\"", engine::ModeName(engine->mode), type),
+        fmt::format("\"{}\" with the real device \"{}\"", settings::ModeName(engine->mode), type),
         "\"realtime\" (lockstep never waits for the device; drop the key, set "
         "\"mode\": \"realtime\" or run with --mode realtime)");
   }
@@ -124,13 +124,13 @@ void RequireRealtimeForRealDevice(const Node& root, const std::string& type,
 
 // One element of `pointers`: body (required), radius, device (required) and rendering overrides
 // on top of the session's `rendering`.
-engine::PointerLaneSettings ReadPointerElement(const Node& element,
-                                               const engine::RenderingSettings& base,
-                                               DeviceConfig* device) {
+settings::PointerLaneSettings ReadPointerElement(const Node& element,
+                                                 const settings::RenderingSettings& base,
+                                                 DeviceConfig* device) {
   element.ExpectObject({"body", "radius", "device", "rendering"},
                        "an object with \"body\", \"device\" and optional \"radius\" and "
                        "\"rendering\"");
-  engine::PointerLaneSettings lane;
+  settings::PointerLaneSettings lane;
   lane.pointer.body = element.Require("body", "the pointer's mocap body (string)").String();
   if (const auto radius = element.Find("radius")) lane.pointer.radius = radius->Number("m");
   lane.rendering = base;
@@ -159,7 +159,7 @@ void ReadPointers(const Node& root, const Node& pointers, Session* session) {
   const std::vector<Node> elements =
       pointers.Elements("an array of pointers [{\"body\": ..., \"device\": {...}}, ...]");
   if (elements.empty()) pointers.Fail("an empty array", "at least one pointer");
-  std::vector<engine::PointerLaneSettings> lanes;
+  std::vector<settings::PointerLaneSettings> lanes;
   std::vector<DeviceConfig> devices(elements.size());
   for (std::size_t i = 0; i < elements.size(); ++i) {
     lanes.push_back(ReadPointerElement(elements[i], session->engine.rendering, &devices[i]));

@@ -8,7 +8,7 @@
 #include "mrh/core/error.h"
 #include "mrh/core/validate.h"
 
-namespace mrh::engine::internal {
+namespace mrh::settings::internal {
 namespace {
 
 constexpr double kMaxStiffness = 1e6;  // N/m, as rendering.stiffness
@@ -47,4 +47,4 @@ void ValidateMaterials(const RenderingSettings& r, double haptic_dt) {
   }
 }
 
-}  // namespace mrh::engine::internal
+}  // namespace mrh::settings::internal

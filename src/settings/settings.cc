@@ -1,18 +1,18 @@
 // SPDX-License-Identifier: Apache-2.0
 // Validation of the engine settings (the boundary where session values are checked). The ranges
 // are documented in docs/session-format.md ("Ranges"); keep both in step.
-#include "mrh/engine/settings.h"
+#include "mrh/settings/settings.h"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 
+#include "material_settings.h"
 #include "mrh/core/error.h"
 #include "mrh/core/validate.h"
-#include "material_settings.h"
 
-namespace mrh::engine {
+namespace mrh::settings {
 namespace {
 
 // physics_dt must be a whole number of haptic ticks; this tolerance absorbs decimal input such as
@@ -176,4 +176,4 @@ void EngineSettings::Validate() const {
   }
 }
 
-}  // namespace mrh::engine
+}  // namespace mrh::settings

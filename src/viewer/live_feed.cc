@@ -23,7 +23,7 @@ void LiveFeed::PublishWorld(const world::World& world) {
   scenes_.Publish();
 }
 
-void LiveFeed::OnTick(const engine::TickRecord& tick) {
+void LiveFeed::OnTick(const ir::TickRecord& tick) {
   TickSample sample;
   sample.pointer = tick.pointer;
   sample.t = time_offset_ + tick.t;
@@ -36,7 +36,7 @@ void LiveFeed::OnTick(const engine::TickRecord& tick) {
   if (!ticks_.TryPush(sample)) dropped_.fetch_add(1, std::memory_order_relaxed);
 }
 
-void LiveFeed::OnStep(const engine::StepRecord& step, const world::World& world) {
+void LiveFeed::OnStep(const physics::StepRecord& step, const world::World& world) {
   world::SceneState& state = scenes_.write_slot();
   world::CaptureSceneState(world, &state);
   state.t += time_offset_;

@@ -43,7 +43,7 @@ struct IrView {
 /// on the UI thread before Start, to publish the initial state); the consumer side on the UI
 /// thread. Ticks cross in an SPSC ring (dropped and counted when full), the world state and the
 /// IR in triple buffers: nothing ever waits.
-class LiveFeed final : public engine::Recorder {
+class LiveFeed final : public physics::Recorder {
  public:
   /// `tick_capacity`: ticks the ring holds between two UI frames.
   explicit LiveFeed(std::size_t tick_capacity);
@@ -54,8 +54,8 @@ class LiveFeed final : public engine::Recorder {
   /// Producer, before Engine::Start: publishes the world's state as the first scene.
   void PublishWorld(const world::World& world);
 
-  void OnTick(const engine::TickRecord& tick) override;
-  void OnStep(const engine::StepRecord& step, const world::World& world) override;
+  void OnTick(const ir::TickRecord& tick) override;
+  void OnStep(const physics::StepRecord& step, const world::World& world) override;
   void OnSnapshot(const ir::PhysicsSnapshot& snapshot) override;
 
   /// Consumer: the next tick, if any.

@@ -54,7 +54,7 @@ const char* InputSourceName(InputSource source) noexcept {
 
 LiveSession::LiveSession(session::Session session, device::MouseDevice* mouse, LiveFeed* feed)
     : session_(std::move(session)), mouse_(mouse), feed_(feed), settings_(session_.engine) {
-  settings_.mode = engine::Mode::kRealtime;
+  settings_.mode = settings::Mode::kRealtime;
 }
 
 LiveSession::~LiveSession() {
@@ -75,13 +75,13 @@ void LiveSession::Start(InputSource source) {
   Launch(settings_, source, nullptr);
 }
 
-void LiveSession::Restart(const engine::EngineSettings& settings, InputSource source,
+void LiveSession::Restart(const settings::EngineSettings& settings, InputSource source,
                           bool keep_world) {
   const world::World& world = engine_->world();
   StopEngine();  // the physics thread has joined: the world is ours to read
   world::Snapshot state = world.MakeSnapshot();
   world.Save(&state);
-  const engine::EngineSettings previous_settings = settings_;
+  const settings::EngineSettings previous_settings = settings_;
   const InputSource previous_source = source_;
   try {
     Launch(settings, source, keep_world ? &state : nullptr);
@@ -106,14 +106,14 @@ std::unique_ptr<device::Device> LiveSession::MakeSource(InputSource source) cons
   return nullptr;
 }
 
-void LiveSession::Launch(const engine::EngineSettings& settings, InputSource source,
+void LiveSession::Launch(const settings::EngineSettings& settings, InputSource source,
                          const world::Snapshot* state) {
   std::unique_ptr<device::Device> owned = MakeSource(source);
   // A real device (forcedimension, openhaptics, udp) connects here; simulated ones do nothing.
   if (owned) owned->Open();
   device::Device* input = owned ? owned.get() : mouse_;
-  engine::EngineSettings s = settings;
-  s.mode = engine::Mode::kRealtime;
+  settings::EngineSettings s = settings;
+  s.mode = settings::Mode::kRealtime;
   session::Session configured = session_;
   configured.engine = s;
   world::World world = session::LoadWorld(configured);

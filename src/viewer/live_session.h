@@ -44,7 +44,7 @@ class LiveSession {
   /// Restarts with `settings` and `source`, from the current world state (keep_world) or the
   /// scene's initial one. If that fails (bad settings, unreadable replay file), restarts with the
   /// previous configuration and rethrows the error.
-  void Restart(const engine::EngineSettings& settings, InputSource source, bool keep_world);
+  void Restart(const settings::EngineSettings& settings, InputSource source, bool keep_world);
 
   /// With several pointers, the one the input drives (the others keep their session devices);
   /// takes effect at the next Start or Restart. Out of range: the first.
@@ -57,7 +57,7 @@ class LiveSession {
 
   const session::Session& session() const { return session_; }
 
-  const engine::EngineSettings& settings() const { return settings_; }
+  const settings::EngineSettings& settings() const { return settings_; }
 
   InputSource source() const { return source_; }
 
@@ -73,7 +73,7 @@ class LiveSession {
   double time_offset() const { return time_offset_; }
 
  private:
-  void Launch(const engine::EngineSettings& settings, InputSource source,
+  void Launch(const settings::EngineSettings& settings, InputSource source,
               const world::Snapshot* state);
   void StopEngine();
   std::unique_ptr<device::Device> MakeSource(InputSource source) const;
@@ -83,7 +83,7 @@ class LiveSession {
   LiveFeed* feed_;
   std::filesystem::path replay_file_;
 
-  engine::EngineSettings settings_;
+  settings::EngineSettings settings_;
   InputSource source_ = InputSource::kMouse;
   int driven_ = 0;                                ///< the pointer the input drives
   std::unique_ptr<device::Device> owned_source_;  ///< null when the source is the mouse

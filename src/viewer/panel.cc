@@ -25,7 +25,7 @@ void Text(fmt::format_string<Args...> format, Args&&... args) {
 }
 
 void DrawRates(const PanelInfo& info) {
-  const engine::EngineSettings& e = *info.settings;
+  const settings::EngineSettings& e = *info.settings;
   Text("haptic   {:7.1f} Hz  (target {:.0f}, {}{})", info.loop.rate_hz, 1.0 / e.haptic_dt,
        info.loop.fifo ? "SCHED_FIFO" : "normal priority",
        info.memory_locked ? ", mlockall" : "");
@@ -42,7 +42,7 @@ bool Gain(const char* label, double* value, double step, const char* format) {
 }
 
 // Method and the gains it reads (FieldsFor); a finished edit asks for a restart.
-bool DrawGains(engine::EngineSettings* edit) {
+bool DrawGains(settings::EngineSettings* edit) {
   bool apply = false;
   if (ImGui::BeginCombo("method", edit->method.c_str())) {
     for (const auto& [name, summary] : engine::ListMethods()) {
@@ -55,7 +55,7 @@ bool DrawGains(engine::EngineSettings* edit) {
     ImGui::EndCombo();
   }
   const MethodFields fields = FieldsFor(edit->method);
-  engine::RenderingSettings& r = edit->rendering;
+  settings::RenderingSettings& r = edit->rendering;
   if (fields.stiffness) {
     apply |= Gain("stiffness N/m", &r.stiffness, 100.0, "%.1f");
     apply |= Gain("damping N s/m", &r.damping, 0.5, "%.2f");
@@ -144,7 +144,7 @@ PanelActions DrawPanel(const PanelInfo& info, PanelState* state, DisplayOptions*
   ImGui::SetNextWindowSize(ImVec2(kPanelWidth * scale, 0), ImGuiCond_Once);
   ImGui::Begin("mrh view", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
   Text("{}", info.session->file.filename().string());
-  const engine::EngineSettings& running = *info.settings;
+  const settings::EngineSettings& running = *info.settings;
   Text("{}  physics {} ms / haptic {} ms", running.method, running.physics_dt * 1e3,
        running.haptic_dt * 1e3);
   const bool torque = FieldsFor(running.method).torque;

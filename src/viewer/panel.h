@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "mrh/engine/settings.h"
 #include "mrh/session/session.h"
+#include "mrh/settings/settings.h"
 #include "viewer/haptic_loop.h"
 #include "viewer/live_session.h"
 #include "viewer/overlay.h"
@@ -19,7 +19,7 @@ namespace mrh::viewer::internal {
 
 /// What the panel edits and remembers between frames.
 struct PanelState {
-  engine::EngineSettings edit;  ///< method and gains being edited
+  settings::EngineSettings edit;  ///< method and gains being edited
   std::array<char, 512> record_path{};
   bool recording = false;
   std::int64_t recorded_rows = 0;
@@ -35,7 +35,7 @@ struct PanelInfo {
   const session::Session* session = nullptr;
   /// The running engine's settings (method and gains as applied, which differ from the
   /// session file's after an edit).
-  const engine::EngineSettings* settings = nullptr;
+  const settings::EngineSettings* settings = nullptr;
   LoopStats loop;
   bool memory_locked = false;  ///< mlockall granted
   InputSource source = InputSource::kMouse;

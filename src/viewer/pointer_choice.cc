@@ -5,11 +5,11 @@
 namespace mrh::viewer::internal {
 
 std::vector<std::string> PointerNames(const session::Session& session) {
-  const engine::EngineSettings& s = session.engine;
+  const settings::EngineSettings& s = session.engine;
   if (s.pointers.empty()) return {s.pointer.body};
   std::vector<std::string> names;
   names.reserve(s.pointers.size());
-  for (const engine::PointerLaneSettings& lane : s.pointers) names.push_back(lane.pointer.body);
+  for (const settings::PointerLaneSettings& lane : s.pointers) names.push_back(lane.pointer.body);
   return names;
 }
 

@@ -48,7 +48,7 @@ class StudyWindow final : public psychophysics::Apparatus {
   void Present(const session::Session& stimulus) override {
     if (Stopping()) return;
     session::Session s = stimulus;
-    s.engine.mode = engine::Mode::kRealtime;
+    s.engine.mode = settings::Mode::kRealtime;
     world::World world = session::LoadWorld(s);
     const Pose X_WP0 =
         world.pointer_body() >= 0 ? world.body_state(world.pointer_body()).X_WB : Pose{};

@@ -277,7 +277,7 @@ class ViewerApp {
     Restart(live_.settings(), live_.source(), true);
   }
 
-  void Restart(const engine::EngineSettings& settings, InputSource source, bool keep_world) {
+  void Restart(const settings::EngineSettings& settings, InputSource source, bool keep_world) {
     try {
       live_.Restart(settings, source, keep_world);
       panel_.message.clear();

@@ -17,7 +17,7 @@ namespace {
 using ::testing::HasSubstr;
 using ::testing::ThrowsMessage;
 
-std::unique_ptr<Engine> ExternalT41Engine(const EngineSettings& settings) {
+std::unique_ptr<Engine> ExternalT41Engine(const settings::EngineSettings& settings) {
   world::World w = T41World();
   w.ApplyKeyframe("approach");
   device::Specifications specs;
@@ -42,7 +42,7 @@ TEST(BodyPosesTest, BeforeAnyStepGivesTheSceneInitialPoses) {
 // After each physics period the reader sees that step's poses, equal to the world's, and a
 // second read without a new step reports nothing new.
 TEST(BodyPosesTest, LockstepReadsFollowEveryStepAndMatchTheWorld) {
-  const EngineSettings settings = T41Settings("impulse");
+  const settings::EngineSettings settings = T41Settings("impulse");
   auto engine = ExternalT41Engine(settings);
   const int cube = engine->world().FindBody("cube");
   const int n = settings.ticks_per_step();
@@ -65,7 +65,7 @@ TEST(BodyPosesTest, LockstepReadsFollowEveryStepAndMatchTheWorld) {
 // Two identical lockstep runs; the second halves the gain from tick 300 on. The displayed force
 // halves from that tick, while the physics (fed the rendered reaction) stays identical.
 TEST(DisplayGainTest, HalvesTheDisplayedForceFromTheNextTickOnly) {
-  const EngineSettings settings = T41Settings("impulse");
+  const settings::EngineSettings settings = T41Settings("impulse");
   constexpr int kTicks = 1500;
   constexpr int kSwitch = 300;
   std::vector<double> reference, scaled;

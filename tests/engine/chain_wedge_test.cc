@@ -19,11 +19,11 @@ namespace {
 constexpr double kPointerSpeed = 0.5 / 5.0;  // m/s, the session's keyframes
 constexpr double kMaxSpeed = 2.5 * kPointerSpeed;
 
-class PeakSpeed final : public Recorder {
+class PeakSpeed final : public physics::Recorder {
  public:
-  void OnTick(const TickRecord&) override {}
+  void OnTick(const ir::TickRecord&) override {}
 
-  void OnStep(const StepRecord&, const world::World& world) override {
+  void OnStep(const physics::StepRecord&, const world::World& world) override {
     for (const char* name : {"mug", "target"}) {
       const int b = world.FindBody(name);
       if (b < 0) continue;

@@ -36,10 +36,10 @@ world::World PenaltyWorld(const std::string& bodies, bool penalty = true) {
       xml, world::LoadOptions{.pointer_body = "pointer", .penalty_contacts = penalty});
 }
 
-EngineSettings PenaltySettings(double duration, double damping, double friction) {
-  EngineSettings s;
+settings::EngineSettings PenaltySettings(double duration, double damping, double friction) {
+  settings::EngineSettings s;
   s.method = "contact-volume";
-  s.mode = Mode::kLockstep;
+  s.mode = settings::Mode::kLockstep;
   s.physics_dt = 1e-3;
   s.haptic_dt = 1e-3;
   s.duration = duration;
@@ -51,17 +51,20 @@ EngineSettings PenaltySettings(double duration, double damping, double friction)
   return s;
 }
 
-class Tap final : public Recorder {
+class Tap final : public physics::Recorder {
  public:
   explicit Tap(std::vector<int> bodies) : bodies_(std::move(bodies)) {}
-  void OnTick(const TickRecord& tick) override { ticks.push_back(tick); }
-  void OnStep(const StepRecord& step, const world::World& world) override {
+
+  void OnTick(const ir::TickRecord& tick) override { ticks.push_back(tick); }
+
+  void OnStep(const physics::StepRecord& step, const world::World& world) override {
     std::vector<Vec3> p;
     for (int b : bodies_) p.push_back(world.body_state(b).X_WB.p);
     times.push_back(step.t);
     positions.push_back(p);
   }
-  std::vector<TickRecord> ticks;
+
+  std::vector<ir::TickRecord> ticks;
   std::vector<double> times;
   std::vector<std::vector<Vec3>> positions;
 
@@ -69,8 +72,9 @@ class Tap final : public Recorder {
   std::vector<int> bodies_;
 };
 
-Tap RunPenalty(world::World world, const Pose& device_pose, const EngineSettings& settings,
-        const std::vector<std::string>& watched = {}) {
+Tap RunPenalty(world::World world, const Pose& device_pose,
+               const settings::EngineSettings& settings,
+               const std::vector<std::string>& watched = {}) {
   std::vector<int> ids;
   for (const std::string& name : watched) ids.push_back(world.FindBody(name));
   device::Specifications specs;
@@ -196,7 +200,7 @@ TEST(ContactVolume, WorldWithMujocoContactsIsRefused) {
 
 // physics_dt other than haptic_dt is forced to the haptic rate (single-rate), as single-rate is.
 TEST(ContactVolume, RunsSingleRateWhateverPhysicsDtSays) {
-  EngineSettings s = PenaltySettings(0.01, 0.0, 0.0);
+  settings::EngineSettings s = PenaltySettings(0.01, 0.0, 0.0);
   s.physics_dt = 0.02;
   device::Specifications specs;
   specs.max_force = 1000.0;

@@ -16,7 +16,7 @@ using mrh::testing::HashingRecorder;
 
 std::uint64_t RunAndHash(const char* method, const char* torque_model = "contact") {
   HashingRecorder recorder;
-  EngineSettings settings = T41Settings(method);
+  settings::EngineSettings settings = T41Settings(method);
   settings.rendering.torque_model = torque_model;
   auto engine = T41Engine(settings);
   (void)engine->Run(&recorder);
@@ -26,7 +26,7 @@ std::uint64_t RunAndHash(const char* method, const char* torque_model = "contact
 // scenes/t3_6_push.xml pushed as scenes/t3_6_push.json does, for 2 s (the box is pushed from
 // 1.25 s on).
 std::uint64_t PushHash(const char* method) {
-  EngineSettings s;
+  settings::EngineSettings s;
   s.method = method;
   s.physics_dt = 0.02;
   s.duration = 2.0;

@@ -24,19 +24,19 @@ constexpr double kDt = 0.001;          // s
 // scenes/two_pointers.xml: f0 2 mm into box_a's +x face, f1 5 mm into box_b's −x face.
 const Vec3 kF0OnA(-0.242, 0.0, 0.0), kF1OnB(0.245, 0.0, 0.0);
 
-class TickLog final : public Recorder {
+class TickLog final : public physics::Recorder {
  public:
-  void OnTick(const TickRecord& tick) override { ticks.push_back(tick); }
+  void OnTick(const ir::TickRecord& tick) override { ticks.push_back(tick); }
 
-  void OnStep(const StepRecord&, const world::World&) override {}
+  void OnStep(const physics::StepRecord&, const world::World&) override {}
 
-  std::vector<TickRecord> ticks;
+  std::vector<ir::TickRecord> ticks;
 };
 
 // f0 on a fixed device, f1 on `f1_device`.
 std::unique_ptr<Engine> Engine2(std::unique_ptr<device::Device> f1_device,
                                 std::unique_ptr<device::Device> f0_device = nullptr) {
-  EngineSettings s;
+  settings::EngineSettings s;
   s.method = "single-rate";
   s.physics_dt = kDt;
   s.haptic_dt = kDt;
@@ -45,8 +45,8 @@ std::unique_ptr<Engine> Engine2(std::unique_ptr<device::Device> f1_device,
   s.safety.ramp = false;
   s.realtime_priority = false;
   s.pointer.body = "f0";
-  s.pointers = {PointerLaneSettings{PointerSettings{"f0", 0.0}, s.rendering},
-                PointerLaneSettings{PointerSettings{"f1", 0.0}, s.rendering}};
+  s.pointers = {settings::PointerLaneSettings{settings::PointerSettings{"f0", 0.0}, s.rendering},
+                settings::PointerLaneSettings{settings::PointerSettings{"f1", 0.0}, s.rendering}};
   device::Specifications specs;
   specs.max_force = 100.0;
   std::vector<std::unique_ptr<device::Device>> devices;

@@ -15,7 +15,7 @@
 namespace mrh::engine::testing {
 namespace {
 
-std::unique_ptr<Engine> ExternalT41Engine(const EngineSettings& settings) {
+std::unique_ptr<Engine> ExternalT41Engine(const settings::EngineSettings& settings) {
   world::World w = T41World();
   w.ApplyKeyframe("approach");
   device::Specifications specs;
@@ -24,15 +24,16 @@ std::unique_ptr<Engine> ExternalT41Engine(const EngineSettings& settings) {
                                   device::Calibration{}, settings);
 }
 
-class ForceRecorder final : public Recorder {
+class ForceRecorder final : public physics::Recorder {
  public:
-  void OnTick(const TickRecord& t) override { forces.push_back(t.displayed_W.f.x()); }
-  void OnStep(const StepRecord&, const world::World&) override {}
+  void OnTick(const ir::TickRecord& t) override { forces.push_back(t.displayed_W.f.x()); }
+
+  void OnStep(const physics::StepRecord&, const world::World&) override {}
   std::vector<double> forces;
 };
 
 TEST(EmbeddedTest, LockstepEmbeddedRunEqualsRunWithFixedDevice) {
-  const EngineSettings settings = T41Settings("impulse");
+  const settings::EngineSettings settings = T41Settings("impulse");
   ForceRecorder reference;
   (void)T41Engine(settings)->Run(&reference);
 
@@ -51,8 +52,8 @@ TEST(EmbeddedTest, LockstepEmbeddedRunEqualsRunWithFixedDevice) {
 }
 
 TEST(EmbeddedTest, RealtimeEmbeddedRunRendersContact) {
-  EngineSettings settings = T41Settings("single-rate");
-  settings.mode = Mode::kRealtime;
+  settings::EngineSettings settings = T41Settings("single-rate");
+  settings.mode = settings::Mode::kRealtime;
   auto engine = ExternalT41Engine(settings);
   engine->Start();
   double max_force = 0.0;
@@ -68,8 +69,8 @@ TEST(EmbeddedTest, RealtimeEmbeddedRunRendersContact) {
 // on the engine's thread). Every read must be one whole step: its time matches its step index
 // (a torn read would mix two), steps never go back, and the reader sees the world move.
 TEST(EmbeddedTest, RenderThreadReadsWholeBodyPoseSnapshotsWhileTheEngineRuns) {
-  EngineSettings settings = T41Settings("impulse");
-  settings.mode = Mode::kRealtime;
+  settings::EngineSettings settings = T41Settings("impulse");
+  settings.mode = settings::Mode::kRealtime;
   auto engine = ExternalT41Engine(settings);
   const auto cube = static_cast<std::size_t>(engine->world().FindBody("cube"));
   std::atomic<bool> stop{false};
@@ -110,8 +111,8 @@ TEST(EmbeddedTest, RenderThreadReadsWholeBodyPoseSnapshotsWhileTheEngineRuns) {
 // Another thread sets the gain to zero mid-run; once that store is done (the thread joined),
 // every later tick of the haptic loop displays nothing, though the cube still presses on.
 TEST(EmbeddedTest, GainSetFromAnotherThreadReachesTheHapticLoop) {
-  EngineSettings settings = T41Settings("impulse");
-  settings.mode = Mode::kRealtime;
+  settings::EngineSettings settings = T41Settings("impulse");
+  settings.mode = settings::Mode::kRealtime;
   auto engine = ExternalT41Engine(settings);
   engine->Start();
   double max_before = 0.0, max_after = 0.0;

@@ -19,13 +19,13 @@ TEST(EngineErrorsTest, UnknownMethodListsKnownOnes) {
 }
 
 TEST(EngineErrorsTest, PhysicsStepNotMultipleOfHapticTickIsRejected) {
-  EngineSettings s = T41Settings("impulse");
+  settings::EngineSettings s = T41Settings("impulse");
   s.physics_dt = 0.0505;
   EXPECT_THAT([&] { T41Engine(s); }, ThrowsMessage<InvalidArgument>(HasSubstr("physics_dt")));
 }
 
 TEST(EngineErrorsTest, UnknownProxySolverIsRejectedNamingTheChoices) {
-  EngineSettings s = T41Settings("impulse");
+  settings::EngineSettings s = T41Settings("impulse");
   s.rendering.proxy_solver = "newton";
   EXPECT_THAT([&] { T41Engine(s); },
               ThrowsMessage<InvalidArgument>(AllOf(HasSubstr("rendering.proxy_solver = \"newton\""),
@@ -34,7 +34,7 @@ TEST(EngineErrorsTest, UnknownProxySolverIsRejectedNamingTheChoices) {
 }
 
 TEST(EngineErrorsTest, UnknownTorqueModelIsRejectedNamingTheChoices) {
-  EngineSettings s = T41Settings("impulse");
+  settings::EngineSettings s = T41Settings("impulse");
   s.rendering.torque_model = "euler";
   EXPECT_THAT([&] { T41Engine(s); },
               ThrowsMessage<InvalidArgument>(AllOf(HasSubstr("rendering.torque_model = \"euler\""),
@@ -43,7 +43,7 @@ TEST(EngineErrorsTest, UnknownTorqueModelIsRejectedNamingTheChoices) {
 }
 
 TEST(EngineErrorsTest, ContactTorqueModelRefusesTheThesisOnlyKeys) {
-  EngineSettings s = T41Settings("impulse");
+  settings::EngineSettings s = T41Settings("impulse");
   s.rendering.torque_model = "contact";
   s.rendering.rot_damping = 0.1;
   EXPECT_THAT([&] { T41Engine(s); },
@@ -55,14 +55,14 @@ TEST(EngineErrorsTest, ContactTorqueModelRefusesTheThesisOnlyKeys) {
 }
 
 TEST(EngineErrorsTest, WatchdogShorterThanPhysicsStepIsRejected) {
-  EngineSettings s = T41Settings("impulse");
+  settings::EngineSettings s = T41Settings("impulse");
   s.safety.watchdog_timeout = 0.06;
   EXPECT_THAT([&] { T41Engine(s); },
               ThrowsMessage<InvalidArgument>(HasSubstr("safety.watchdog_timeout")));
 }
 
 TEST(EngineErrorsTest, PointerWithoutSphereNeedsRadius) {
-  EngineSettings s = T41Settings("impulse");
+  settings::EngineSettings s = T41Settings("impulse");
   s.pointer.radius = 0.0;
   world::World w = world::World::LoadString(R"(
     <mujoco><worldbody>
@@ -74,7 +74,7 @@ TEST(EngineErrorsTest, PointerWithoutSphereNeedsRadius) {
 }
 
 TEST(EngineErrorsTest, RadiusComesFromPointerSphereGeom) {
-  EngineSettings s = T41Settings("impulse");
+  settings::EngineSettings s = T41Settings("impulse");
   s.pointer.radius = 0.0;
   auto engine = T41Engine(s);
   EXPECT_DOUBLE_EQ(engine->pointer_radius(), 0.02);

@@ -17,7 +17,7 @@ double CubeVelocityX(const Engine& engine) {
 }
 
 Vec3 CubeImpulse(const RunStats& stats, int cube) {
-  for (const BodyImpulseTotal& total : stats.impulses) {
+  for (const physics::BodyImpulseTotal& total : stats.impulses) {
     if (total.body == cube) return total.linear;
   }
   return Vec3::Zero();
@@ -57,7 +57,7 @@ TEST(T41BaselineTest, SingleRateBounceIsNearlyElastic) {
 TEST(T41BaselineTest, ImpulseMethodDeliversClearlyMoreThanSingleRate) {
   auto single = T41Engine(T41Settings("single-rate"));
   const double j_single = -CubeImpulse(single->Run(nullptr), CubeBody(*single)).x();
-  EngineSettings s = T41Settings("impulse");
+  settings::EngineSettings s = T41Settings("impulse");
   s.duration = 2.5;
   auto impulse = T41Engine(s);
   const double j_impulse = -CubeImpulse(impulse->Run(nullptr), CubeBody(*impulse)).x();

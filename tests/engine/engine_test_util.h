@@ -20,8 +20,8 @@ inline world::World T41World() {
   return world::World::LoadFile(std::string(MRH_SOURCE_DIR) + "/scenes/t4_1.xml");
 }
 
-inline EngineSettings T41Settings(const std::string& method) {
-  EngineSettings s;
+inline settings::EngineSettings T41Settings(const std::string& method) {
+  settings::EngineSettings s;
   s.method = method;
   s.physics_dt = 0.05;
   s.haptic_dt = 0.001;
@@ -34,7 +34,7 @@ inline EngineSettings T41Settings(const std::string& method) {
   return s;
 }
 
-inline std::unique_ptr<Engine> T41Engine(const EngineSettings& settings) {
+inline std::unique_ptr<Engine> T41Engine(const settings::EngineSettings& settings) {
   world::World w = T41World();
   w.ApplyKeyframe("approach");
   device::Specifications specs;

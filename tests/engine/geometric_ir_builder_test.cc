@@ -48,7 +48,8 @@ struct Result {
   GeometricIrStats stats;
 };
 
-Result BuildAt(world::World& world, const Pose& X_WP, const RenderingSettings& rendering = {}) {
+Result BuildAt(world::World& world, const Pose& X_WP,
+               const settings::RenderingSettings& rendering = {}) {
   const int pointer = world.pointer_body();
   world.SetMocapPose(pointer, X_WP);
   GeometricIrBuilder builder(world, pointer, rendering);
@@ -153,7 +154,7 @@ TEST(GeometricIrBuilderTest, SeparatedNeighborSendsThePointersClosestPoint) {
 
 TEST(GeometricIrBuilderTest, ObjectBeyondNeighborDistanceIsNoPair) {
   world::World w = world::World::LoadString(kCubeOnFloor);
-  RenderingSettings rendering;
+  settings::RenderingSettings rendering;
   rendering.neighbor_distance = 0.05;
   const Result r = BuildAt(w, Pose{Vec3(0, 0, kHalf + 0.06), Quat::Identity()}, rendering);
   EXPECT_TRUE(r.snapshot->pairs.empty());
@@ -198,7 +199,7 @@ TEST(GeometricIrBuilderTest, BodyMotionHoldsPosesBeforeAndAfterTheStep) {
   const int box = w.FindBody("box");
   const Pose X_WP{Vec3(0, 0, 0.05 + kHalf - kDepth), Quat::Identity()};
   w.SetMocapPose(w.pointer_body(), X_WP);
-  GeometricIrBuilder builder(w, w.pointer_body(), RenderingSettings{});
+  GeometricIrBuilder builder(w, w.pointer_body(), settings::RenderingSettings{});
   const Pose before = w.body_state(box).X_WB;
   builder.CapturePreviousPoses(w);
   w.Step();
@@ -242,7 +243,7 @@ TEST(GeometricIrBuilderTest, PointerWithoutGeomThrowsNamingTheBody) {
 </worldbody></mujoco>)");
   EXPECT_THAT(
       [&] {
-        GeometricIrBuilder builder(w, w.pointer_body(), RenderingSettings{});
+        GeometricIrBuilder builder(w, w.pointer_body(), settings::RenderingSettings{});
       },
       ThrowsMessage<SceneError>(HasSubstr("pointer body 'pointer' has no geom")));
 }
@@ -311,7 +312,7 @@ TEST(GeometricIrBuilderTest, NeighborsEqualBruteForceOnRandomMovingScenes) {
   constexpr int kObjects = 300;
   std::mt19937 rng(2024);
   world::World w = world::World::LoadString(RandomScene(kObjects, rng));
-  RenderingSettings rendering;
+  settings::RenderingSettings rendering;
   rendering.neighbor_distance = 0.03;
   rendering.neighbor_margin = 0.01;  // below neighbor_distance: the builder must still be exact
   GeometricIrBuilder builder(w, w.pointer_body(), rendering);

@@ -32,8 +32,8 @@ constexpr char kFloorScene[] = R"(
 
 // The T3.1 gains (k_t = k_r = 9000, R_w = 3.33·1, μ = 0), with enough PGS sweeps to converge
 // on a cube face from a cold start (see proxy_method_test.cc).
-EngineSettings FloorSettings(const std::string& method) {
-  EngineSettings s;
+settings::EngineSettings FloorSettings(const std::string& method) {
+  settings::EngineSettings s;
   s.method = method;
   s.physics_dt = 0.02;
   s.haptic_dt = 0.001;
@@ -51,16 +51,16 @@ EngineSettings FloorSettings(const std::string& method) {
   return s;
 }
 
-class Ticks final : public Recorder {
+class Ticks final : public physics::Recorder {
  public:
-  void OnTick(const TickRecord& tick) override { ticks.push_back(tick); }
+  void OnTick(const ir::TickRecord& tick) override { ticks.push_back(tick); }
 
-  void OnStep(const StepRecord&, const world::World&) override {}
+  void OnStep(const physics::StepRecord&, const world::World&) override {}
 
-  std::vector<TickRecord> ticks;
+  std::vector<ir::TickRecord> ticks;
 };
 
-std::vector<TickRecord> RunPressedIntoFloor(const std::string& method) {
+std::vector<ir::TickRecord> RunPressedIntoFloor(const std::string& method) {
   const Pose X_WP{Vec3(0.02, -0.03, kHalf - kDepth), Quat::Identity()};
   // contact-volume replaces MuJoCo's contacts by its own penalty (session::LoadWorld).
   const world::LoadOptions options{.penalty_contacts = method == "contact-volume"};
@@ -71,13 +71,13 @@ std::vector<TickRecord> RunPressedIntoFloor(const std::string& method) {
   return recorder.ticks;
 }
 
-void CheckProxyOnTheFloor(const std::vector<TickRecord>& ticks) {
+void CheckProxyOnTheFloor(const std::vector<ir::TickRecord>& ticks) {
   ASSERT_FALSE(ticks.empty());
   // The PGS error bound of proxy_method_test.cc (FacePressedIntoFloor...): the solver stops
   // within ~m·κ·tol of the exact Δr, κ = 4 / (4h²/R_w), m = 4 points.
   const double kappa = 4.0 / (4.0 * kHalf * kHalf / 3.33);
   const double tol = 4.0 * kappa * FloorSettings("proxy-6dof").rendering.solver_tolerance;
-  for (const TickRecord& t : ticks) {
+  for (const ir::TickRecord& t : ticks) {
     // The pointer sinks kDepth into the floor; its proxy stays on it (bottom face at z = 0).
     EXPECT_GT((t.X_WQ.p - t.X_WP.p).norm(), kDepth / 2);
     EXPECT_NEAR(t.X_WQ.p.z() - kHalf, 0.0, tol);
@@ -103,9 +103,9 @@ TEST(HapticSideTest, ProxyPoseIsThePointerPoseForMethodsWithoutAProxy) {
       continue;
     }
     SCOPED_TRACE(method);
-    const std::vector<TickRecord> ticks = RunPressedIntoFloor(method);
+    const std::vector<ir::TickRecord> ticks = RunPressedIntoFloor(method);
     ASSERT_FALSE(ticks.empty());
-    for (const TickRecord& t : ticks) {
+    for (const ir::TickRecord& t : ticks) {
       EXPECT_EQ(t.X_WQ.p, t.X_WP.p);
       EXPECT_EQ(t.X_WQ.q.coeffs(), t.X_WP.q.coeffs());
     }

@@ -24,8 +24,8 @@ constexpr double kFrom = 2.0;
 constexpr double kDuration = 5.0;
 constexpr double kPoseAt = 4.0;  // the issue's "box positions within 2 cm after 4 s"
 
-EngineSettings PushSettings(const char* method, double physics_dt, double duration) {
-  EngineSettings s;
+settings::EngineSettings PushSettings(const char* method, double physics_dt, double duration) {
+  settings::EngineSettings s;
   s.method = method;
   s.physics_dt = physics_dt;
   s.haptic_dt = 0.001;
@@ -59,11 +59,11 @@ struct Stats {
   Vec3 box_at = Vec3::Zero();                       // box COM at kPoseAt (m)
 };
 
-class StatsTap final : public Recorder {
+class StatsTap final : public physics::Recorder {
  public:
   explicit StatsTap(int box) : box_(box) {}
 
-  void OnTick(const haptic::TickRecord& t) override {
+  void OnTick(const ir::TickRecord& t) override {
     if (t.t < kFrom) return;
     const double f = t.rendered_W.f.norm();
     n_ += 1.0;
@@ -72,7 +72,7 @@ class StatsTap final : public Recorder {
     st_ += t.rendered_W.tau.norm();
   }
 
-  void OnStep(const StepRecord&, const world::World& world) override {
+  void OnStep(const physics::StepRecord&, const world::World& world) override {
     const world::BodyState s = world.body_state(box_);
     stats.peak_w = std::max(stats.peak_w, s.V_WCm.w.norm());
     if (std::abs(world.time() - kPoseAt) < 1e-6) stats.box_at = s.X_WB.p;
@@ -176,8 +176,8 @@ TickReaction ReactionOf(const render::ProxyOutput& out, const render::TickIr& ir
 // Runs `seconds` of lockstep local-dynamics-6dof with the pointer offset by y; calls
 // before(tick) and after(tick) around every haptic tick; returns the run's received impulses.
 template <typename Before, typename After>
-std::vector<BodyImpulseTotal> RunTicks(world::World world, double y, double z, double seconds,
-                                       Before&& before, After&& after) {
+std::vector<physics::BodyImpulseTotal> RunTicks(world::World world, double y, double z,
+                                                double seconds, Before&& before, After&& after) {
   internal::EngineState state(std::move(world), PushDevice(y, z), device::Calibration{},
                               PushSettings("local-dynamics-6dof", 0.02, seconds));
   physics::PhysicsSide physics = state.MakePhysicsSide(nullptr);
@@ -221,7 +221,7 @@ TEST(LocalDynamics6dofTest, ProxyActionEqualsReactionAndThePhysicsReceivesIt) {
     worst_f = std::max(worst_f, (out.w_W.f + r.f).norm());
     worst_tau = std::max(worst_tau, (out.w_W.tau + r.tau_P).norm());
   };
-  const std::vector<BodyImpulseTotal> received = RunTicks(
+  const std::vector<physics::BodyImpulseTotal> received = RunTicks(
       PushWorld(), 0.03, 0.05, 2.5, [](const haptic::MethodHaptic&, std::int64_t) {}, after);
   ASSERT_GT(peak, 1.0) << "the pointer never pushed";
   EXPECT_LT(worst_f, 1e-9);
@@ -289,7 +289,7 @@ TEST(LocalDynamics6dofTest, ASpherePastABoxEdgeFeelsNoMoreThanItsDepth) {
       <geom type="sphere" size="0.015" density="1000" contype="0" conaffinity="0"/></body>
     </worldbody></mujoco>)";
   constexpr double kR = 0.015, kHalf = 0.05, kStiffness = 2000.0, kSeconds = 1.0;
-  EngineSettings settings = PushSettings("local-dynamics-6dof", 0.02, kSeconds);
+  settings::EngineSettings settings = PushSettings("local-dynamics-6dof", 0.02, kSeconds);
   settings.rendering.damping = 0.0;
   settings.rendering.rot_damping = 0.0;
   settings.rendering.friction = 0.0;

@@ -62,8 +62,8 @@ constexpr double kRowZ = 0.0499;         // m, COM height of the row (and of the
 constexpr double kRowPointerX = -0.075;  // m, pointer start, 5 mm from the first cube
 constexpr double kPushSpeed = 0.05;      // m/s, scripted pointer speed into the row
 
-EngineSettings LocalSettings(double duration, const char* model = "perturbation") {
-  EngineSettings s;
+settings::EngineSettings LocalSettings(double duration, const char* model = "perturbation") {
+  settings::EngineSettings s;
   s.method = "local-dynamics";
   s.physics_dt = 0.05;
   s.haptic_dt = 0.001;
@@ -96,7 +96,7 @@ std::unique_ptr<device::Device> PushingDevice(const Vec3& p0, double speed, doub
 }
 
 Vec3 ImpulseOn(const RunStats& stats, int body) {
-  for (const BodyImpulseTotal& total : stats.impulses) {
+  for (const physics::BodyImpulseTotal& total : stats.impulses) {
     if (total.body == body) return total.linear;
   }
   return Vec3::Zero();
@@ -110,9 +110,10 @@ Mat3 Cross(const Vec3& r) {
 
 // The snapshot PhysicsStart makes for period 0: the dynamic IR measured at the initial state
 // (with the nominal test force: no user force yet).
-ir::PhysicsSnapshot InitialSnapshot(world::World* world, const EngineSettings& settings,
+ir::PhysicsSnapshot InitialSnapshot(world::World* world, const settings::EngineSettings& settings,
                                     const Pose& X_WP) {
-  const MethodContext context{world, &settings, world->pointer_body(), settings.pointer.radius};
+  const physics::MethodContext context{world, &settings, world->pointer_body(),
+                                       settings.pointer.radius};
   LocalDynamicsPhysics method(context);
   ir::HapticReport initial;
   initial.X_WP = X_WP;
@@ -145,7 +146,7 @@ TEST(LocalDynamicsTest, FreeBodyAcceleranceIsInverseMassAndLeverArmCoupling) {
   constexpr double kTol = 1e-9;
   for (bool perturbation : {true, false}) {
     world::World world = world::World::LoadString(kFreeBox);
-    EngineSettings settings = LocalSettings(1.0);
+    settings::EngineSettings settings = LocalSettings(1.0);
     settings.rendering.perturbation = perturbation;
     const Pose X_WP{Vec3(0.08, 0.05, 0.07), Quat::Identity()};
     const ir::PhysicsSnapshot snapshot = InitialSnapshot(&world, settings, X_WP);
@@ -189,13 +190,13 @@ TEST_P(RowOfCubesTest, FeltMassIsTheWholeRowAndTheGlobalRowMovesAlong) {
         model == CorrectionModel::kNewContacts ? "ld-new-contacts" : "ld-residual";
     LocalDynamicsOptions options;
     options.correction = model;
-    RegisterMethod(name, "test", [options](const MethodContext& c) {
+    RegisterMethod(name, "test", [options](const physics::MethodContext& c) {
       return Method{"local-dynamics", false, std::make_unique<LocalDynamicsPhysics>(c, options),
                     haptic::MakeLocalDynamicsHaptic(c.pointer_radius, c.settings->rendering.stiffness,
                                                     c.settings->rendering.damping),
                     {"local_dynamics.local_body_fault"}};
     });
-    EngineSettings settings = LocalSettings(kDuration);
+    settings::EngineSettings settings = LocalSettings(kDuration);
     settings.method = name;
     Engine engine(RowWorld(k), PushingDevice(Vec3(kRowPointerX, 0, kRowZ), kPushSpeed, kDuration),
                   device::Calibration{}, settings);
@@ -246,7 +247,7 @@ TEST(LocalDynamicsTest, GlobalStepStartsFromTheLocalStateOfTheLastPeriod) {
   // is the overwritten local state moved by v·Δt^G (eq. 4.16–4.17).
   constexpr double kTol = 1e-12;
   const double duration = 1.0;
-  EngineSettings settings = LocalSettings(duration);
+  settings::EngineSettings settings = LocalSettings(duration);
   world::World world = world::World::LoadString(kFreeBox);
   const int box = world.FindBody("box");
   // Pushed along −x: the COM drifts at constant velocity between pushes, whatever the spin.
@@ -289,7 +290,7 @@ TEST(LocalDynamicsTest, ContactModelWorldHoldsTheOwnedBodyAtTheLocalEndStateOfTh
   // (IslandSync::HoldOwned): MuJoCo's own end state of it is not used.
   constexpr double kTol = 1e-12;
   const double duration = 1.0;
-  EngineSettings settings = LocalSettings(duration, "contact");
+  settings::EngineSettings settings = LocalSettings(duration, "contact");
   world::World world = world::World::LoadString(kFreeBox);
   const int box = world.FindBody("box");
   EngineState state(std::move(world), PushingDevice(Vec3(0.09, 0, 0), -0.05, duration),
@@ -361,10 +362,11 @@ TEST(LocalDynamicsTest, ContactModelSynchronizationMovesNothingOnTheHapticSide) 
 
 // Keeps every snapshot the physics side makes: [0] from PhysicsStart, [k + 1] from step k.
 // Period p renders snapshots[p].
-class SnapshotKeeper final : public Recorder {
+class SnapshotKeeper final : public physics::Recorder {
  public:
-  void OnTick(const TickRecord&) override {}
-  void OnStep(const StepRecord&, const world::World&) override {}
+  void OnTick(const ir::TickRecord&) override {}
+
+  void OnStep(const physics::StepRecord&, const world::World&) override {}
   void OnSnapshot(const ir::PhysicsSnapshot& snapshot) override {
     auto copy = std::make_unique<ir::PhysicsSnapshot>(snapshot);
     snapshots.push_back(std::move(copy));
@@ -454,10 +456,11 @@ TEST(LocalDynamicsTest, SynchronizationKeepsGlobalAndLocalStatesConsistent) {
 }
 
 // Counts the steps whose snapshot held a neighbor.
-class NeighborCounter final : public Recorder {
+class NeighborCounter final : public physics::Recorder {
  public:
-  void OnTick(const TickRecord&) override {}
-  void OnStep(const StepRecord& step, const world::World&) override {
+  void OnTick(const ir::TickRecord&) override {}
+
+  void OnStep(const physics::StepRecord& step, const world::World&) override {
     ++steps;
     if (step.neighbors > 0) ++with_neighbor;
   }
@@ -479,7 +482,7 @@ TEST_P(RestTest, PointerNearButNotTouchingFeelsNothing) {
   auto device = device::MakeScriptedDevice({{0.0, Pose{Vec3(x, -0.04, 0.05), Quat::Identity()}},
                                             {duration, Pose{Vec3(x, 0.04, 0.05), Quat::Identity()}}},
                                            specs);
-  EngineSettings settings = LocalSettings(duration, GetParam());
+  settings::EngineSettings settings = LocalSettings(duration, GetParam());
   ASSERT_GT(settings.rendering.neighbor_margin, kGap);
   Engine engine(world::World::LoadString(kCubeOnFloor), std::move(device), device::Calibration{},
                 settings);
@@ -595,8 +598,8 @@ TEST(LocalDynamicsTest, RealtimeModeDeliversTheT41BounceImpulse) {
   // = 0.2 % each; 15 % allows for dozens of them (this VM stalls for milliseconds) while still
   // failing a lost sync or a doubled push (0 or ~2× the impulse) or the impulse method's +60 %.
   constexpr double kRelTol = 0.15;
-  EngineSettings settings = T41Settings("local-dynamics");
-  settings.mode = Mode::kRealtime;
+  settings::EngineSettings settings = T41Settings("local-dynamics");
+  settings.mode = settings::Mode::kRealtime;
   settings.duration = 1.4;  // contact from ~0.29 s for π√(m/k) ≈ 0.77 s
   auto engine = T41Engine(settings);
   const RunStats stats = engine->Run(nullptr);
@@ -610,7 +613,8 @@ TEST(LocalDynamicsTest, RealtimeModeDeliversTheT41BounceImpulse) {
 TEST(LocalDynamicsTest, HapticTicksNeverAllocateInContact) {
   for (int scene = 0; scene < 2; ++scene) {
     const double duration = 1.0;
-    EngineSettings settings = scene == 0 ? T41Settings("local-dynamics") : LocalSettings(duration);
+    settings::EngineSettings settings =
+        scene == 0 ? T41Settings("local-dynamics") : LocalSettings(duration);
     world::World world = scene == 0 ? T41World() : RowWorld(3);
     if (scene == 0) world.ApplyKeyframe("approach");
     auto device = scene == 0 ? device::MakeFixedDevice(Pose{})

@@ -44,14 +44,14 @@ world::World Blocks(bool box_pointer) {
   return world::World::LoadString(xml);
 }
 
-MaterialSettings Stiffness(double k) {
-  MaterialSettings m;
+settings::MaterialSettings Stiffness(double k) {
+  settings::MaterialSettings m;
   m.stiffness = k;
   return m;
 }
 
-EngineSettings Settings(const std::string& method) {
-  EngineSettings s;
+settings::EngineSettings Settings(const std::string& method) {
+  settings::EngineSettings s;
   s.method = method;
   s.physics_dt = 0.01;
   s.haptic_dt = 0.001;
@@ -66,13 +66,13 @@ EngineSettings Settings(const std::string& method) {
   return s;
 }
 
-class LastTick final : public Recorder {
+class LastTick final : public physics::Recorder {
  public:
-  void OnTick(const TickRecord& tick) override { ticks.push_back(tick); }
+  void OnTick(const ir::TickRecord& tick) override { ticks.push_back(tick); }
 
-  void OnStep(const StepRecord& /*step*/, const world::World& /*world*/) override {}
+  void OnStep(const physics::StepRecord& /*step*/, const world::World& /*world*/) override {}
 
-  std::vector<TickRecord> ticks;
+  std::vector<ir::TickRecord> ticks;
 };
 
 // The force felt with the pointer held kDepth inside the block centred at x.
@@ -101,7 +101,7 @@ INSTANTIATE_TEST_SUITE_P(IrMethods, MaterialStiffnessTest,
                                            "local-dynamics-6dof"));
 
 TEST(MaterialsTest, AMaterialNoGeomUsesIsRejectedByName) {
-  EngineSettings s = Settings("impulse");
+  settings::EngineSettings s = Settings("impulse");
   s.rendering.materials["glas"] = Stiffness(5.0);
   const auto make = [&] {
     Engine engine(Blocks(false), device::MakeFixedDevice(Pose{}), {}, s);
@@ -111,7 +111,7 @@ TEST(MaterialsTest, AMaterialNoGeomUsesIsRejectedByName) {
 }
 
 TEST(MaterialsTest, NegativeStiffnessIsRejectedWithItsKey) {
-  EngineSettings s = Settings("impulse");
+  settings::EngineSettings s = Settings("impulse");
   s.rendering.materials["soft"].stiffness = -1.0;
   EXPECT_THAT(
       [&] {
@@ -121,7 +121,7 @@ TEST(MaterialsTest, NegativeStiffnessIsRejectedWithItsKey) {
 }
 
 TEST(MaterialsTest, NanDampingIsRejectedWithItsKey) {
-  EngineSettings s = Settings("impulse");
+  settings::EngineSettings s = Settings("impulse");
   s.rendering.materials["hard"].damping = std::nan("");
   EXPECT_THAT(
       [&] {
@@ -131,8 +131,8 @@ TEST(MaterialsTest, NanDampingIsRejectedWithItsKey) {
 }
 
 TEST(MaterialsTest, VibrationAboveNyquistIsRejected) {
-  EngineSettings s = Settings("impulse");
-  s.rendering.materials["hard"].vibration = VibrationSettings{10.0, 50.0, 600.0};
+  settings::EngineSettings s = Settings("impulse");
+  s.rendering.materials["hard"].vibration = settings::VibrationSettings{10.0, 50.0, 600.0};
   EXPECT_THAT(
       [&] {
         s.Validate();
@@ -144,11 +144,11 @@ TEST(MaterialsTest, VibrationAboveNyquistIsRejected) {
 // transient a·v·e^(−B t)·sin(2π f t) on top of the spring; the safety layer clamps what the
 // device displays.
 TEST(MaterialsTest, VibrationAtOnsetIsRenderedAndTheDisplayIsClamped) {
-  EngineSettings s = Settings("single-rate");
+  settings::EngineSettings s = Settings("single-rate");
   s.physics_dt = 0.001;
   s.duration = 0.1;
   constexpr double kA = 500.0, kB = 30.0, kF = 100.0, kV = 0.1;  // N·s/m, 1/s, Hz, m/s
-  s.rendering.materials["hard"].vibration = VibrationSettings{kA, kB, kF};
+  s.rendering.materials["hard"].vibration = settings::VibrationSettings{kA, kB, kF};
   device::Specifications limits;
   limits.max_force = 10.0;                 // below a·v = 50 N
   const double z0 = kTop + kHalf + 0.002;  // starts 2 mm above; contact at t = 0.02 s
@@ -160,7 +160,7 @@ TEST(MaterialsTest, VibrationAtOnsetIsRenderedAndTheDisplayIsClamped) {
   LastTick tap;
   (void)engine.Run(&tap);
   double peak_rendered = 0.0, peak_displayed = 0.0;
-  for (const TickRecord& t : tap.ticks) {
+  for (const ir::TickRecord& t : tap.ticks) {
     peak_rendered = std::max(peak_rendered, std::abs(t.rendered_W.f.z()));
     peak_displayed = std::max(peak_displayed, t.displayed_W.f.norm());
   }

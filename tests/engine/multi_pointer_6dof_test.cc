@@ -34,20 +34,21 @@ constexpr const char* kSqueezeXml = R"(<mujoco><option gravity="0 0 0"/><worldbo
     <geom type="box" size="0.01 0.01 0.01" contype="0" conaffinity="0"/></body>
 </worldbody></mujoco>)";
 
-class TickLog final : public Recorder {
+class TickLog final : public physics::Recorder {
  public:
-  void OnTick(const TickRecord& tick) override { ticks.push_back(tick); }
+  void OnTick(const ir::TickRecord& tick) override { ticks.push_back(tick); }
 
-  void OnStep(const StepRecord& step, const world::World& w) override {
+  void OnStep(const physics::StepRecord& step, const world::World& w) override {
     steps.emplace_back(step.t, w.body_state(w.FindBody("box")).p_WCm.x());
   }
 
-  std::vector<TickRecord> ticks;
+  std::vector<ir::TickRecord> ticks;
   std::vector<std::pair<double, double>> steps;  // (t, the world's box x)
 };
 
-EngineSettings SqueezeSettings(double duration, const char* method = "local-dynamics-6dof") {
-  EngineSettings s;
+settings::EngineSettings SqueezeSettings(double duration,
+                                         const char* method = "local-dynamics-6dof") {
+  settings::EngineSettings s;
   s.method = method;
   s.haptic_dt = kDt;
   s.physics_dt = 0.02;
@@ -59,8 +60,8 @@ EngineSettings SqueezeSettings(double duration, const char* method = "local-dyna
   s.safety.ramp = false;
   s.realtime_priority = false;
   s.pointer.body = "f0";
-  s.pointers = {PointerLaneSettings{PointerSettings{"f0", 0.0}, s.rendering},
-                PointerLaneSettings{PointerSettings{"f1", 0.0}, s.rendering}};
+  s.pointers = {settings::PointerLaneSettings{settings::PointerSettings{"f0", 0.0}, s.rendering},
+                settings::PointerLaneSettings{settings::PointerSettings{"f1", 0.0}, s.rendering}};
   return s;
 }
 
@@ -76,7 +77,7 @@ world::LoadOptions TwoPointers() {
 }
 
 struct Squeeze {
-  std::vector<TickRecord> ticks;
+  std::vector<ir::TickRecord> ticks;
   Vec3 momentum = Vec3::Zero();  // the world's box at the end (kg·m/s)
   RunStats stats;
 };
@@ -124,7 +125,7 @@ TEST(MultiPointer6dofTest, SqueezedBoxTakesBothReactionsOnce) {
   ASSERT_EQ(r.ticks.size(), 240u);
   const auto stepped_ticks = static_cast<std::int64_t>(120 - 0.02 / kDt);
   Vec3 impulse = Vec3::Zero();
-  for (const TickRecord& tick : r.ticks) {
+  for (const ir::TickRecord& tick : r.ticks) {
     if (tick.tick < stepped_ticks) impulse += tick.rendered_W.f * kDt;
   }
   EXPECT_GT(r.momentum.norm(), 1e-3);

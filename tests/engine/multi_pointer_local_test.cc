@@ -29,21 +29,23 @@ constexpr const char* kSqueezeXml = R"(<mujoco><option gravity="0 0 0"/><worldbo
   <body name="f1" mocap="true" pos="0.059 0 0"><geom type="sphere" size="0.01"/></body>
 </worldbody></mujoco>)";
 
-class TickLog final : public Recorder {
+class TickLog final : public physics::Recorder {
  public:
-  void OnTick(const TickRecord& tick) override { ticks.push_back(tick); }
-  void OnStep(const StepRecord&, const world::World&) override {}
-  std::vector<TickRecord> ticks;
+  void OnTick(const ir::TickRecord& tick) override { ticks.push_back(tick); }
+
+  void OnStep(const physics::StepRecord&, const world::World&) override {}
+
+  std::vector<ir::TickRecord> ticks;
 };
 
 struct Squeeze {
-  std::vector<TickRecord> ticks;
+  std::vector<ir::TickRecord> ticks;
   Vec3 momentum = Vec3::Zero();  // the world's box at the end (kg·m/s)
   RunStats stats;
 };
 
 Squeeze RunSqueeze(const std::string& method, double physics_dt, double duration) {
-  EngineSettings s;
+  settings::EngineSettings s;
   s.method = method;
   s.haptic_dt = kDt;
   s.physics_dt = physics_dt;
@@ -52,8 +54,8 @@ Squeeze RunSqueeze(const std::string& method, double physics_dt, double duration
   s.safety.ramp = false;
   s.realtime_priority = false;
   s.pointer.body = "f0";
-  s.pointers = {PointerLaneSettings{PointerSettings{"f0", 0.0}, s.rendering},
-                PointerLaneSettings{PointerSettings{"f1", 0.0}, s.rendering}};
+  s.pointers = {settings::PointerLaneSettings{settings::PointerSettings{"f0", 0.0}, s.rendering},
+                settings::PointerLaneSettings{settings::PointerSettings{"f1", 0.0}, s.rendering}};
   std::vector<std::unique_ptr<device::Device>> devices;
   devices.push_back(device::MakeFixedDevice(Pose{Vec3(-0.057, 0, 0), Quat::Identity()}));
   devices.push_back(device::MakeFixedDevice(Pose{Vec3(0.059, 0, 0), Quat::Identity()}));
@@ -80,7 +82,7 @@ TEST(MultiPointerLocalTest, SqueezedBoxTakesBothReactionsOnce) {
   ASSERT_EQ(r.ticks.size(), 2u * 120u);
   const auto stepped_ticks = static_cast<std::int64_t>(120 - kPhysicsDt / kDt);
   Vec3 impulse = Vec3::Zero();
-  for (const TickRecord& tick : r.ticks) {
+  for (const ir::TickRecord& tick : r.ticks) {
     if (tick.tick < stepped_ticks) impulse += tick.rendered_W.f * kDt;
   }
   EXPECT_GT(r.momentum.norm(), 1e-3);
@@ -109,15 +111,15 @@ TEST(MultiPointerLocalTest, BothFingersActOnTheIslandInTheSameTick) {
 }
 
 TEST(MultiPointerLocalTest, HapticTicksOfTheSharedIslandDoNotAllocate) {
-  EngineSettings s;
+  settings::EngineSettings s;
   s.method = "local-dynamics";
   s.physics_dt = 0.02;
   s.duration = 1.0;
   s.safety.ramp = false;
   s.realtime_priority = false;
   s.pointer.body = "f0";
-  s.pointers = {PointerLaneSettings{PointerSettings{"f0", 0.0}, s.rendering},
-                PointerLaneSettings{PointerSettings{"f1", 0.0}, s.rendering}};
+  s.pointers = {settings::PointerLaneSettings{settings::PointerSettings{"f0", 0.0}, s.rendering},
+                settings::PointerLaneSettings{settings::PointerSettings{"f1", 0.0}, s.rendering}};
   std::vector<std::unique_ptr<device::Device>> devices;
   devices.push_back(device::MakeFixedDevice(Pose{Vec3(-0.057, 0, 0), Quat::Identity()}));
   devices.push_back(device::MakeFixedDevice(Pose{Vec3(0.059, 0, 0), Quat::Identity()}));
@@ -129,12 +131,12 @@ TEST(MultiPointerLocalTest, HapticTicksOfTheSharedIslandDoNotAllocate) {
 
 TEST(MultiPointerLocalTest, ThePerturbationModelRefusesSeveralPointers) {
   const auto build = [] {
-    EngineSettings s;
+    settings::EngineSettings s;
     s.method = "local-dynamics";
     s.rendering.local_model = "perturbation";
     s.pointer.body = "f0";
-    s.pointers = {PointerLaneSettings{PointerSettings{"f0", 0.0}, s.rendering},
-                  PointerLaneSettings{PointerSettings{"f1", 0.0}, s.rendering}};
+    s.pointers = {settings::PointerLaneSettings{settings::PointerSettings{"f0", 0.0}, s.rendering},
+                  settings::PointerLaneSettings{settings::PointerSettings{"f1", 0.0}, s.rendering}};
     std::vector<std::unique_ptr<device::Device>> devices;
     devices.push_back(device::MakeFixedDevice(Pose{}));
     devices.push_back(device::MakeFixedDevice(Pose{}));

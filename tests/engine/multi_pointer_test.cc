@@ -35,8 +35,8 @@ world::World TwoPointerWorld(std::vector<std::string> more = {"f1"}) {
       world::LoadOptions{.pointer_body = "f0", .more_pointer_bodies = std::move(more)});
 }
 
-EngineSettings TwoPointerSettings(const std::string& method, double duration) {
-  EngineSettings s;
+settings::EngineSettings TwoPointerSettings(const std::string& method, double duration) {
+  settings::EngineSettings s;
   s.method = method;
   s.physics_dt = kDt;
   s.haptic_dt = kDt;
@@ -45,13 +45,13 @@ EngineSettings TwoPointerSettings(const std::string& method, double duration) {
   s.safety.ramp = false;
   s.realtime_priority = false;
   s.pointer.body = "f0";
-  s.pointers = {PointerLaneSettings{PointerSettings{"f0", 0.0}, s.rendering},
-                PointerLaneSettings{PointerSettings{"f1", 0.0}, s.rendering}};
+  s.pointers = {settings::PointerLaneSettings{settings::PointerSettings{"f0", 0.0}, s.rendering},
+                settings::PointerLaneSettings{settings::PointerSettings{"f1", 0.0}, s.rendering}};
   return s;
 }
 
-std::unique_ptr<Engine> TwoPointerEngine(const EngineSettings& s, const Vec3& p0, const Vec3& p1,
-                                         world::World world = TwoPointerWorld()) {
+std::unique_ptr<Engine> TwoPointerEngine(const settings::EngineSettings& s, const Vec3& p0,
+                                         const Vec3& p1, world::World world = TwoPointerWorld()) {
   device::Specifications specs;
   specs.max_force = 100.0;
   std::vector<std::unique_ptr<device::Device>> devices;
@@ -61,13 +61,13 @@ std::unique_ptr<Engine> TwoPointerEngine(const EngineSettings& s, const Vec3& p0
                                   std::vector<device::Calibration>(2), s);
 }
 
-class TickLog final : public Recorder {
+class TickLog final : public physics::Recorder {
  public:
-  void OnTick(const TickRecord& tick) override { ticks.push_back(tick); }
+  void OnTick(const ir::TickRecord& tick) override { ticks.push_back(tick); }
 
-  void OnStep(const StepRecord&, const world::World&) override {}
+  void OnStep(const physics::StepRecord&, const world::World&) override {}
 
-  std::vector<TickRecord> ticks;
+  std::vector<ir::TickRecord> ticks;
 };
 
 TEST(MultiPointerTest, EachTickRecordsEveryPointerInOrder) {
@@ -91,7 +91,7 @@ TEST(MultiPointerTest, EachTickRecordsEveryPointerInOrder) {
 TEST(MultiPointerTest, TwoPointersOnTwoBoxesFeelTheirOwnPenalty) {
   for (const char* method : {"single-rate", "impulse"}) {
     SCOPED_TRACE(method);
-    EngineSettings s = TwoPointerSettings(method, 0.05);
+    settings::EngineSettings s = TwoPointerSettings(method, 0.05);
     if (std::string(method) == "impulse") s.physics_dt = 0.01;
     auto engine = TwoPointerEngine(s, kF0OnA, kF1OnB);
     TickLog log;
@@ -107,12 +107,12 @@ TEST(MultiPointerTest, TwoPointersOnTwoBoxesFeelTheirOwnPenalty) {
 // The other pointer does not disturb a pointer: f0's force trace on box_a is the same whether
 // f1 pushes box_b or f0 runs alone.
 TEST(MultiPointerTest, APointerIsUndisturbedByTheOther) {
-  EngineSettings two = TwoPointerSettings("single-rate", 0.3);
+  settings::EngineSettings two = TwoPointerSettings("single-rate", 0.3);
   auto engine = TwoPointerEngine(two, kF0OnA, kF1OnB);
   TickLog both;
   engine->Run(&both);
 
-  EngineSettings one = two;
+  settings::EngineSettings one = two;
   one.pointers.clear();
   device::Specifications specs;
   specs.max_force = 100.0;
@@ -140,7 +140,7 @@ TEST(MultiPointerTest, SqueezedBoxConservesMomentum) {
   TickLog log;
   const RunStats stats = engine->Run(&log);
   Vec3 all = Vec3::Zero(), last = Vec3::Zero();
-  for (const TickRecord& tick : log.ticks) {
+  for (const ir::TickRecord& tick : log.ticks) {
     all += tick.rendered_W.f * kDt;
     if (tick.tick == stats.ticks - 1) last += tick.rendered_W.f * kDt;
   }
@@ -150,7 +150,7 @@ TEST(MultiPointerTest, SqueezedBoxConservesMomentum) {
   EXPECT_GT(momentum.norm(), 1e-3);  // the squeeze is uneven: the box moved
   EXPECT_NEAR((momentum + (all - last)).norm(), 0.0, 1e-9);
   bool found = false;
-  for (const BodyImpulseTotal& impulse : stats.impulses) {
+  for (const physics::BodyImpulseTotal& impulse : stats.impulses) {
     if (impulse.body != box) continue;
     found = true;
     EXPECT_NEAR((impulse.linear + (all - last)).norm(), 0.0, 1e-9);
@@ -177,7 +177,7 @@ TEST(MultiPointerTest, ASecondPointerThatStillCollidesIsRejected) {
 }
 
 TEST(MultiPointerTest, ASecondPointerMustBeAMocapBody) {
-  EngineSettings s = TwoPointerSettings("single-rate", 0.1);
+  settings::EngineSettings s = TwoPointerSettings("single-rate", 0.1);
   s.pointers[1].pointer.body = "box_b";
   EXPECT_THAT(
       [&] {
@@ -201,7 +201,7 @@ TEST(MultiPointerTest, HapticTicksOfAllPointersDoNotAllocate) {
   std::vector<std::unique_ptr<device::Device>> devices;
   devices.push_back(device::MakeFixedDevice(Pose{kF0Squeeze, Quat::Identity()}));
   devices.push_back(device::MakeFixedDevice(Pose{kF1Squeeze, Quat::Identity()}));
-  EngineSettings s = TwoPointerSettings("impulse", 1.0);
+  settings::EngineSettings s = TwoPointerSettings("impulse", 1.0);
   s.physics_dt = 0.01;
   internal::EngineState state(TwoPointerWorld(), std::move(devices),
                               std::vector<device::Calibration>(2), s);

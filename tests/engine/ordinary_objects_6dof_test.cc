@@ -29,12 +29,13 @@ constexpr double kPushSpeed = 0.1;  // m/s, the scripted pointer
 constexpr double kGravity = 9.81;   // m/s²
 
 // The pushed body's states (one per step) and the felt force (one per tick).
-class ObjectRecorder final : public Recorder {
+class ObjectRecorder final : public physics::Recorder {
  public:
-  void OnTick(const TickRecord& tick) override {
+  void OnTick(const ir::TickRecord& tick) override {
     if (tick.t >= 2.0) forces.push_back(tick.displayed_W.f);
   }
-  void OnStep(const StepRecord& step, const world::World& world) override {
+
+  void OnStep(const physics::StepRecord& step, const world::World& world) override {
     if (object < 0) object = world.FindBody("object");
     states.push_back(world.body_state(object));
     times.push_back(step.t);

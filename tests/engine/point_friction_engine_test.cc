@@ -19,19 +19,19 @@ constexpr double kStiffness = 800.0;  // N/m
 constexpr double kDepth = 0.004;      // m into the floor (fingertip radius 0.01 m)
 constexpr double kMu = 0.5;
 
-class TickLog final : public Recorder {
+class TickLog final : public physics::Recorder {
  public:
-  void OnTick(const TickRecord& tick) override { ticks.push_back(tick); }
+  void OnTick(const ir::TickRecord& tick) override { ticks.push_back(tick); }
 
-  void OnStep(const StepRecord&, const world::World&) override {}
+  void OnStep(const physics::StepRecord&, const world::World&) override {}
 
-  std::vector<TickRecord> ticks;
+  std::vector<ir::TickRecord> ticks;
 };
 
 // The thumb of scenes/two_finger_grasp.xml, away from the box, 4 mm into the floor, dragged
 // 5 cm along +x in 0.5 s.
-std::vector<TickRecord> Drag(const std::string& method, double friction) {
-  EngineSettings s;
+std::vector<ir::TickRecord> Drag(const std::string& method, double friction) {
+  settings::EngineSettings s;
   s.method = method;
   s.haptic_dt = 0.001;
   s.physics_dt = method == "single-rate" ? 0.001 : 0.02;
@@ -57,9 +57,9 @@ std::vector<TickRecord> Drag(const std::string& method, double friction) {
 TEST(PointFrictionEngineTest, SlidingFingertipFeelsCoulombsForce) {
   for (const char* method : {"single-rate", "impulse", "local-dynamics"}) {
     SCOPED_TRACE(method);
-    const std::vector<TickRecord> ticks = Drag(method, kMu);
+    const std::vector<ir::TickRecord> ticks = Drag(method, kMu);
     ASSERT_EQ(ticks.size(), 500u);
-    for (const TickRecord& tick : ticks) {
+    for (const ir::TickRecord& tick : ticks) {
       const Vec3& f = tick.rendered_W.f;
       EXPECT_NEAR(f.z(), kStiffness * kDepth, 1e-9);
       EXPECT_LE(std::abs(f.x()), kMu * f.z() + 1e-9);  // inside the cone, always
@@ -73,7 +73,7 @@ TEST(PointFrictionEngineTest, SlidingFingertipFeelsCoulombsForce) {
 }
 
 TEST(PointFrictionEngineTest, ZeroFrictionRendersNoTangentialForce) {
-  for (const TickRecord& tick : Drag("single-rate", 0.0)) {
+  for (const ir::TickRecord& tick : Drag("single-rate", 0.0)) {
     EXPECT_EQ(tick.rendered_W.f.x(), 0.0);
     EXPECT_EQ(tick.rendered_W.f.y(), 0.0);
   }

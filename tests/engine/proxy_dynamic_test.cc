@@ -27,8 +27,8 @@ constexpr double kFrom = 2.0;
 constexpr double kDuration = 5.0;
 
 // scenes/t3_6_push.json: proxy-6dof, k_t 2000, d_t 5, k_r 20, d_r 0.1, friction 0.3.
-EngineSettings PushSettings(double physics_dt) {
-  EngineSettings s;
+settings::EngineSettings PushSettings(double physics_dt) {
+  settings::EngineSettings s;
   s.method = "proxy-6dof";
   s.physics_dt = physics_dt;
   s.haptic_dt = 0.001;
@@ -60,15 +60,15 @@ struct PushResult {
 };
 
 // Counts the ticks with contact from kFrom on.
-class ContactTap final : public Recorder {
+class ContactTap final : public physics::Recorder {
  public:
-  void OnTick(const TickRecord& t) override {
+  void OnTick(const ir::TickRecord& t) override {
     if (t.t < kFrom) return;
     ++ticks;
     touching += t.contacts > 0 ? 1 : 0;
   }
 
-  void OnStep(const StepRecord&, const world::World&) override {}
+  void OnStep(const physics::StepRecord&, const world::World&) override {}
 
   int ticks = 0;
   int touching = 0;
@@ -76,7 +76,7 @@ class ContactTap final : public Recorder {
 
 // Runs lockstep through the engine state so the applied reaction can be read per step.
 PushResult RunPush(world::World world, double physics_dt, double y) {
-  const EngineSettings s = PushSettings(physics_dt);
+  const settings::EngineSettings s = PushSettings(physics_dt);
   internal::EngineState state(std::move(world), PushDevice(y), device::Calibration{}, s);
   const int box = state.world.FindBody("box");
   std::vector<int> bodies;
@@ -185,7 +185,7 @@ TEST(ProxyDynamicTest, AppliedReactionIsReportedAndTheProxysActionEqualsReaction
     </body></worldbody></mujoco>)");
   // Springs only: with dampers, the tick a contact ends renders d·(0 − Δr_prev)/dt to the
   // pointer while its pair (now without rows) gets no reaction (a ProxyRenderer property).
-  EngineSettings s = PushSettings(0.02);
+  settings::EngineSettings s = PushSettings(0.02);
   s.rendering.damping = 0.0;
   s.rendering.rot_damping = 0.0;
   internal::EngineState state(std::move(w), PushDevice(0.03), device::Calibration{}, s);

@@ -26,11 +26,11 @@ struct LastState {
 };
 
 // The prism's state at the last step.
-class LastStateRecorder final : public Recorder {
+class LastStateRecorder final : public physics::Recorder {
  public:
-  void OnTick(const TickRecord&) override {}
+  void OnTick(const ir::TickRecord&) override {}
 
-  void OnStep(const StepRecord& step, const world::World& world) override {
+  void OnStep(const physics::StepRecord& step, const world::World& world) override {
     if (object < 0) object = world.FindBody("object");
     last.state = world.body_state(object);
     last.t = step.t;

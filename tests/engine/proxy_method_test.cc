@@ -49,8 +49,8 @@ world::World FloorWorld() {
 }
 
 // The T3.1 gains (SPEC §5 T3.1): k_t = k_r = 9000, d_t = d_r = 0, R_w = 3.33·1, μ = 0.
-EngineSettings T31Settings(double duration) {
-  EngineSettings s;
+settings::EngineSettings T31Settings(double duration) {
+  settings::EngineSettings s;
   s.method = "proxy-6dof";
   s.physics_dt = 0.02;
   s.haptic_dt = 0.001;
@@ -77,17 +77,17 @@ std::vector<device::Keyframe> Keys(std::initializer_list<std::pair<double, Pose>
 }
 
 // Keeps every tick and, after every step, the box's COM velocity (if there is a box).
-class Tap final : public Recorder {
+class Tap final : public physics::Recorder {
  public:
-  void OnTick(const TickRecord& tick) override { ticks.push_back(tick); }
+  void OnTick(const ir::TickRecord& tick) override { ticks.push_back(tick); }
 
-  void OnStep(const StepRecord& step, const world::World& world) override {
+  void OnStep(const physics::StepRecord& step, const world::World& world) override {
     const int box = world.FindBody("box");
     box_v.push_back(box >= 0 ? world.body_state(box).V_WCm.v : Vec3::Zero());
     steps.push_back(step.step);
   }
 
-  std::vector<TickRecord> ticks;
+  std::vector<ir::TickRecord> ticks;
   std::vector<Vec3> box_v;
   std::vector<std::int64_t> steps;
 };
@@ -105,7 +105,7 @@ TEST(ProxyMethodTest, PointerHeldJustAboveFloorFeelsNothing) {
   Tap tap;
   (void)engine.Run(&tap);
   ASSERT_FALSE(tap.ticks.empty());
-  for (const TickRecord& t : tap.ticks) {
+  for (const ir::TickRecord& t : tap.ticks) {
     EXPECT_EQ(t.rendered_W.f, Vec3::Zero());
     EXPECT_EQ(t.rendered_W.tau, Vec3::Zero());
     EXPECT_EQ(t.contacts, 0);
@@ -119,7 +119,7 @@ constexpr int kConvergedSweeps = 2000;
 
 TEST(ProxyMethodTest, FacePressedIntoFloorFeelsKtTimesDepthUpwardAndNoTorque) {
   constexpr double kDepth = 1e-3;  // m
-  EngineSettings s = T31Settings(0.1);
+  settings::EngineSettings s = T31Settings(0.1);
   s.rendering.max_iterations = kConvergedSweeps;
   Engine engine(FloorWorld(), device::MakeFixedDevice(At(0.02, -0.03, kHalf - kDepth)), {}, s);
   Tap tap;
@@ -131,7 +131,7 @@ TEST(ProxyMethodTest, FacePressedIntoFloorFeelsKtTimesDepthUpwardAndNoTorque) {
   const double kappa = 4.0 / (4.0 * kHalf * kHalf / 3.33);
   const double dr_tol = 4.0 * kappa * s.rendering.solver_tolerance;
   const double dtheta_tol = dr_tol * std::sqrt(2.0) * kHalf / 3.33;
-  for (const TickRecord& t : tap.ticks) {
+  for (const ir::TickRecord& t : tap.ticks) {
     EXPECT_EQ(t.contacts, 4);
     EXPECT_NEAR(t.rendered_W.f.z(), s.rendering.stiffness * kDepth, s.rendering.stiffness * dr_tol);
     EXPECT_NEAR(t.rendered_W.f.x(), 0.0, s.rendering.stiffness * dr_tol);
@@ -149,7 +149,7 @@ struct PushRun {
 };
 
 PushRun RunPush(double friction, const char* proxy_reaction = "local") {
-  EngineSettings s = T31Settings(2.0);
+  settings::EngineSettings s = T31Settings(2.0);
   s.rendering.proxy_reaction = proxy_reaction;
   s.rendering.stiffness = 1000.0;
   s.rendering.rot_stiffness = 10.0;
@@ -169,7 +169,7 @@ PushRun RunPush(double friction, const char* proxy_reaction = "local") {
 TEST(ProxyMethodTest, PushedBoxStartsMovingOneStepAfterTheFirstContactPeriod) {
   const PushRun run = RunPush(0.0, "impulse");
   const auto first =
-      std::find_if(run.tap.ticks.begin(), run.tap.ticks.end(), [](const TickRecord& t) {
+      std::find_if(run.tap.ticks.begin(), run.tap.ticks.end(), [](const ir::TickRecord& t) {
         return t.contacts > 0;
       });
   ASSERT_NE(first, run.tap.ticks.end()) << "the pointer never touched the box";
@@ -183,7 +183,7 @@ TEST(ProxyMethodTest, PushedBoxStartsMovingOneStepAfterTheFirstContactPeriod) {
 TEST(ProxyMethodTest, PushedBoxMomentumChangeEqualsReportedImpulse) {
   const PushRun run = RunPush(0.0);
   Vec3 impulse = Vec3::Zero();
-  for (const BodyImpulseTotal& total : run.stats.impulses) {
+  for (const physics::BodyImpulseTotal& total : run.stats.impulses) {
     if (total.name == "box") impulse = total.linear;
   }
   ASSERT_GT(impulse.x(), 0.0);
@@ -202,7 +202,7 @@ TEST(ProxyMethodTest, PushedBoxMomentumChangeEqualsReportedImpulse) {
 class ProxyAllocationTest : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(ProxyAllocationTest, HapticTicksNeverAllocateWithFrictionAndAMovingBox) {
-  EngineSettings s = T31Settings(1.0);
+  settings::EngineSettings s = T31Settings(1.0);
   s.rendering.friction = 0.5;
   s.rendering.stiffness = 2000.0;
   s.rendering.torque_model = GetParam();
@@ -244,7 +244,7 @@ Press PressFaceWithHand(double hand_inertia) {
   constexpr double kTargetDepth = 0.01;  // m below contact
   constexpr double kWindow = 0.5;        // s at the end of the run
   constexpr double kHoldWindow = 1.0;    // s at the end of the run
-  EngineSettings s = T31Settings(2.0);
+  settings::EngineSettings s = T31Settings(2.0);
   s.rendering.max_iterations = kConvergedSweeps;
   device::HandSettings hand;
   hand.inertia = hand_inertia;
@@ -261,7 +261,7 @@ Press PressFaceWithHand(double hand_inertia) {
   p.f_eq = hand.stiffness * k_t / (hand.stiffness + k_t) * kTargetDepth;
   // One edge (two points at lever h) at depth δ = f/k_t: τ = k_r δ h / (R_w + h²) (SPEC U1).
   p.tau_band = s.rendering.rot_stiffness * (p.f_eq / k_t) * kHalf / (3.33 + kHalf * kHalf);
-  for (const TickRecord& t : tap.ticks) {
+  for (const ir::TickRecord& t : tap.ticks) {
     if (t.t >= s.duration - kHoldWindow && !(t.rendered_W.f.z() > 0.0)) p.lost_contact = true;
     if (t.t < s.duration - kWindow) continue;
     p.f_error = std::max(p.f_error, std::abs(t.rendered_W.f.z() - p.f_eq));
@@ -305,7 +305,7 @@ TEST(ProxyMethodTest, NoOscillationCriterionDetectsTheLightGripRotationalChatter
 }
 
 TEST(ProxyMethodTest, RotationWeightDefaultsToScaledUnitMassInertia) {
-  EngineSettings s = T31Settings(0.1);
+  settings::EngineSettings s = T31Settings(0.1);
   s.rendering.rotation_weight.reset();
   s.rendering.rotation_weight_scale = 500.0;
   const world::World w = FloorWorld();
@@ -316,7 +316,7 @@ TEST(ProxyMethodTest, RotationWeightDefaultsToScaledUnitMassInertia) {
 }
 
 TEST(ProxyMethodTest, RotationWeightGivenIsTheDiagonal) {
-  EngineSettings s = T31Settings(0.1);
+  settings::EngineSettings s = T31Settings(0.1);
   s.rendering.rotation_weight = Vec3(8420.0, 8420.0, 1670.0);
   const world::World w = FloorWorld();
   const Mat3 R_w = physics::PointerRotationWeight(w, w.FindBody("pointer"), s.rendering);
@@ -324,7 +324,7 @@ TEST(ProxyMethodTest, RotationWeightGivenIsTheDiagonal) {
 }
 
 TEST(ProxyMethodTest, MasslessPointerWithoutRotationWeightIsRejected) {
-  EngineSettings s = T31Settings(0.1);
+  settings::EngineSettings s = T31Settings(0.1);
   s.rendering.rotation_weight.reset();
   world::World w = world::World::LoadString(Scene("0 0 -9.81", true, false, 0));
   EXPECT_THAT(
@@ -336,7 +336,7 @@ TEST(ProxyMethodTest, MasslessPointerWithoutRotationWeightIsRejected) {
 
 TEST(ProxyMethodTest, MasslessPointerRunsUnderTheContactTorqueModel) {
   // The contact model's rotation weight is k_r / k_t: the pointer's inertia is not needed.
-  EngineSettings s = T31Settings(0.1);
+  settings::EngineSettings s = T31Settings(0.1);
   s.rendering.rotation_weight.reset();
   s.rendering.torque_model = "contact";
   world::World w = world::World::LoadString(Scene("0 0 -9.81", true, false, 0));
@@ -345,7 +345,7 @@ TEST(ProxyMethodTest, MasslessPointerRunsUnderTheContactTorqueModel) {
 }
 
 TEST(ProxyMethodTest, MaxIterationsAboveTheSolverCeilingIsRejected) {
-  EngineSettings s = T31Settings(0.1);
+  settings::EngineSettings s = T31Settings(0.1);
   s.rendering.max_iterations = render::kMaxProxyIterations + 1;
   const std::string expected =
       "rendering.max_iterations = " + std::to_string(render::kMaxProxyIterations + 1);

@@ -44,7 +44,7 @@ TEST_P(RealtimeMethodTest, PushesTheBoxOnTwoThreadsWithoutFaults) {
       std::string(MRH_SOURCE_DIR) + "/scenes/t3_6_push.json", Overrides(GetParam()));
   const auto engine = session::MakeEngine(session);
   const RunStats stats = engine->Run(nullptr);
-  EXPECT_EQ(stats.mode, Mode::kRealtime);
+  EXPECT_EQ(stats.mode, settings::Mode::kRealtime);
   EXPECT_GT(stats.ticks, 0);
   EXPECT_GT(stats.steps, 0);
   EXPECT_EQ(stats.fault_nonfinite_wrench, 0);

@@ -12,22 +12,25 @@
 namespace mrh::engine::testing {
 namespace {
 
-class OrderRecorder final : public Recorder {
+class OrderRecorder final : public physics::Recorder {
  public:
-  void OnTick(const TickRecord& t) override { ticks.push_back(t.tick); }
-  void OnStep(const StepRecord& s, const world::World&) override { steps.push_back(s.step); }
+  void OnTick(const ir::TickRecord& t) override { ticks.push_back(t.tick); }
+
+  void OnStep(const physics::StepRecord& s, const world::World&) override {
+    steps.push_back(s.step);
+  }
   std::vector<std::int64_t> ticks;
   std::vector<std::int64_t> steps;
 };
 
 TEST(RealtimeTest, RunsBothThreadsAndRecordsInOrder) {
-  EngineSettings s = T41Settings("impulse");
-  s.mode = Mode::kRealtime;
+  settings::EngineSettings s = T41Settings("impulse");
+  s.mode = settings::Mode::kRealtime;
   s.duration = 0.6;
   auto engine = T41Engine(s);
   OrderRecorder recorder;
   const RunStats stats = engine->Run(&recorder);
-  EXPECT_EQ(stats.mode, Mode::kRealtime);
+  EXPECT_EQ(stats.mode, settings::Mode::kRealtime);
   EXPECT_GT(stats.ticks, 0);
   EXPECT_GT(stats.steps, 0);
   EXPECT_EQ(static_cast<std::int64_t>(recorder.ticks.size()), stats.ticks);
@@ -41,11 +44,11 @@ TEST(RealtimeTest, RunsBothThreadsAndRecordsInOrder) {
   EXPECT_GE(stats.jitter_max_us, stats.jitter_p50_us);
 }
 
-class PointerRecorder final : public Recorder {
+class PointerRecorder final : public physics::Recorder {
  public:
-  void OnTick(const TickRecord& t) override { ticks.push_back({t.tick, t.pointer}); }
+  void OnTick(const ir::TickRecord& t) override { ticks.push_back({t.tick, t.pointer}); }
 
-  void OnStep(const StepRecord&, const world::World&) override {}
+  void OnStep(const physics::StepRecord&, const world::World&) override {}
 
   std::vector<std::pair<std::int64_t, int>> ticks;
 };
@@ -53,16 +56,16 @@ class PointerRecorder final : public Recorder {
 // Several pointers in real time: the haptic thread ticks both pointers each tick, the
 // physics thread steps one world with both pointers' reports; both pointers' box gets pushed.
 TEST(RealtimeTest, TwoPointersRunOnOneHapticThread) {
-  EngineSettings s;
+  settings::EngineSettings s;
   s.method = "impulse";
-  s.mode = Mode::kRealtime;
+  s.mode = settings::Mode::kRealtime;
   s.physics_dt = 0.02;
   s.duration = 0.4;
   s.safety.ramp = false;
   s.realtime_priority = false;
   s.pointer.body = "f0";
-  s.pointers = {PointerLaneSettings{PointerSettings{"f0", 0.0}, s.rendering},
-                PointerLaneSettings{PointerSettings{"f1", 0.0}, s.rendering}};
+  s.pointers = {settings::PointerLaneSettings{settings::PointerSettings{"f0", 0.0}, s.rendering},
+                settings::PointerLaneSettings{settings::PointerSettings{"f1", 0.0}, s.rendering}};
   std::vector<std::unique_ptr<device::Device>> devices;
   // scenes/two_pointers.xml: f0 2 mm into box_a, f1 5 mm into box_b.
   devices.push_back(device::MakeFixedDevice(Pose{Vec3(-0.242, 0, 0), Quat::Identity()}));
@@ -84,7 +87,7 @@ TEST(RealtimeTest, TwoPointersRunOnOneHapticThread) {
   EXPECT_GT(stats.pointers[0].max_force, 0.0);
   EXPECT_GT(stats.pointers[1].max_force, 0.0);
   int pushed = 0;
-  for (const BodyImpulseTotal& impulse : stats.impulses) {
+  for (const physics::BodyImpulseTotal& impulse : stats.impulses) {
     if (impulse.name == "box_a" && impulse.linear.x() < 0.0) ++pushed;
     if (impulse.name == "box_b" && impulse.linear.x() > 0.0) ++pushed;
   }
@@ -94,8 +97,8 @@ TEST(RealtimeTest, TwoPointersRunOnOneHapticThread) {
 TEST(RealtimeTest, ContactDeliversImpulseToCube) {
   // The impulse method's 50 ms physics steps keep up with wall time even in sanitizer builds on
   // a loaded machine (single-rate's 1 ms steps do not), so contact is reached in every build.
-  EngineSettings s = T41Settings("impulse");
-  s.mode = Mode::kRealtime;
+  settings::EngineSettings s = T41Settings("impulse");
+  s.mode = settings::Mode::kRealtime;
   s.duration = 1.0;  // contact starts at ~0.29 s
   auto engine = T41Engine(s);
   const RunStats stats = engine->Run(nullptr);
@@ -104,8 +107,8 @@ TEST(RealtimeTest, ContactDeliversImpulseToCube) {
 }
 
 TEST(RealtimeTest, RequestStopFromTheCallingThreadEndsTheRun) {
-  EngineSettings s = T41Settings("impulse");
-  s.mode = Mode::kRealtime;
+  settings::EngineSettings s = T41Settings("impulse");
+  s.mode = settings::Mode::kRealtime;
   s.duration = 60.0;
   auto engine = T41Engine(s);
   // The first progress call comes after ~100 ms of wall time; the haptic thread sees the request

@@ -22,10 +22,11 @@ namespace {
 
 constexpr double kRadius = 0.04;  // m, the ball
 
-class BallRecorder final : public Recorder {
+class BallRecorder final : public physics::Recorder {
  public:
-  void OnTick(const TickRecord&) override {}
-  void OnStep(const StepRecord&, const world::World& world) override {
+  void OnTick(const ir::TickRecord&) override {}
+
+  void OnStep(const physics::StepRecord&, const world::World& world) override {
     if (object < 0) object = world.FindBody("object");
     states.push_back(world.body_state(object));
   }

@@ -15,7 +15,8 @@ namespace {
 using internal::EngineState;
 using internal::PhysicsSide;
 
-EngineState MakeState(const EngineSettings& settings, std::unique_ptr<device::Device> device) {
+EngineState MakeState(const settings::EngineSettings& settings,
+                      std::unique_ptr<device::Device> device) {
   world::World w = T41World();
   w.ApplyKeyframe("approach");
   return EngineState(std::move(w), std::move(device), device::Calibration{}, settings);
@@ -23,7 +24,7 @@ EngineState MakeState(const EngineSettings& settings, std::unique_ptr<device::De
 
 TEST(RtTickTest, HapticTicksNeverAllocateInContact) {
   for (const char* method : {"impulse", "single-rate"}) {
-    EngineSettings settings = T41Settings(method);
+    settings::EngineSettings settings = T41Settings(method);
     EngineState state = MakeState(settings, device::MakeFixedDevice(Pose{}));
     const int periods = static_cast<int>(1.5 / state.settings.physics_dt);
     EXPECT_EQ(HapticAllocations(state, periods), 0) << method;

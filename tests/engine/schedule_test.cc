@@ -33,7 +33,8 @@ class ProbeHaptic final : public haptic::MethodHaptic {
  public:
   explicit ProbeHaptic(ProbeLog* log) : log_(log) {}
   void Adopt(const ir::PhysicsSnapshot& snapshot) noexcept override { step_ = snapshot.step; }
-  void HapticTick(const TickInput& in, TickOutput*) noexcept override {
+
+  void HapticTick(const haptic::TickInput& in, haptic::TickOutput*) noexcept override {
     log_->tick_snapshot.push_back(step_);
     log_->tick_j.push_back(in.j);
   }
@@ -50,11 +51,11 @@ TEST(ScheduleTest, PeriodKRendersStepKMinus1AndStepKConsumesPeriodKMinus1) {
   ProbeLog log;
   g_log = &log;
   RegisterMethod("probe", "test probe",
-                 [](const MethodContext&) {
+                 [](const physics::MethodContext&) {
                    return Method{"probe", false, std::make_unique<ProbePhysics>(g_log),
                                  std::make_unique<ProbeHaptic>(g_log), {}};
                  });
-  EngineSettings s = T41Settings("probe");
+  settings::EngineSettings s = T41Settings("probe");
   s.physics_dt = 0.005;
   s.duration = 0.05;  // 10 periods of n = 5 ticks
   auto engine = T41Engine(s);
@@ -74,13 +75,13 @@ TEST(ScheduleTest, PeriodKRendersStepKMinus1AndStepKConsumesPeriodKMinus1) {
 }
 
 // Asks the engine to stop from inside the run, after the physics step numbered `at`.
-class StopAfterStep final : public Recorder {
+class StopAfterStep final : public physics::Recorder {
  public:
   StopAfterStep(Engine* engine, std::int64_t at) : engine_(engine), at_(at) {}
 
-  void OnTick(const TickRecord&) override { ++ticks; }
+  void OnTick(const ir::TickRecord&) override { ++ticks; }
 
-  void OnStep(const StepRecord& step, const world::World&) override {
+  void OnStep(const physics::StepRecord& step, const world::World&) override {
     if (step.step == at_) engine_->RequestStop();
   }
 
@@ -92,7 +93,7 @@ class StopAfterStep final : public Recorder {
 };
 
 TEST(ScheduleTest, RequestStopEndsALockstepRunBeforeItsNextPeriod) {
-  const EngineSettings s = T41Settings("impulse");  // 50 ticks per 50 ms step, 2.5 s
+  const settings::EngineSettings s = T41Settings("impulse");  // 50 ticks per 50 ms step, 2.5 s
   auto engine = T41Engine(s);
   StopAfterStep recorder(engine.get(), 2);
   const RunStats stats = engine->Run(&recorder);

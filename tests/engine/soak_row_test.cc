@@ -26,11 +26,11 @@ struct Peak {
   double spin = 0.0;
 };
 
-class PeakRecorder final : public Recorder {
+class PeakRecorder final : public physics::Recorder {
  public:
-  void OnTick(const TickRecord&) override {}
+  void OnTick(const ir::TickRecord&) override {}
 
-  void OnStep(const StepRecord&, const world::World& world) override {
+  void OnStep(const physics::StepRecord&, const world::World& world) override {
     for (int b = 0; b < world.num_bodies(); ++b) {
       const world::BodyInfo& info = world.body(b);
       if (info.is_static || info.is_mocap) continue;

@@ -59,10 +59,10 @@ world::World ToolWorld() {
       file.path, world::LoadOptions{.pointer_body = "pointer", .dynamic_pointer = true});
 }
 
-EngineSettings CouplingSettings(double duration) {
-  EngineSettings s;
+settings::EngineSettings CouplingSettings(double duration) {
+  settings::EngineSettings s;
   s.method = "virtual-coupling";
-  s.mode = Mode::kLockstep;
+  s.mode = settings::Mode::kLockstep;
   s.physics_dt = kDt;
   s.haptic_dt = kDt;
   s.duration = duration;
@@ -73,14 +73,16 @@ EngineSettings CouplingSettings(double duration) {
   return s;
 }
 
-class Tap final : public Recorder {
+class Tap final : public physics::Recorder {
  public:
-  void OnTick(const TickRecord& tick) override { ticks.push_back(tick); }
-  void OnStep(const StepRecord&, const world::World&) override {}
-  std::vector<TickRecord> ticks;
+  void OnTick(const ir::TickRecord& tick) override { ticks.push_back(tick); }
+
+  void OnStep(const physics::StepRecord&, const world::World&) override {}
+
+  std::vector<ir::TickRecord> ticks;
 };
 
-std::vector<TickRecord> RunCoupled(std::vector<device::Keyframe> keyframes, double duration) {
+std::vector<ir::TickRecord> RunCoupled(std::vector<device::Keyframe> keyframes, double duration) {
   device::Specifications specs;
   specs.max_force = 1000.0;
   Engine engine(ToolWorld(), device::MakeScriptedDevice(std::move(keyframes), specs),
@@ -98,7 +100,7 @@ TEST(VirtualCoupling, FreeMotionDisplaysTheToolInertia) {
     const double t = i * kDt;
     keyframes.push_back({t, Pose{Vec3(kAmplitude * std::sin(omega * t), 0.0, 0.5), Quat::Identity()}});
   }
-  const std::vector<TickRecord> ticks = RunCoupled(keyframes, kDuration);
+  const std::vector<ir::TickRecord> ticks = RunCoupled(keyframes, kDuration);
   // Linear steady state of m ẍ_t = k (x_h − x_t) + b (ẋ_h − ẋ_t) for x_h = A sin ωt:
   // x_t = Im(H A e^{iωt}), H = (k + ibω) / (k − mω² + ibω); displayed −F_c = −m ẍ_t = mω² x_t.
   const std::complex<double> ib(0.0, kB * omega);
@@ -108,7 +110,7 @@ TEST(VirtualCoupling, FreeMotionDisplaysTheToolInertia) {
   // transient decays with 2m/b = 0.1 s).
   std::complex<double> measured = 0.0;
   int n = 0;
-  for (const TickRecord& tick : ticks) {
+  for (const ir::TickRecord& tick : ticks) {
     if (tick.t < 1.0 - 1e-9) continue;
     measured += tick.displayed_W.f.x() * std::complex<double>(std::sin(omega * tick.t),
                                                               std::cos(omega * tick.t));
@@ -126,8 +128,8 @@ TEST(VirtualCoupling, PressingIntoAFloorSettlesAtTheSpringForce) {
   constexpr double kPress = 0.01;  // device held 1 cm below the tool's resting height
   const Pose above{Vec3(0.0, 0.0, kHalf + 0.02), Quat::Identity()};
   const Pose pressed{Vec3(0.0, 0.0, kHalf - kPress), Quat::Identity()};
-  const std::vector<TickRecord> ticks = RunCoupled({{0.0, above}, {0.5, pressed}}, 2.0);
-  const TickRecord& last = ticks.back();
+  const std::vector<ir::TickRecord> ticks = RunCoupled({{0.0, above}, {0.5, pressed}}, 2.0);
+  const ir::TickRecord& last = ticks.back();
   // The tool rests on the floor (MuJoCo's soft contact: < 1 mm in) ...
   const double z_tool = last.X_WQ.p.z();
   EXPECT_NEAR(z_tool, kHalf, 1e-3);
@@ -166,9 +168,9 @@ constexpr char kLightScene[] = R"(<mujoco>
   </worldbody>
 </mujoco>)";
 
-RunStats RunLightTool(const RenderingSettings& rendering) {
+RunStats RunLightTool(const settings::RenderingSettings& rendering) {
   const TempScene file("mrh_virtual_coupling_light", kLightScene);
-  EngineSettings s = CouplingSettings(1.0);
+  settings::EngineSettings s = CouplingSettings(1.0);
   s.rendering = rendering;
   device::Specifications specs;
   specs.max_force = 1000.0;
@@ -194,7 +196,7 @@ TEST(VirtualCoupling, UnsetRotationalGainsFollowTheToolInertia) {
   const TempScene file("mrh_virtual_coupling_gains", kLightScene);
   world::World world = world::World::LoadFile(
       file.path, world::LoadOptions{.pointer_body = "pointer", .dynamic_pointer = true});
-  EngineSettings s = CouplingSettings(1.0);
+  settings::EngineSettings s = CouplingSettings(1.0);
   const physics::MethodContext context{.world = &world,
                                        .settings = &s,
                                        .pointer_body = world.FindBody("pointer")};
@@ -216,7 +218,7 @@ TEST(VirtualCoupling, UnsetRotationalGainsFollowTheToolInertia) {
 // gains run without a warning, and pressed 1 cm below the resting tool the force is about the
 // coupling spring's k·0.01 = 10 N, not a blow-up.
 TEST(VirtualCoupling, UnstableGainsForALightToolAreRefusedAndTheDefaultsRun) {
-  RenderingSettings fixed;
+  settings::RenderingSettings fixed;
   fixed.coupling_rot_stiffness = 1.0;
   fixed.coupling_rot_damping = 0.01;
   try {
@@ -227,7 +229,7 @@ TEST(VirtualCoupling, UnstableGainsForALightToolAreRefusedAndTheDefaultsRun) {
               std::string::npos)
         << e.what();
   }
-  const RenderingSettings defaults;
+  const settings::RenderingSettings defaults;
   ASSERT_FALSE(defaults.coupling_rot_stiffness.has_value());
   const RunStats stats = RunLightTool(defaults);
   EXPECT_TRUE(stats.warnings.empty()) << stats.warnings.front();
@@ -239,7 +241,7 @@ TEST(VirtualCoupling, UnstableGainsForALightToolAreRefusedAndTheDefaultsRun) {
 // 10 N. (MuJoCo 3's broadphase tests per-body collision masks: a tool whose geoms were made to
 // collide after compilation, without updating them, fell through the floor and felt 3.6 N.)
 TEST(VirtualCoupling, PressedLightToolFeelsTheCouplingSpring) {
-  const RenderingSettings defaults;
+  const settings::RenderingSettings defaults;
   const RunStats stats = RunLightTool(defaults);
   EXPECT_GT(stats.max_force, 0.5 * defaults.coupling_stiffness * 0.01);
 }

@@ -17,13 +17,13 @@
 namespace mrh {
 namespace {
 
-struct WrenchTap final : engine::Recorder {
-  void OnTick(const engine::TickRecord& tick) override {
+struct WrenchTap final : physics::Recorder {
+  void OnTick(const ir::TickRecord& tick) override {
     rendered.push_back(tick.rendered_W);
     contacts.push_back(tick.contacts);
   }
 
-  void OnStep(const engine::StepRecord&, const world::World&) override {}
+  void OnStep(const physics::StepRecord&, const world::World&) override {}
 
   std::vector<Wrench> rendered;
   std::vector<int> contacts;

@@ -53,7 +53,7 @@ TEST(T34ExperimentTest, PrismBaseGivesOneContactPerSideAndAFrictionRowEach) {
 TEST(T34SessionTest, SessionSlidesTheTwelveGonWithTheDriversForce) {
   const session::Session session = session::LoadSession(internal::ScenesDir() / "t3_4.json");
   const internal::ProxyRun run = internal::RunProxySession(session, {}, "", /*quiet=*/true);
-  const engine::RenderingSettings& r = session.engine.rendering;
+  const settings::RenderingSettings& r = session.engine.rendering;
   constexpr double kDepth = 1e-3, kSpeed = 0.1;                 // m, m/s (t3_4_trajectory.csv)
   constexpr int kSides = 12;                                    // scenes/t3_4.xml
   constexpr double kPointAccuracy = 1e-8;                       // m, as the driver's force check

@@ -155,7 +155,7 @@ TEST(RunStudyTest, RecordsWhichStimulusWasTheComparisonAndResumesWhereItStopped)
   const Study study =
       LoadStudy(kSession, {"psychophysics.masses=[45,75]", "psychophysics.trials_per_mass=3"});
   const fs::path stopped = TempDir("mrh_psychophysics_resume_"), whole = stopped / "whole";
-  RunSettings run{.subject = "S", .out = stopped, .mode = engine::Mode::kLockstep, .sync = false};
+  RunSettings run{.subject = "S", .out = stopped, .mode = settings::Mode::kLockstep, .sync = false};
   FakeApparatus first(5), second(100);
   EXPECT_EQ(RunStudy(study, run, &first).answered, 5);
   const RunResult resumed = RunStudy(study, run, &second);

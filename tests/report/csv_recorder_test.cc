@@ -26,8 +26,8 @@ double Parse(const std::string& text) {
   return std::strtod(text.c_str(), nullptr);
 }
 
-engine::TickRecord MakeTick(double t) {
-  engine::TickRecord tick;
+ir::TickRecord MakeTick(double t) {
+  ir::TickRecord tick;
   tick.tick = 7;
   tick.t = t;
   tick.X_WP.p = Vec3(0.1, -0.2, 0.3);
@@ -78,17 +78,17 @@ TEST(CsvRecorderTest, StepRowHoldsEveryStepField) {
       "<mujoco><worldbody><geom type='plane' size='1 1 0.1'/></worldbody></mujoco>",
       world::LoadOptions{.pointer_body = ""});
   CsvRecorder recorder(dir.path());
-  recorder.OnStep(engine::StepRecord{.step = 3,
-                                     .t = 0.15,
-                                     .compute_ms = 0.25,
-                                     .sim_contacts = 4,
-                                     .neighbors = 5,
-                                     .point_contacts = 6,
-                                     .solver_iterations = 7,
-                                     .world_step_ms = 0.125,
-                                     .ir_ms = 0.5,
-                                     .model_ms = 2,
-                                     .sync_ms = 0.0625},
+  recorder.OnStep(physics::StepRecord{.step = 3,
+                                      .t = 0.15,
+                                      .compute_ms = 0.25,
+                                      .sim_contacts = 4,
+                                      .neighbors = 5,
+                                      .point_contacts = 6,
+                                      .solver_iterations = 7,
+                                      .world_step_ms = 0.125,
+                                      .ir_ms = 0.5,
+                                      .model_ms = 2,
+                                      .sync_ms = 0.0625},
                   world);
   recorder.Close();
   const std::vector<std::string> lines = ReadLines(dir.path() / "steps.csv");
@@ -118,7 +118,7 @@ TEST(CsvRecorderTest, BodyRowsMatchWorldStateForEachMovingBody) {
   world::World world = world::World::LoadString(kTwoBodies, world::LoadOptions{.pointer_body = ""});
   for (int i = 0; i < 5; ++i) world.Step();  // falling: non-zero velocity
   CsvRecorder recorder(dir.path());
-  recorder.OnStep(engine::StepRecord{.step = 5, .t = world.time()}, world);
+  recorder.OnStep(physics::StepRecord{.step = 5, .t = world.time()}, world);
   recorder.Close();
 
   const std::vector<std::string> lines = ReadLines(dir.path() / "bodies.csv");
@@ -148,7 +148,7 @@ TEST(CsvRecorderTest, BodyColumnsAreTheSceneBodyFrameAndCentreOfMassIsSeparate) 
   world::World world = world::World::LoadFile(std::filesystem::path(MRH_SOURCE_DIR) / "scenes" /
                                           "compound_mug.xml");
   CsvRecorder recorder(dir.path());
-  recorder.OnStep(engine::StepRecord{}, world);
+  recorder.OnStep(physics::StepRecord{}, world);
   recorder.Close();
   const std::vector<std::string> lines = ReadLines(dir.path() / "bodies.csv");
   ASSERT_EQ(lines.size(), 2u);  // the mug; the pointer is mocap, the floor static
@@ -179,7 +179,7 @@ TEST(CsvRecorderTest, DoublesRoundTripExactly) {
                                    -0.0};
   CsvRecorder recorder(dir.path());
   for (const double v : values) {
-    engine::TickRecord tick;
+    ir::TickRecord tick;
     tick.t = v;
     tick.displayed_W.f = Vec3(v, -v, v * 0.5);
     recorder.OnTick(tick);

@@ -32,7 +32,7 @@ bool HaveGnuplot() {
 void WriteTicks(const std::filesystem::path& dir) {
   CsvRecorder recorder(dir);
   for (int i = 0; i < 500; ++i) {
-    engine::TickRecord tick;
+    ir::TickRecord tick;
     tick.t = i * 0.001;
     tick.X_WP.p = Vec3(0.0, 0.0, 0.1 - tick.t * 0.01);
     tick.displayed_W.f = Vec3(0.1, 0.0, 2.0 * std::sin(tick.t * 10.0));
@@ -206,7 +206,7 @@ TEST(PlotReportTest, ClampedTicksAndContactLossesAreMarkedWithTheirCounts) {
   {
     CsvRecorder recorder(dir.path());
     for (int i = 0; i < 100; ++i) {
-      engine::TickRecord tick;
+      ir::TickRecord tick;
       tick.t = i * 0.001;
       // In contact on ticks 10-29 and 50-59: two losses, at ticks 30 and 60.
       tick.contacts = (i >= 10 && i < 30) || (i >= 50 && i < 60) ? 1 : 0;

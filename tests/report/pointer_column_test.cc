@@ -27,7 +27,7 @@ constexpr const char* kOnePointerHeader =
 std::vector<std::string> WriteTicks(const TempDir& dir, std::vector<std::string> names) {
   CsvRecorder recorder(dir.path(), std::move(names));
   for (int pointer = 0; pointer < 2; ++pointer) {
-    engine::TickRecord tick;
+    ir::TickRecord tick;
     tick.t = 0.5;
     tick.pointer = pointer;
     tick.displayed_W.f = Vec3(1.0 + pointer, 0.0, 0.0);
@@ -89,7 +89,7 @@ TEST(PointerColumnTest, ReportDrawsEachPointerInItsOwnColour) {
     CsvRecorder recorder(dir.path(), {"thumb", "index"});
     for (int k = 0; k < 10; ++k) {
       for (int pointer = 0; pointer < 2; ++pointer) {
-        engine::TickRecord tick;
+        ir::TickRecord tick;
         tick.tick = k;
         tick.t = 0.001 * k;
         tick.pointer = pointer;

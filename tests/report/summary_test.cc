@@ -22,7 +22,7 @@ using ::testing::ThrowsMessage;
 engine::RunStats MakeStats() {
   engine::RunStats s;
   s.method = "impulse";
-  s.mode = engine::Mode::kRealtime;
+  s.mode = settings::Mode::kRealtime;
   s.physics_dt = 0.05;
   s.haptic_dt = 0.001;
   s.sim_time = 10.0;
@@ -49,7 +49,7 @@ engine::RunStats MakeStats() {
   s.dropped_reports = 17;
   s.ir_status = 0x5u;
   s.realtime_priority = true;
-  s.impulses.push_back(engine::BodyImpulseTotal{
+  s.impulses.push_back(physics::BodyImpulseTotal{
       .body = 2, .name = "cube", .linear = Vec3(3.0, 4.0, 0.0), .angular = Vec3(0.0, 0.0, 1.0)});
   s.warnings = {"SCHED_FIFO refused"};
   return s;

@@ -37,7 +37,7 @@ TEST(DeviceClaimsTest, TwoForceDimensionDevicesByIndex) {
   ASSERT_EQ(s.pointer_devices.size(), 2u);
   EXPECT_EQ(s.pointer_devices[0].forcedimension.id, 0);
   EXPECT_EQ(s.pointer_devices[1].forcedimension.id, 1);
-  EXPECT_EQ(s.engine.mode, engine::Mode::kRealtime);  // real devices answer in wall-clock time
+  EXPECT_EQ(s.engine.mode, settings::Mode::kRealtime);  // real devices answer in wall-clock time
 }
 
 TEST(DeviceClaimsTest, OneForceDimensionDeviceKeepsTheDefault) {

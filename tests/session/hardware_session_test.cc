@@ -112,11 +112,11 @@ TEST(HardwareSessionTest, StiffnessAboveAStatedLimitNamesBothKeysAndValues) {
       "device": {"type": "udp"}})"));
 }
 
-class TickForces final : public engine::Recorder {
+class TickForces final : public physics::Recorder {
  public:
-  void OnTick(const engine::TickRecord& t) override { displayed_W.push_back(t.displayed_W); }
+  void OnTick(const ir::TickRecord& t) override { displayed_W.push_back(t.displayed_W); }
 
-  void OnStep(const engine::StepRecord&, const world::World&) override {}
+  void OnStep(const physics::StepRecord&, const world::World&) override {}
 
   std::vector<Wrench> displayed_W;
 };
@@ -167,7 +167,7 @@ TEST(HardwareSessionTest, ForcesWrittenToTheDhdEqualTheDisplayedWrenchInTheDevic
 TEST(HardwareSessionTest, RealDevicesRunInRealTimeAndRefuseLockstep) {
   for (const char* type : {"udp", "forcedimension", "openhaptics"}) {
     const std::string device = std::string(R"({"type": ")") + type + "\"}";
-    EXPECT_EQ(Parse(WithDevice(device)).engine.mode, engine::Mode::kRealtime) << type;
+    EXPECT_EQ(Parse(WithDevice(device)).engine.mode, settings::Mode::kRealtime) << type;
     const std::string lockstep =
         R"({"scene": "scene.xml", "mode": "lockstep", "device": )" + device + "}";
     EXPECT_THAT([&] { (void)Parse(lockstep); },
@@ -177,7 +177,7 @@ TEST(HardwareSessionTest, RealDevicesRunInRealTimeAndRefuseLockstep) {
   }
   // Simulated devices keep the default, lockstep.
   EXPECT_EQ(Parse(WithDevice(R"({"type": "fixed", "pose": [0, 0, 0, 1, 0, 0, 0]})")).engine.mode,
-            engine::Mode::kLockstep);
+            settings::Mode::kLockstep);
 }
 
 }  // namespace

@@ -12,7 +12,7 @@ namespace {
 TEST(MaterialsSessionTest, ReadsEveryFieldOfAMaterial) {
   const Session s = Parse(Minimal(R"("materials": {"alu": {"stiffness": 3000, "damping": 2,
       "friction": 0.3, "vibration": {"amplitude": 20, "decay": 60, "frequency": 250}}})"));
-  const engine::MaterialSettings& m = s.engine.rendering.materials.at("alu");
+  const settings::MaterialSettings& m = s.engine.rendering.materials.at("alu");
   EXPECT_EQ(m.stiffness, 3000.0);
   EXPECT_EQ(m.damping, 2.0);
   EXPECT_EQ(m.friction, 0.3);
@@ -24,7 +24,7 @@ TEST(MaterialsSessionTest, ReadsEveryFieldOfAMaterial) {
 
 TEST(MaterialsSessionTest, UnsetFieldsStayUnsetForTheRenderingDefaults) {
   const Session s = Parse(Minimal(R"("materials": {"wood": {"stiffness": 1500}})"));
-  const engine::MaterialSettings& m = s.engine.rendering.materials.at("wood");
+  const settings::MaterialSettings& m = s.engine.rendering.materials.at("wood");
   EXPECT_FALSE(m.damping.has_value());
   EXPECT_FALSE(m.friction.has_value());
   EXPECT_FALSE(m.vibration.has_value());

@@ -22,7 +22,7 @@ using testing::ThrowsInvalidExactly;
 TEST(SessionTest, LoadsTheTopLevelEngineSettings) {
   const Session s = LoadSession(FixturesDir() / "fixed.json");
   EXPECT_EQ(s.engine.method, "impulse");
-  EXPECT_EQ(s.engine.mode, engine::Mode::kLockstep);
+  EXPECT_EQ(s.engine.mode, settings::Mode::kLockstep);
   EXPECT_DOUBLE_EQ(s.engine.physics_dt, 0.05);
   EXPECT_DOUBLE_EQ(s.engine.haptic_dt, 0.001);
   EXPECT_DOUBLE_EQ(s.engine.duration, 2.0);
@@ -54,7 +54,7 @@ TEST(SessionTest, ASessionThatNamesNoMethodGetsTheProposedMethod) {
 
 TEST(SessionTest, OmittedKeysKeepTheSettingsDefaults) {
   const Session s = Parse(Minimal());
-  const engine::EngineSettings defaults;
+  const settings::EngineSettings defaults;
   EXPECT_EQ(s.engine.mode, defaults.mode);
   EXPECT_EQ(s.engine.physics_dt, defaults.physics_dt);
   EXPECT_EQ(s.engine.haptic_dt, defaults.haptic_dt);
@@ -77,7 +77,7 @@ TEST(SessionTest, IntegerLiteralsAreAcceptedAsNumbers) {
 }
 
 TEST(SessionTest, RealtimeModeIsParsed) {
-  EXPECT_EQ(Parse(Minimal(R"("mode": "realtime")")).engine.mode, engine::Mode::kRealtime);
+  EXPECT_EQ(Parse(Minimal(R"("mode": "realtime")")).engine.mode, settings::Mode::kRealtime);
 }
 
 TEST(SessionTest, UnknownModeIsAnError) {

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <cstring>
 
-#include "mrh/haptic/tick_record.h"
+#include "mrh/ir/tick_record.h"
 #include "mrh/physics/recorder.h"
 #include "mrh/world/world.h"
 
@@ -17,7 +17,7 @@ namespace mrh::testing {
 /// collision).
 class HashingRecorder final : public physics::Recorder {
  public:
-  void OnTick(const haptic::TickRecord& t) override {
+  void OnTick(const ir::TickRecord& t) override {
     Add(t.t);
     for (int i = 0; i < 3; ++i) Add(t.X_WP.p[i]);
     for (int i = 0; i < 3; ++i) Add(t.rendered_W.f[i]);

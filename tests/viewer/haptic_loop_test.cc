@@ -70,9 +70,9 @@ constexpr char kScene[] = R"(
 class HapticLoopTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    engine::EngineSettings s;
+    settings::EngineSettings s;
     s.method = "impulse";
-    s.mode = engine::Mode::kRealtime;
+    s.mode = settings::Mode::kRealtime;
     s.physics_dt = 0.02;
     s.haptic_dt = kDt;
     s.realtime_priority = false;

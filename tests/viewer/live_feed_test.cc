@@ -16,7 +16,7 @@ constexpr double kTol = 1e-12;  // m; one pose composition
 TEST(LiveFeedTest, TicksArriveOnTheViewerClock) {
   LiveFeed feed(8);
   feed.set_time_offset(10.0);
-  engine::TickRecord tick;
+  ir::TickRecord tick;
   tick.t = 0.25;
   tick.displayed_W.f = Vec3(0.0, 0.0, 2.0);
   feed.OnTick(tick);
@@ -29,7 +29,7 @@ TEST(LiveFeedTest, TicksArriveOnTheViewerClock) {
 
 TEST(LiveFeedTest, TicksCarryTheMethodsProxyPose) {
   LiveFeed feed(8);
-  engine::TickRecord tick;
+  ir::TickRecord tick;
   tick.X_WP.p = Vec3(0.0, 0.0, 0.099);
   tick.X_WQ.p = Vec3(0.0, 0.0, 0.1);
   feed.OnTick(tick);
@@ -41,7 +41,7 @@ TEST(LiveFeedTest, TicksCarryTheMethodsProxyPose) {
 
 TEST(LiveFeedTest, CountsTicksDroppedWhenTheUiFallsBehind) {
   LiveFeed feed(2);
-  for (int i = 0; i < 5; ++i) feed.OnTick(engine::TickRecord{});
+  for (int i = 0; i < 5; ++i) feed.OnTick(ir::TickRecord{});
   EXPECT_EQ(feed.dropped_ticks(), 3);
 }
 

@@ -50,7 +50,7 @@ TEST_F(LiveSessionTest, RunsTheSessionInRealTimeWithItsOwnDevice) {
   ASSERT_TRUE(WaitForTick(feed_, 0.01, &sample));
   // tiny.json holds the fixed device at z = 0.12 m.
   EXPECT_NEAR(sample.X_WP.p.z(), 0.12, 1e-12);
-  EXPECT_EQ(live.settings().mode, engine::Mode::kRealtime);
+  EXPECT_EQ(live.settings().mode, settings::Mode::kRealtime);
   EXPECT_EQ(live.source(), InputSource::kSession);
 }
 
@@ -80,7 +80,7 @@ TEST_F(LiveSessionTest, RestartContinuesTheViewerClockWithNewGains) {
   live.Start(InputSource::kSession);
   TickSample sample;
   ASSERT_TRUE(WaitForTick(feed_, 0.01, &sample));
-  engine::EngineSettings stiffer = live.settings();
+  settings::EngineSettings stiffer = live.settings();
   stiffer.rendering.stiffness = 2500.0;
   live.Restart(stiffer, InputSource::kMouse, /*keep_world=*/true);
   EXPECT_EQ(live.settings().rendering.stiffness, 2500.0);
@@ -95,7 +95,7 @@ TEST_F(LiveSessionTest, RestartContinuesTheViewerClockWithNewGains) {
 TEST_F(LiveSessionTest, RejectedGainsKeepThePreviousSessionRunning) {
   LiveSession live(TinySession(), &mouse_, &feed_);
   live.Start(InputSource::kSession);
-  engine::EngineSettings bad = live.settings();
+  settings::EngineSettings bad = live.settings();
   bad.rendering.stiffness = -1.0;
   EXPECT_THAT(
       [&] {

@@ -13,22 +13,17 @@
 #include "mrh/device/calibration.h"
 #include "mrh/device/device.h"
 #include "mrh/engine/body_poses.h"
-#include "mrh/engine/settings.h"
 #include "mrh/haptic/method_haptic.h"
-#include "mrh/haptic/tick_record.h"
+#include "mrh/ir/tick_record.h"
 #include "mrh/physics/method_physics.h"
 #include "mrh/physics/recorder.h"
+#include "mrh/settings/settings.h"
 
 namespace mrh::world {
 class World;
 }
 
 namespace mrh::engine {
-
-using haptic::TickRecord;
-using physics::BodyImpulseTotal;
-using physics::Recorder;
-using physics::StepRecord;
 
 /// One pointer's share of a run with several pointers (RunStats::pointers).
 struct PointerRunStats {
@@ -45,7 +40,7 @@ struct PointerRunStats {
 /// What a run did. Filled by Engine::Run.
 struct RunStats {
   std::string method;
-  Mode mode = Mode::kLockstep;
+  settings::Mode mode = settings::Mode::kLockstep;
   double physics_dt = 0.0, haptic_dt = 0.0;  ///< s, as configured
   double sim_time = 0.0;                     ///< simulated time covered (s)
   double wall_time = 0.0;                    ///< s
@@ -74,7 +69,7 @@ struct RunStats {
   bool realtime_priority = false;            ///< SCHED_FIFO + mlockall granted
   /// The device's own counters at the end of the run (vendor errors, network packets).
   device::DeviceCounters device;
-  std::vector<BodyImpulseTotal> impulses;
+  std::vector<physics::BodyImpulseTotal> impulses;
   std::vector<std::string> warnings;
   /// Several pointers: one entry per pointer, in order; the fields above then sum
   /// the pointers' counters and take the largest force and pointer 0's device and final
@@ -88,12 +83,13 @@ class Engine {
   /// @throws mrh::InvalidArgument for bad settings or an unknown method; mrh::SceneError if the
   /// scene lacks the pointer body or the pointer radius cannot be determined.
   Engine(world::World world, std::unique_ptr<device::Device> device,
-         const device::Calibration& calibration, const EngineSettings& settings);
+         const device::Calibration& calibration, const settings::EngineSettings& settings);
   /// Several pointers: devices[i] and calibrations[i] drive settings.pointers[i]
   /// (one each; a single device is the one-pointer engine above). @throws as above, and
   /// mrh::InvalidArgument when the counts differ or the method renders only one pointer.
   Engine(world::World world, std::vector<std::unique_ptr<device::Device>> devices,
-         const std::vector<device::Calibration>& calibrations, const EngineSettings& settings);
+         const std::vector<device::Calibration>& calibrations,
+         const settings::EngineSettings& settings);
   ~Engine();
   Engine(const Engine&) = delete;
   Engine& operator=(const Engine&) = delete;
@@ -103,7 +99,7 @@ class Engine {
   /// Runs for settings.duration in the configured mode. `recorder` may be null. `progress` is
   /// called from the calling thread with the fraction done. @throws mrh::RuntimeError on I/O or
   /// an unrecoverable physics failure.
-  RunStats Run(Recorder* recorder, const ProgressFn& progress = {});
+  RunStats Run(physics::Recorder* recorder, const ProgressFn& progress = {});
 
   /// Asks Run() to end early, from any thread or a signal handler: lockstep stops before its next
   /// physics period, real time at its next haptic tick, and Run then returns the statistics of
@@ -119,7 +115,7 @@ class Engine {
   /// boundaries (deterministic, not RT-safe).
   /// @throws mrh::InvalidArgument if no device, or more than one, is external;
   /// mrh::RuntimeError if the engine has already run.
-  void Start(Recorder* recorder = nullptr);
+  void Start(physics::Recorder* recorder = nullptr);
 
   /// One haptic tick at time t (s since Start): feeds `reading` (device frame) to the external
   /// device, renders every pointer, and returns the external device's pointer's wrench to display
@@ -154,7 +150,7 @@ class Engine {
   double display_gain() const;
 
   const world::World& world() const;
-  const EngineSettings& settings() const;
+  const settings::EngineSettings& settings() const;
   double pointer_radius() const;
   /// Number of pointers (1 unless settings.pointers lists several) and their body names.
   int num_pointers() const;

@@ -13,10 +13,6 @@
 
 namespace mrh::engine {
 
-using haptic::TickInput;
-using haptic::TickOutput;
-using physics::MethodContext;
-
 /// A haptic rendering method (single-rate, impulse, local-dynamics, proxy-6dof, ...) as two
 /// objects. The physics half (physics::MethodPhysics, module mrh_physics) runs on the physics
 /// thread and may use the world; the haptic half (haptic::MethodHaptic, module mrh_haptic,
@@ -41,13 +37,13 @@ struct Method {
   std::vector<std::unique_ptr<haptic::MethodHaptic>> more_haptic = {};
 };
 
-using MethodFactory = std::function<Method(const MethodContext&)>;
+using MethodFactory = std::function<Method(const physics::MethodContext&)>;
 
 /// Registers a method under a name (later issues add theirs the same way).
 void RegisterMethod(const std::string& name, const std::string& summary, MethodFactory factory);
 
 /// Creates a registered method. @throws mrh::InvalidArgument listing the known names.
-Method MakeMethod(const std::string& name, const MethodContext& context);
+Method MakeMethod(const std::string& name, const physics::MethodContext& context);
 
 /// Registered method names with one-line summaries, sorted by name.
 std::vector<std::pair<std::string, std::string>> ListMethods();

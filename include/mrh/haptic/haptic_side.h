@@ -13,8 +13,8 @@
 #include "mrh/device/device.h"
 #include "mrh/device/safety.h"
 #include "mrh/haptic/method_haptic.h"
-#include "mrh/haptic/tick_record.h"
 #include "mrh/ir/snapshot.h"
+#include "mrh/ir/tick_record.h"
 
 namespace mrh::haptic {
 
@@ -41,7 +41,7 @@ class HapticSide {
   struct Exchange {
     TripleBuffer<ir::PhysicsSnapshot>* snapshots;  ///< physics → haptic
     SpscRing<ir::HapticReport>* reports;           ///< haptic → physics
-    SpscRing<TickRecord>* tick_records;            ///< haptic → recorder
+    SpscRing<ir::TickRecord>* tick_records;        ///< haptic → recorder
     int pointer = 0;  ///< the pointer index written into this side's TickRecords
   };
 

@@ -3,8 +3,8 @@
 #pragma once
 
 #include "mrh/core/spatial.h"
-#include "mrh/engine/settings.h"
 #include "mrh/ir/snapshot.h"
+#include "mrh/settings/settings.h"
 
 namespace mrh::world {
 class World;
@@ -20,7 +20,7 @@ namespace mrh::physics {
 /// @throws mrh::SceneError if the pointer body has no geom, a pointer geom is a plane, or a geom
 /// cannot be represented (the message names the geom). Physics thread; not RT-safe.
 void BuildGeometricIr(const world::World& world, int pointer_body,
-                      const engine::RenderingSettings& rendering, const Pose& X_WP,
+                      const settings::RenderingSettings& rendering, const Pose& X_WP,
                       ir::PhysicsSnapshot* out);
 
 }  // namespace mrh::physics

@@ -7,8 +7,8 @@
 #include <span>
 #include <vector>
 
-#include "mrh/engine/settings.h"
 #include "mrh/ir/snapshot.h"
+#include "mrh/settings/settings.h"
 
 namespace mrh::world {
 class World;
@@ -20,13 +20,13 @@ namespace mrh::physics {
 struct PointerContext {
   int body = -1;                                  ///< world body id of the mocap pointer
   double radius = 0.0;                            ///< m (3-DOF methods)
-  const engine::RenderingSettings* rendering = nullptr;  ///< the pointer's own gains
+  const settings::RenderingSettings* rendering = nullptr;  ///< the pointer's own gains
 };
 
 /// What a method is built from (setup thread).
 struct MethodContext {
   world::World* world = nullptr;  ///< owned by the engine; used only by the physics half
-  const engine::EngineSettings* settings = nullptr;
+  const settings::EngineSettings* settings = nullptr;
   int pointer_body = -1;
   double pointer_radius = 0.0;    ///< m (3-DOF methods); 0 when neither session nor scene gives it
   /// N, the most force one contact pair of a 6-DOF proxy may carry: the device's max_force

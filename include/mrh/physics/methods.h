@@ -4,10 +4,10 @@
 
 #include <memory>
 
-#include "mrh/engine/settings.h"
 #include "mrh/physics/method_physics.h"
 #include "mrh/render/proxy_renderer.h"
 #include "mrh/render/virtual_coupling.h"
+#include "mrh/settings/settings.h"
 
 namespace mrh::physics {
 
@@ -67,7 +67,7 @@ bool UsesContactLocalModel(const MethodContext& context);
 /// @throws mrh::SceneError if the pointer body has no mass (nothing to take an inertia from).
 /// @throws mrh::InvalidArgument if its inertia is not positive definite. Not RT-safe.
 Mat3 PointerRotationWeight(const world::World& world, int pointer_body,
-                           const engine::RenderingSettings& rendering);
+                           const settings::RenderingSettings& rendering);
 
 /// The proxy renderer's settings for an engine configuration (computed on the setup thread from
 /// the world, handed to the haptic half): k_t = stiffness, d_t = damping, k_r = rot_stiffness,
@@ -76,7 +76,7 @@ Mat3 PointerRotationWeight(const world::World& world, int pointer_body,
 /// @throws mrh::InvalidArgument naming the session key (rendering.max_iterations above
 /// render::kMaxProxyIterations) and the errors of PointerRotationWeight. Not RT-safe.
 render::ProxyRendererSettings ProxySettingsFor(const world::World& world, int pointer_body,
-                                               const engine::RenderingSettings& rendering);
+                                               const settings::RenderingSettings& rendering);
 /// As above for the context's world, pointer and rendering, with max_pair_force from it.
 render::ProxyRendererSettings ProxySettingsFor(const MethodContext& context);
 
@@ -84,6 +84,6 @@ render::ProxyRendererSettings ProxySettingsFor(const MethodContext& context);
 /// MJCF `material` attribute carries is a typo.
 /// @throws mrh::InvalidArgument "materials.NAME: no geom of the scene uses ..." listing the
 /// material names the scene's geoms use. Not RT-safe.
-void CheckMaterialsUsed(const world::World& world, const engine::RenderingSettings& rendering);
+void CheckMaterialsUsed(const world::World& world, const settings::RenderingSettings& rendering);
 
 }  // namespace mrh::physics

@@ -10,8 +10,8 @@
 
 #include "mrh/core/spsc_ring.h"
 #include "mrh/core/triple_buffer.h"
-#include "mrh/haptic/tick_record.h"
 #include "mrh/ir/snapshot.h"
+#include "mrh/ir/tick_record.h"
 #include "mrh/physics/method_physics.h"
 #include "mrh/physics/recorder.h"
 
@@ -39,7 +39,7 @@ class PhysicsSide {
   struct Exchange {
     TripleBuffer<ir::PhysicsSnapshot>* snapshots;   ///< physics → haptic
     SpscRing<ir::HapticReport>* reports;            ///< haptic → physics
-    SpscRing<haptic::TickRecord>* tick_records;     ///< haptic → recorder
+    SpscRing<ir::TickRecord>* tick_records;         ///< haptic → recorder
     /// Several pointers: pointers 1, 2, ...'s own snapshot buffers and report rings
     /// (pointer 0 uses the two above). Empty with one pointer.
     std::vector<TripleBuffer<ir::PhysicsSnapshot>*> more_snapshots = {};

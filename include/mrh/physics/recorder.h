@@ -6,7 +6,7 @@
 #include <string>
 
 #include "mrh/core/spatial.h"
-#include "mrh/haptic/tick_record.h"
+#include "mrh/ir/tick_record.h"
 
 namespace mrh::world {
 class World;
@@ -35,7 +35,7 @@ struct StepRecord {
 class Recorder {
  public:
   virtual ~Recorder() = default;
-  virtual void OnTick(const haptic::TickRecord& tick) = 0;
+  virtual void OnTick(const ir::TickRecord& tick) = 0;
   /// Called after each physics step with the world in its post-step state.
   virtual void OnStep(const StepRecord& step, const world::World& world) = 0;
   /// Called with each snapshot the physics side produces for the haptic thread (the initial one,

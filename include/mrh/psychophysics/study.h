@@ -91,7 +91,7 @@ class Apparatus {
 struct RunSettings {
   std::string subject;                          ///< non-empty, no comma, quote or line break
   std::filesystem::path out;                    ///< created; holds trials.csv and stimuli/
-  engine::Mode mode = engine::Mode::kRealtime;  ///< of every stimulus
+  settings::Mode mode = settings::Mode::kRealtime;  ///< of every stimulus
   /// fsync trials.csv after each row (people: yes; simulated observers, who answer a thousand
   /// trials a second, only flush).
   bool sync = true;

@@ -55,7 +55,7 @@ struct Column {
 /// Collects what CsvRecorder writes, as columns. The "body" column of bodies() holds world body
 /// ids; body_names() maps them to the names bodies.csv prints. Not RT-safe: the engine calls it
 /// from its non-RT side, like every Recorder.
-class ColumnRecorder final : public engine::Recorder {
+class ColumnRecorder final : public physics::Recorder {
  public:
   ColumnRecorder();
 
@@ -63,8 +63,8 @@ class ColumnRecorder final : public engine::Recorder {
   /// past it).
   void Reserve(std::int64_t ticks, std::int64_t steps);
 
-  void OnTick(const engine::TickRecord& tick) override;
-  void OnStep(const engine::StepRecord& step, const world::World& world) override;
+  void OnTick(const ir::TickRecord& tick) override;
+  void OnStep(const physics::StepRecord& step, const world::World& world) override;
 
   /// Columns in kTickColumns / kBodyColumns / kStepColumns order.
   const std::vector<Column>& ticks() const { return ticks_; }

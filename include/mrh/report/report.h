@@ -19,7 +19,7 @@ namespace mrh::report {
 /// frame's origin (m) and orientation (body → world) as in the scene's MJCF, its centre of mass's
 /// linear velocity (m/s) and its angular velocity (rad/s), both world frame, and the centre of
 /// mass's position (m, world frame).
-class CsvRecorder : public engine::Recorder {
+class CsvRecorder : public physics::Recorder {
  public:
   /// Creates `dir` if needed. With two or more `pointer_names` (the pointers' body names, in
   /// pointer order) ticks.csv gains a last column `pointer` naming each row's pointer (one row
@@ -28,8 +28,8 @@ class CsvRecorder : public engine::Recorder {
   explicit CsvRecorder(const std::filesystem::path& dir,
                        std::vector<std::string> pointer_names = {});
   ~CsvRecorder() override;
-  void OnTick(const engine::TickRecord& tick) override;
-  void OnStep(const engine::StepRecord& step, const world::World& world) override;
+  void OnTick(const ir::TickRecord& tick) override;
+  void OnStep(const physics::StepRecord& step, const world::World& world) override;
   /// Flushes and closes the files. @throws mrh::RuntimeError on a write error.
   void Close();
 

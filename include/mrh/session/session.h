@@ -13,7 +13,7 @@
 #include "mrh/device/device.h"
 #include "mrh/device/hardware.h"
 #include "mrh/device/simulated.h"
-#include "mrh/engine/settings.h"
+#include "mrh/settings/settings.h"
 
 namespace mrh::world {
 class World;
@@ -54,7 +54,7 @@ struct Session {
   std::filesystem::path scene;              ///< MJCF path, resolved against the session's folder
   std::string keyframe;                     ///< MJCF keyframe applied at start (may be empty)
   std::optional<Vec3> gravity;              ///< m/s², overrides the scene's
-  engine::EngineSettings engine;
+  settings::EngineSettings engine;
   DeviceConfig device;
   /// Several pointers (session key `pointers`): each pointer's device, in the order
   /// of engine.pointers; pointer_devices[0] equals `device`. Empty with one pointer.

@@ -10,7 +10,7 @@
 #include "mrh/core/spatial.h"
 #include "mrh/device/safety.h"
 
-namespace mrh::engine {
+namespace mrh::settings {
 
 /// How the two halves are scheduled. Both modes run the same data flow (SPEC §4.9).
 enum class Mode {
@@ -47,8 +47,8 @@ struct MaterialSettings {
 
 /// Rendering parameters. Session key: `rendering`.
 struct RenderingSettings {
-  double stiffness = 1000.0;        ///< k of eq. 4.11 (N/m)
-  double damping = 0.0;             ///< d of eq. 4.11 (N·s/m)
+  double stiffness = 1000.0;  ///< k of eq. 4.11 (N/m)
+  double damping = 0.0;       ///< d of eq. 4.11 (N·s/m)
   /// Objects whose signed distance to the pointer is at most this become neighbors (m).
   double neighbor_distance = 0.05;
   /// Broad-phase inflation of the pointer's bounds (m); at least the distance the hand can move
@@ -138,9 +138,9 @@ struct PointerLaneSettings {
 struct EngineSettings {
   std::string method = "impulse";
   Mode mode = Mode::kLockstep;
-  double physics_dt = 0.05;   ///< s; forced to haptic_dt by single-rate methods
-  double haptic_dt = 0.001;   ///< s
-  double duration = 10.0;     ///< s of simulated (lockstep) or wall (realtime) time
+  double physics_dt = 0.05;  ///< s; forced to haptic_dt by single-rate methods
+  double haptic_dt = 0.001;  ///< s
+  double duration = 10.0;    ///< s of simulated (lockstep) or wall (realtime) time
   PointerSettings pointer;
   RenderingSettings rendering;
   /// Several pointers: every pointer, in order, when there are at least two; their
@@ -156,8 +156,9 @@ struct EngineSettings {
   void Validate() const;
   /// Haptic ticks per physics step, n = physics_dt / haptic_dt (rounded).
   int ticks_per_step() const;
+
   /// Number of pointers: pointers.size() when at least two, else 1.
   int num_pointers() const { return pointers.size() >= 2 ? static_cast<int>(pointers.size()) : 1; }
 };
 
-}  // namespace mrh::engine
+}  // namespace mrh::settings
