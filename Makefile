@@ -6,7 +6,7 @@ BUILD ?= build
 PREFIX ?= /usr/local
 DEMO_OUT ?= out/demo
 
-.PHONY: all deps configure build demo test test-asan test-tsan install example clean
+.PHONY: all deps configure build demo test test-asan test-tsan install example format-check clean
 
 all: build
 
@@ -50,6 +50,11 @@ install: build
 	cmake --install $(BUILD) --prefix $(PREFIX)
 	if grep -q '^MRH_BUILD_PYTHON:BOOL=ON' $(BUILD)/CMakeCache.txt; then \
 	  cmake --install $(BUILD) --component python; fi
+
+# Fails listing the files clang-format-14 would change (.clang-format at the root); fix them with
+# `git clang-format-14` on staged changes or `clang-format-14 -i FILE`.
+format-check: deps
+	git ls-files -z '*.cc' '*.h' | xargs -0 clang-format-14 --dry-run --Werror
 
 # Builds examples/ against an installed package (find_package(mrhaptics)) and runs them.
 example:

@@ -21,6 +21,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev
   gnuplot-nox
+  clang-format-14  # the format check of `make format-check` and CI
 )
 viewer=1
 for arg in "$@"; do
