@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Export of the contact local model (issue 13): island growth through MuJoCo's contacts and the
+// Export of the contact local model: island growth through MuJoCo's contacts and the
 // contact rows in body-fixed terms.
 #include "mrh/world/contact_export.h"
 
