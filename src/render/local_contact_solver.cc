@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The contact local model of local-dynamics (issue 13): semi-implicit Euler + projected
+// The contact local model of local-dynamics: semi-implicit Euler + projected
 // Gauss–Seidel on the island's contact rows, at the haptic rate.
 #include "mrh/render/local_contact_solver.h"
 
