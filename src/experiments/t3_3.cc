@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Experiment t3.3 (thesis §3.3.4, figs. 3.15–3.16; issue 15 item 4): real-time computation ratio
+// Experiment t3.3 (thesis §3.3.4, figs. 3.15–3.16): real-time computation ratio
 // vs cube count for proxy-6dof, contact-volume (B2), virtual-coupling (B3) and penalty-sum (B5).
 #include <fmt/format.h>
 

@@ -91,8 +91,8 @@ session::Session MakeSession(const std::filesystem::path& scene, const std::stri
                                {"haptic_dt", 0.001},
                                {"duration", duration},
                                {"pointer", {{"body", "pointer"}, {"radius", kPointerRadius}}},
-                               // The thesis' cost per locally simulated neighbor (A, b; issue
-                               // 13's contact model holds at most 32 island bodies).
+                               // The thesis' cost per locally simulated neighbor (A, b; the
+                               // contact local model holds at most 32 island bodies).
                                {"rendering", {{"stiffness", 1000.0}, {"damping", 5.0},
                                               {"local_model", "perturbation"}}},
                                {"safety", {{"ramp", false}}},
