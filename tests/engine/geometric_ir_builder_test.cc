@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// Tests of the 6-DOF neighbor search and geometric IR: the SPEC §3.3.3 cases, fallbacks,
+// Tests of the 6-DOF neighbor search and geometric IR: the thesis §3.2.1 cases (face, edge,
+// vertex), fallbacks,
 // capacities, errors, and the neighbor set against brute force on random scenes.
 #include "physics/geometric_ir_builder.h"
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Round bodies in the local island (issue 33, item 2): the island's floor contact follows the
+// Round bodies in the local island: the island's floor contact follows the
 // rolling point, so a ball pushed under local-dynamics (3-DOF) or local-dynamics-6dof rolls
 // ahead instead of being kicked and spun by a contact point that turned with it.
 //  - Case A, scenes/bump_ball.json: a 0.3 kg ball (r 0.04) bumped by a sphere pointer at

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
-// Virtual coupling (B3, SPEC §1.4): the tool's inertia is felt in free motion (−m_t ẍ_t against
-// the tool's linear steady state), and pressed into a floor the force settles at the spring's.
+// Virtual coupling (B3, Colgate et al. 1995): the tool's inertia is felt in free motion (−m_t ẍ_t
+// against the tool's linear steady state), and pressed into a floor the force settles at the
+// spring's.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
