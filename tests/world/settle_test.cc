@@ -69,7 +69,7 @@ const std::string kMesh =
     "<body name=\"obj\" pos=\"0 0 0.441\"><freejoint/>"
     "<geom type=\"mesh\" mesh=\"hexprism\" mass=\"0.3\"/></body>";
 
-// "At rest": a thousandth of the speeds the old engine showed, and no drift beyond a millimetre.
+// "At rest": speeds far below any a push would give, and no drift beyond a millimetre.
 constexpr double kRestSpeed = 1e-3;   // m/s
 constexpr double kRestSpin = 1e-2;    // rad/s
 constexpr double kRestDrift = 1e-3;   // m
