@@ -32,7 +32,7 @@ bool SingleRate(const std::string& m) {
 
 // Rows of 3 resting 10 cm, 0.5 kg cubes (1 mm apart along x), the box pointer 5 mm from the first
 // row's first cube at its COM height. MuJoCo's arena (contacts, constraint rows) is sized with
-// the cube count: its default ran out at 4104 cubes.
+// the cube count: its default runs out at 4104 cubes.
 std::string Scene(int cubes) {
   std::string bodies;
   for (int i = 0; i < cubes; ++i) {

@@ -48,7 +48,8 @@ void FrictionDirections(const Vec3& n, const Vec3& t, bool pyramidal, Vec3* d1, 
 
 // (l1, l2) scaled onto the disc |(l1, l2)| <= limit (the elliptic cone).
 void ProjectOnDisc(double limit, double* l1, double* l2) {
-  // Impulses are far from overflow: the plain root (glibc's hypot was 6 % of a 1000-contact tick).
+  // Impulses are far from overflow: the plain root (glibc's hypot costs 6 % of a 1000-contact
+  // tick).
   const double mag2 = *l1 * *l1 + *l2 * *l2;
   if (mag2 <= limit * limit) return;
   const double s = mag2 > 0.0 ? limit / std::sqrt(mag2) : 0.0;

@@ -239,8 +239,8 @@ TEST(VirtualCoupling, UnstableGainsForALightToolAreRefusedAndTheDefaultsRun) {
 }
 
 // Pressed 1 cm below the resting light tool, the force is about the coupling spring's k·0.01 =
-// 10 N. (MuJoCo 3's broadphase tests per-body collision masks: a tool whose geoms were made to
-// collide after compilation, without updating them, fell through the floor and felt 3.6 N.)
+// 10 N. (MuJoCo 3's broadphase tests per-body collision masks: a tool whose geoms are made to
+// collide after compilation, without updating them, falls through the floor and feels 3.6 N.)
 TEST(VirtualCoupling, PressedLightToolFeelsTheCouplingSpring) {
   const settings::RenderingSettings defaults;
   const RunStats stats = RunLightTool(defaults);
