@@ -125,8 +125,7 @@ void BM_LocalDynamicsStep500Friction(benchmark::State& state) {
   StepFriction(state, 500);
 }
 
-// MuJoCo 3's sparse constraint storage: 1000 and 2000 cubes with friction in one world (MuJoCo
-// 2.2.2's dense arrays held ~650).
+// MuJoCo 3's sparse constraint storage: 1000 and 2000 cubes with friction in one world.
 void BM_LocalDynamicsStep1000Friction(benchmark::State& state) {
   StepFriction(state, 1000);
 }

@@ -132,7 +132,7 @@ struct T43Options {
                                        "local-dynamics/no-perturbation"};
   std::vector<int> cubes = {1, 10, 100};  ///< frictionless (condim 1) runs
   /// Runs with friction (condim 3, μ = 1, pyramidal cones), file and summary keys
-  /// "<cubes>_friction". MuJoCo 2.2.2 holds at most ~620 such cubes (World's buffer sizing).
+  /// "<cubes>_friction".
   std::vector<int> friction_cubes = {1, 10, 100};
   double physics_dt = 0.02;      ///< s, multi-rate methods (single-rate steps at haptic_dt)
   int steps = 50;                ///< physics steps per multi-rate run

@@ -37,7 +37,7 @@ constexpr double kTickBudgetUs = 1000.0;
 // Balls closer than this many radii (centre spacing of the Fibonacci sphere) get smaller, so
 // they never touch each other (MuJoCo contacts between them would tie them into one 128-dof
 // constraint island and push some off the pointer): 2 cm up to 32 balls, 1.5 cm at 64 and
-// 1.1 cm at 128 (with 2.5 radii, 128 balls of 1.5 cm lost two from the pointer).
+// 1.1 cm at 128 (with 2.5 radii, 128 balls of 1.5 cm lose two from the pointer).
 constexpr double kMinSpacingRadii = 3.5;
 
 double BallRadius(int balls) {

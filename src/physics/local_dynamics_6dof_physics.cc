@@ -58,8 +58,8 @@ void LocalDynamics6dofPhysics::PhysicsStep(const ir::HapticReport& report,
   world_->Step();
   // Every owned body ends the step at its local end state coasted over the step: the local
   // simulation, not MuJoCo, moves it (IslandSync::HoldOwned). From MuJoCo's own end state a box
-  // the local solver rests exactly on the floor, above MuJoCo's soft resting depth, dropped or
-  // rolled (1.6 mm, ±2.9 rad/s per 20 ms step on t3_6_push), and the IR, the exported contacts
+  // the local solver rests exactly on the floor, above MuJoCo's soft resting depth, drops or
+  // rolls (1.6 mm, ±2.9 rad/s per 20 ms step on t3_6_push), and the IR, the exported contacts
   // and the recorded state would all come from that transient.
   sync_.HoldOwned(physics_dt_);
   phases_.world_step_ms = MsSince(t0);
