@@ -66,9 +66,9 @@ Vec3 PlaneNormal(const ConvexPolyhedron& object, const Pose& X_WO, const Distanc
   return ObjectNormalAt(object, X_WO, d.p_WB, face_tolerance);
 }
 
-// Fallback where the region cannot be analysed (the thesis is silent; Springhead does the same):
-// the pointer-side witness point is the only contact point, so the haptic side still sees a
-// contact that begins between two physics steps.
+// Fallback for a pair that is separated or touching, or whose region cannot be analysed (the
+// thesis is silent; Springhead does the same): the pointer-side witness point is the only
+// contact point, so the haptic side still sees a contact that begins between two physics steps.
 ContactRegion Fallback(RegionStatus status, const DistanceResult& d, const Vec3& n) {
   ContactRegion region;
   region.status = status;

@@ -32,7 +32,7 @@ using ::testing::ThrowsMessage;
 // points and depths hold to 1e-9 m.
 constexpr double kHalf = 0.1;
 constexpr double kExact = 1e-9;
-constexpr double kDepth = 0.005;  // penetration of the §3.3.3 cases (m)
+constexpr double kDepth = 0.005;  // penetration of the face, edge and vertex cases (m)
 
 constexpr const char* kCubeOnFloor = R"(
 <mujoco>

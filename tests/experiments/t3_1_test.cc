@@ -37,8 +37,8 @@ TEST(T31ExperimentTest, EdgeRollFaceMatchesTheAnalyticProxy) {
   const double peak = kKr * kEdgeDepth * kHalf / (kRw + kHalf * kHalf);
   EXPECT_NEAR(s["numbers"]["torque_peak_Nm"].get<double>(), peak, 0.01 * peak);
   EXPECT_LT(s["numbers"]["torque_peak_angle_deg"].get<double>(), 5.0);
-  // Face flat at depth δ_f: f = k_t δ_f (U2), centre at h − δ_f, no torque. PGS leaves at most
-  // m·(R_w/h²)·tol = 1.3e-7 m of displacement error.
+  // Face flat at depth δ_f: f = k_t δ_f (eq. 3.2–3.5), centre at h − δ_f, no torque. PGS leaves at
+  // most m·(R_w/h²)·tol = 1.3e-7 m of displacement error.
   const double kDisplacementTol = 4.0 * (kRw / (kHalf * kHalf)) * 1e-10;
   EXPECT_NEAR(s["final"]["f_z_N"].get<double>(), kKt * kFaceDepth, kKt * kDisplacementTol);
   EXPECT_NEAR(s["final"]["height_m"].get<double>(), kHalf - kFaceDepth, 1e-9);

@@ -22,7 +22,8 @@ namespace mrh::render {
 
 /// Most constraint rows one tick can have: a normal and a friction row per contact point.
 inline constexpr std::size_t kMaxProxyRows = 2 * ir::kMaxPairPoints;
-/// Compile-time ceiling on ProxyRendererSettings::max_iterations (STYLE §6.4).
+/// Compile-time ceiling on ProxyRendererSettings::max_iterations, so a tick's work stays bounded
+/// whatever the settings say.
 inline constexpr int kMaxProxyIterations = 100000;
 
 /// Status bits of one ProxyRenderer::Tick.

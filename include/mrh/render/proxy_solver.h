@@ -33,7 +33,7 @@ struct ProxySolverSettings {
   double tolerance = 1e-10;
 };
 
-/// What one solve did (STYLE §0.4: every loop reports its work).
+/// What one solve did (every bounded loop reports its work).
 struct ProxySolveResult {
   int iterations = 0;       ///< sweeps run
   bool converged = false;   ///< the last sweep's max_change was <= tolerance

@@ -146,9 +146,9 @@ class Perturber {
   /// body is dynamic (has degrees of freedom).
   void Begin(std::span<const int> bodies);
 
-  /// The zero-force run (step 2 of §4.5): one step without test force; afterwards
-  /// zero_force_velocity(i) holds u_0 of bodies[i]. The state the world had at Begin() is not
-  /// changed. @pre Begin() is open.
+  /// The zero-force run (eq. 4.3 with f = 0, thesis §4.2.2): one step without test force;
+  /// afterwards zero_force_velocity(i) holds u_0 of bodies[i]. The state the world had at Begin()
+  /// is not changed. @pre Begin() is open.
   void ZeroForceRun();
 
   /// One step from the saved state with force f_W (N, world) at p_W (m, world) on bodies[index];
