@@ -23,8 +23,7 @@ constexpr double kPitch = 0.25;  // grid spacing of the cubes (m)
 std::string GridScene(int n) {
   const int side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
   std::ostringstream xml;
-  // Frictionless contacts and CG, as in the T4.3 scenes: MuJoCo 2.2.2 cannot allocate the
-  // > 10 500 constraint rows 1000 cubes with friction need, nor Newton's dense Hessian.
+  // Frictionless contacts and CG, as in the frictionless T4.3 scenes.
   const int rows = 4 * n + 400;
   xml << "<mujoco><option timestep='0.02' solver='CG'/><size njmax='" << rows << "' nconmax='"
       << rows << "' nstack='" << std::max(1'000'000, 3000 * n)

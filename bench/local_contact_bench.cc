@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Issue 13 micro-benchmark: one tick of the contact local model (render/local_contact_solver.h)
+// Micro-benchmark: one tick of the contact local model (render/local_contact_solver.h)
 // with 16 neighbors in contact with friction: a 4 × 4 grid of touching 0.5 kg, 10 cm boxes on a
 // floor (μ 0.5; 4 floor rows per box, 4 rows per touching face pair: 160 contact rows), every box
 // pushed along +x by a pointer force of 3 N (more than μ m g: the grid slides).

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Issue 14 micro-benchmark: one haptic tick of local-dynamics-6dof with 1000 contacts with
+// Micro-benchmark: one haptic tick of local-dynamics-6dof with 1000 contacts with
 // friction over 8 moving objects. Eight 0.5 kg, 10 cm boxes stand apart on a floor (4 floor rows
 // each, μ 0.5) in a 2 × 4 grid; one flat pointer presses 1 mm into all eight tops with 125
 // contact points per box (1000 normal rows plus their friction rows) and rubs to and fro along x
@@ -85,7 +85,7 @@ std::unique_ptr<ir::PhysicsSnapshot> Snapshot() {
   return s;
 }
 
-// k_t, d_t, k_r and μ of the T3.4 benchmark; R_w by the thesis recipe (SPEC §3.10) for a
+// k_t, d_t, k_r and μ of the T3.4 benchmark; R_w by the thesis recipe (§3.4.1) for a
 // 0.46 × 0.22 × 0.02 m plate pointer, × 500.
 render::ProxyRendererSettings Settings() {
   const double a = 0.46, b = 0.22, c = 0.02;

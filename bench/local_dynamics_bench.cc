@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Issue 13: one local-dynamics physics step (global step, IR, local-model export: the default
+// One local-dynamics physics step (global step, IR, local-model export: the default
 // contact model) with 500 cubes resting with friction (condim 3, pyramidal cones, μ = 1) on a
 // floor, the pointer pushing the first row at 0.1 m/s. One repetition = one physics period (20
 // haptic ticks, one physics step inline, lockstep); its time is the step's own compute time
@@ -125,8 +125,7 @@ void BM_LocalDynamicsStep500Friction(benchmark::State& state) {
   StepFriction(state, 500);
 }
 
-// MuJoCo 3's sparse constraint storage: 1000 and 2000 cubes with friction in one world (MuJoCo
-// 2.2.2's dense arrays held ~650).
+// MuJoCo 3's sparse constraint storage: 1000 and 2000 cubes with friction in one world.
 void BM_LocalDynamicsStep1000Friction(benchmark::State& state) {
   StepFriction(state, 1000);
 }

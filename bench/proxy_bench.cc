@@ -20,7 +20,8 @@
 namespace mrh::render {
 namespace {
 
-// The pointer: the N-gonal prism of scenes/t3_4.xml (SPEC T3.4, I16; the experiment and the
+// The pointer: the N-gonal prism of scenes/t3_4.xml (T3.4, thesis §3.3.5, which does not say
+// how it varied the contact count; the experiment and the
 // viewer read the same file), standing on its base, pressed ~1 mm into a static floor z = 0 and
 // slid along x at 0.1 m/s.
 struct Prism {
@@ -60,9 +61,9 @@ constexpr double kSpeed = 0.1;
 constexpr int kWarmupTicks = 200;
 constexpr std::size_t kMaxSamples = 1 << 20;
 
-// R_w by the thesis recipe (SPEC §3.10): unit-mass inertia of the prism (as a cylinder) × 500,
+// R_w by the thesis recipe (§3.4.1): unit-mass inertia of the prism (as a cylinder) × 500,
 // the multiplier T3.1 implies. k_t, d_t, k_r, d_r and μ as in T3.2.
-// Solver modes (third argument): 0 stops at Appendix B's 1e-7 m, 1 at the engine default
+// Solver modes (third argument): 0 stops at 1e-7 m (~1 mN at k_t = 9000), 1 at the engine default
 // 1e-10 m, 2 always runs the 50 sweeps (the thesis's fixed count, comparable across m).
 constexpr double kModeTolerance[] = {1e-7, 1e-10, 0.0};
 

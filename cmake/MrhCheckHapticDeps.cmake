@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
-# Build-enforced thread boundary (STYLE.md §1): the haptic module, which holds the 1 kHz tick,
-# must never reach MuJoCo or the world, not even transitively. Checked at configure time over
+# Build-enforced thread boundary: the haptic module, which holds the 1 kHz tick, must never
+# reach MuJoCo or the world, not even transitively, so the real-time code sees only the ir::
+# snapshots and cannot call into the simulator. Checked at configure time over
 # the link graph; tests/CMakeLists.txt adds a test that scans the haptic sources' includes.
 
 # Collects into `out` every target and library reachable from `target` through link lines.

@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: Apache-2.0
 # mrh_module(NAME SOURCES ... DEPS ...): one static library per module; its link line fixes the
-# dependency direction between modules (STYLE.md §1).
+# dependency direction between modules, so a dependency cycle fails the build.
 function(mrh_set_warnings target)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wconversion
                                            -ffp-contract=off)

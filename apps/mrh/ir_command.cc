@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// `mrh ir`: prints the geometric IR (SPEC §3.3.3) for the pointer at a given world pose, as JSON.
+// `mrh ir`: prints the geometric IR (thesis §3.2.1) for the pointer at a given world pose, as
+// JSON.
 #include <fmt/format.h>
 
 #include <cmath>

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// The engine: builds the method, then schedules its physics and haptic halves (SPEC §4.9).
+// The engine: builds the method, then schedules its physics and haptic halves (thesis §4.1.3,
+// fig. 4.5; the timing rule in docs/architecture.md).
 #include "mrh/engine/engine.h"
 
 #include <fmt/format.h>

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// Lockstep scheduling: the two-thread schedule of SPEC §4.9 reproduced on one thread.
+// Lockstep scheduling: the two-thread schedule of thesis §4.1.3 (fig. 4.5; the timing rule in
+// docs/architecture.md) reproduced on one thread.
 #include <chrono>
 #include <cmath>
 

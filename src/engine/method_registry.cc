@@ -153,7 +153,7 @@ Method LocalDynamics(const physics::MethodContext& c) {
                 {"local_dynamics.local_body_fault"}};  // haptic::LocalDynamicsStatusBits
 }
 
-// Issue 14: the 6-DOF proxy against the neighbors' contact island simulated at the haptic rate.
+// The 6-DOF proxy against the neighbors' contact island simulated at the haptic rate.
 Method LocalDynamics6dof(const physics::MethodContext& c) {
   const std::vector<render::ProxyRendererSettings> settings = PointerProxySettings(c);
   // render::ProxyStatusBits, then the local island's fault bit

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Demo D1 (thesis §4.6.4, issue 36 item 3): a simulated hand sweeps through 80 objects of four
+// Demo D1 (thesis §4.6.4): a simulated hand sweeps through 80 objects of four
 // shapes on a table with the proposed method (scenes/d1.json), in real time; the report gives
 // the haptic rate, overruns, physics step times, peak memory and what the objects did.
 #include <fmt/format.h>
@@ -25,7 +25,7 @@ constexpr double kGravity = 9.81;  // m/s²
 // by less than a millimetre and slower than a centimetre per second.
 constexpr double kRestDisplacement = 1e-3;  // m
 constexpr double kRestSpeed = 0.01;         // m/s
-// Issue 36's bars for the real-time run.
+// Acceptance bars for the real-time run.
 constexpr double kMinHapticRate = 990.0;    // Hz
 constexpr double kMaxOverrunShare = 0.005;  // of ticks
 constexpr double kMaxPeakRss = 300.0;       // MB

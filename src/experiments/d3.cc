@@ -33,7 +33,7 @@ struct Block {
 };
 
 const std::vector<Block> kBlocks{{"aluminium", -0.15}, {"wood", 0.0}, {"rubber", 0.15}};
-// Acceptance (issue): f within 5 %, B within 25 %, a·v ∝ v within 15 %; stiffness at rest 1 %.
+// Acceptance: f within 5 %, B within 25 %, a·v ∝ v within 15 %; stiffness at rest 1 %.
 constexpr double kFrequencyTol = 0.05, kDecayTol = 0.25, kAmplitudeTol = 0.15;
 constexpr double kStiffnessTol = 0.01;
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The one table / checks writer and gnuplot runner of the experiment drivers (issue 12 item 3).
+// The one table / checks writer and gnuplot runner of the experiment drivers.
 // Not RT-safe (allocates, does I/O): drivers call it after their runs.
 #pragma once
 
@@ -26,7 +26,7 @@ class Table {
   void Add(std::vector<std::string> cells);
 
   /// `format` (a fmt format string with one replacement per column) applied to `values`,
-  /// split at commas into cells: the CSV row the drivers used to write by hand.
+  /// split at commas into cells: one CSV row.
   template <typename... T>
   void AddFormatted(fmt::format_string<T...> format, T&&... values) {
     AddCsvLine(fmt::format(format, std::forward<T>(values)...));

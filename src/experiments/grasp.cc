@@ -147,7 +147,7 @@ void WriteRun(const std::filesystem::path& dir, const std::string& slug, const T
 
 }  // namespace
 
-// The bars: hold height within 5 mm of the reference's, each finger's mean force within
+// The acceptance bars: hold height within 5 mm of the reference's, each finger's mean force within
 // 5 % and its standard deviation at most 2x the reference's.
 bool MeetsBars(const GraspResult& r, const GraspResult& ref) {
   return std::abs(r.hold_height - ref.hold_height) <= 0.005 &&
@@ -253,7 +253,7 @@ int RunGrasp(const std::filesystem::path& out, bool quiet) {
   checks.Add("single_rate_lifts_the_box", std::abs(ref.hold_height - 0.05) <= 0.005);
   checks.Add("single_rate_carries_the_weight",
              std::abs(ref.mean_lift_force - ref.box_mass * 9.81) <= 0.05 * ref.box_mass * 9.81);
-  // The bars for the 20 ms methods: held for the local-dynamics methods, reported for
+  // The acceptance bars for the 20 ms methods: held for the local-dynamics methods, reported for
   // proxy-6dof and impulse (the conventional multi-rate baseline, which drops the box).
   for (std::size_t i = 1; i < runs.size(); ++i) {
     const bool bars = MeetsBars(results[i], ref);

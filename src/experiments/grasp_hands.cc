@@ -147,7 +147,7 @@ std::string HandsScript(const std::vector<GraspRun>& runs) {
 
 }  // namespace
 
-// The bar for two hands: each hand feels its own box's Coulomb force μ m g within 5 %,
+// The acceptance bar for two hands: each hand feels its own box's Coulomb force μ m g within 5 %,
 // undisturbed by the other hand (its force alone within 5 %). Checked for the reference and for
 // the local-dynamics methods; proxy-6dof and impulse are reported.
 void RunGraspHands(const std::filesystem::path& out, bool quiet, std::string* md, Checks* checks,

@@ -55,7 +55,7 @@ struct Result {
   int n = 1;                        // ticks per physics step
   std::int64_t onset = -1;          // first tick with force
   std::int64_t response = -1;       // first tick whose force increment shows the cube moved
-  std::int64_t expected = -1;       // from the data flow of SPEC §4.9
+  std::int64_t expected = -1;       // from the timing rule (docs/architecture.md)
   std::vector<double> deviation{};  // |Δf − k v Δt| / (k v Δt) per tick after the onset
 
   std::int64_t latency() const { return response < 0 ? -1 : response - onset; }
@@ -70,7 +70,8 @@ class ForceTap final : public physics::Recorder {
   std::vector<double> f;  // force on the cube along +x (N)
 };
 
-// Expected response tick (SPEC §4.9): local-dynamics moves the cube in the tick the force is
+// Expected response tick (thesis §4.1.3; the timing rule in docs/architecture.md):
+// local-dynamics moves the cube in the tick the force is
 // rendered, visible one tick later; the impulse of period k reaches the world in step k+1, whose
 // snapshot is rendered from the first tick of period k+2; single-rate is the same with n = 1.
 std::int64_t ExpectedResponse(const std::string& method, std::int64_t onset, int n) {

@@ -43,9 +43,9 @@ struct Row {
   double f_an = 0.0, tau_an = 0.0, lever = 0.0;
 };
 
-// Analytic proxy for the cube on the floor (SPEC U1/U2): one loaded edge along x at depth δ and
-// lever r_y gives f = k_t δ / (1 + r_y²/R_w), τ_x = k_r δ r_y / (R_w + r_y²); a flat face gives
-// f = k_t δ, τ = 0.
+// Analytic proxy for the cube on the floor (eq. 3.2–3.5 in closed form): one loaded edge along x at
+// depth δ and lever r_y gives f = k_t δ / (1 + r_y²/R_w), τ_x = k_r δ r_y / (R_w + r_y²); a flat
+// face gives f = k_t δ, τ = 0.
 Row Analyse(const ProxyTick& tick, double k_t, double k_r, double R_w) {
   Row r;
   r.t = tick.t;
@@ -187,7 +187,8 @@ T31Tally TallyT31(const std::vector<Row>& rows, const T31Tolerances& tol) {
   return s;
 }
 
-// SPEC T3.1 acceptance against the analytic proxy; writes the measured numbers into `numbers`.
+// T3.1 (thesis §3.3.2) acceptance against the analytic proxy; writes the measured numbers into
+// `numbers`.
 Checks CheckT31(const std::vector<Row>& rows, const settings::RenderingSettings& r, double R_w,
                 nlohmann::json* numbers) {
   const T31Tally s = TallyT31(rows, T31Tolerances{r, R_w});
@@ -235,8 +236,8 @@ std::vector<Row> AnalyseRun(const ProxyRun& run, const settings::RenderingSettin
   return rows;
 }
 
-// The same motion at the default budget of 50 PGS sweeps (the session converges PGS, SPEC
-// §3.5: "iterations set so that f converges"), shown for comparison, unchecked.
+// The same motion at the default budget of 50 PGS sweeps (the session converges PGS, thesis
+// §3.2.2: "iterations set so that f converges"), shown for comparison, unchecked.
 std::vector<Row> RunBudget(const session::Session& session, double R_w, bool quiet,
                            double* tau_error) {
   session::Session budget_session = session;
@@ -274,7 +275,8 @@ int RunT31(const std::filesystem::path& out, bool quiet) {
   const std::vector<Row> rows = AnalyseRun(run, r, R_w);
   double budget_tau_error = 0.0;
   const std::vector<Row> budget = RunBudget(session, R_w, quiet, &budget_tau_error);
-  // B5 on the same motion (SPEC §1.4 B5): the sum's stiffness doubles as contacts go 2 → 4.
+  // B5 on the same motion (Berkelman & Hollis 2000, thesis ref. [43]): the sum's stiffness
+  // doubles as contacts go 2 → 4.
   const std::vector<ir::TickRecord> sum = RunPenaltySumTicks(session);
   WriteT31Files(out, rows, budget, sum, quiet);
   nlohmann::json summary;

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// T3.1's edge → face motion rendered by the B5 penalty sum (SPEC §1.4 B5), public engine API only.
+// T3.1's edge → face motion rendered by the B5 penalty sum (Berkelman & Hollis 2000, thesis
+// ref. [43]), public engine API only.
 #include <cmath>
 #include <memory>
 

@@ -184,8 +184,9 @@ int CountStaticIntervals(const std::vector<Row>& rows) {
 }
 
 // ε: how far a proxy rotation can bend a row's displacement relative to the translation,
-// max_k (r_k × a_k)ᵀ R_w⁻¹ (r_k × a_k) <= |r|²max / R_w,min (SPEC U1: c_kk − 1). With all friction
-// rows sliding the cone ratio is μ up to ε; the same ε bounds the friction direction's angle.
+// max_k (r_k × a_k)ᵀ R_w⁻¹ (r_k × a_k) <= |r|²max / R_w,min (c_kk − 1 of eq. 3.5). With all
+// friction rows sliding the cone ratio is μ up to ε; the same ε bounds the friction direction's
+// angle.
 double RotationShare(const ProxyRun& run, const settings::RenderingSettings& s) {
   double lever2 = 0.0;
   for (const ProxyTick& tick : run.ticks) {

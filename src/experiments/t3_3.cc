@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Experiment t3.3 (thesis §3.3.4, figs. 3.15–3.16; issue 15 item 4): real-time computation ratio
+// Experiment t3.3 (thesis §3.3.4, figs. 3.15–3.16): real-time computation ratio
 // vs cube count for proxy-6dof, contact-volume (B2), virtual-coupling (B3) and penalty-sum (B5).
 #include <fmt/format.h>
 
@@ -32,7 +32,7 @@ bool SingleRate(const std::string& m) {
 
 // Rows of 3 resting 10 cm, 0.5 kg cubes (1 mm apart along x), the box pointer 5 mm from the first
 // row's first cube at its COM height. MuJoCo's arena (contacts, constraint rows) is sized with
-// the cube count: its default ran out at 4104 cubes.
+// the cube count: its default runs out at 4104 cubes.
 std::string Scene(int cubes) {
   std::string bodies;
   for (int i = 0; i < cubes; ++i) {

@@ -21,7 +21,8 @@
 namespace mrh::experiments::internal {
 namespace {
 
-// The prism (SPEC T3.4, I16): an N-gon of circumradius 0.1 m, 0.1 m tall, standing on its base
+// The prism (T3.4, thesis §3.3.5, which does not say how it varied the contact count; its
+// figure is missing): an N-gon of circumradius 0.1 m, 0.1 m tall, standing on its base
 // 1 mm deep in a floor and sliding along x at 0.1 m/s, so its base gives N contact points.
 constexpr double kRadius = 0.1;
 constexpr double kHalfHeight = 0.05;
@@ -30,7 +31,7 @@ constexpr double kSpeed = 0.1;
 constexpr double kFriction = 0.5;
 constexpr double kPhysicsDt = 0.02;
 constexpr double kHapticDt = 0.001;
-// The goal of issue 4 and the thesis' budget (s).
+// The p99 goal (a tenth of the budget) and the thesis' budget (s).
 constexpr double kGoalP99 = 100e-6;
 constexpr double kBudget = 1e-3;
 // Force agreement with the analytic sliding prism: the contact points are the vertices of the

@@ -54,7 +54,8 @@ Vec3 Vertex(int i) {
 }
 
 // One loaded edge along x (two vertices below the floor at equal depth δ, lever r_y): the
-// proxy's torque is τ_x = k_r δ r_y/(R_w + r_y²) (SPEC U1, as in T3.1). Returns false for any
+// proxy's torque is τ_x = k_r δ r_y/(R_w + r_y²) (eq. 3.2–3.5 in closed form, as in T3.1).
+// Returns false for any
 // other contact state.
 bool EdgeTorque(const ProxyTick& tick, double k_r, double R_w, double* tau) {
   constexpr double kSame = 1e-12;  // equal depths to rounding of metre-scale poses
@@ -190,9 +191,9 @@ std::string WriteT35Files(const std::filesystem::path& out, const std::vector<Sw
   return md;
 }
 
-// SPEC §3.10 / T3.5 trends: the displayed torque falls as R_w grows (and follows the analytic
-// single-edge peak), and a small R_w lets unconstrained vertices penetrate more than a large one.
-// The analytic comparison uses the ticks where PGS converged with one edge loaded; its
+// Thesis §3.4.1 (fig. 3.18) trends: the displayed torque falls as R_w grows (and follows the
+// analytic single-edge peak), and a small R_w lets unconstrained vertices penetrate more than a
+// large one. The analytic comparison uses the ticks where PGS converged with one edge loaded; its
 // tolerance is T3.1's: a displacement error of at most m·κ·tol (κ = R_w/h², m = 2 rows) turns
 // into k_r·m·κ·tol·√2·h/R_w = k_r·2·tol·√2/h of torque.
 Checks CheckT35(const std::vector<SweepPoint>& points, const settings::RenderingSettings& r) {

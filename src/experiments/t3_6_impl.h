@@ -16,7 +16,7 @@ inline constexpr double kFrom = 2.0;      // s, statistics window 2–5 s
 // Peak speed counts from here: after the boxes settled on the floor (a 20 ms step drops them at
 // g Δt = 0.2 m/s), before the touch.
 inline constexpr double kSpeedFrom = 1.0;  // s
-inline constexpr double kPoseAt = 4.0;     // s, the "box positions within 2 cm after 4 s"
+inline constexpr double kPoseAt = 4.0;     // s, bar: "box positions within 2 cm after 4 s"
 
 struct Case {
   const char* name;
@@ -39,7 +39,7 @@ struct Case {
 inline constexpr Case kCases[] = {
     {"face", "t3_6_push.xml", 0.0, 0.05, kDuration, true, 0.5, 0.5},
     // The pointer face (y 0.01–0.07 m) wholly on one side of the box's centre line: the centre
-    // of pressure is off centre, so the push turns the box (the 4 cm case).
+    // of pressure is off centre, so the push turns the box (the 4 cm case).
     {"offcentre", "t3_6_push.xml", 0.04, 0.05, kDuration, false, 0.0, 0.5},
     {"tip", "t3_6_tip.xml", 0.0, 0.085, kDuration, true, 0.0, 1.0, false, true},
     {"wall", "t3_6_wall.xml", 0.0, 0.05, 2.6, true, 0.0, 0.5},
@@ -60,7 +60,7 @@ struct Variant {
 
 // The reference check: the reference and local-dynamics-6dof again with the pointer 10 µm to
 // either side, a fifth of a Novint Falcon's resolution and far below what a hand can place. A
-// result that changes more than the bar under that offset is not a property of the push.
+// result that changes more than the acceptance bar under that offset is not a property of the push.
 inline constexpr double kNudge = 1e-5;  // m
 
 inline constexpr Variant kVariants[] = {

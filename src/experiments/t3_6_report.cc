@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // Experiment t3.6's report: tables against the reference and Coulomb's force, the reference
-// check under a 10 µm nudge, the bars as checks, and the plot.
+// check under a 10 µm nudge, the acceptance bars as checks, and the plot.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -114,7 +114,7 @@ nlohmann::json Compare(const Case& c, const Variant& v, const T36Result& r, cons
 }
 
 // The reference check of one case: how much the reference and local-dynamics-6dof move when the
-// pointer is nudged 10 µm sideways, in units of the bars (5 % of the reference's |f|,
+// pointer is nudged 10 µm sideways, in units of the acceptance bars (5 % of the reference's |f|,
 // 10 % of its |τ|, 2 cm), and, where the case is mirror-symmetric (y -> -y), the share of the
 // mean torque in τ_x and τ_z, which change sign under that mirror: the symmetric push defines
 // none of it. Returns the figures as JSON; adds rows to `table`.
@@ -173,7 +173,7 @@ std::string OpenCases() {
   return s.empty() ? s : "\nOpen (reported, not checked; docs/architecture.md): " + s + ".\n";
 }
 
-// The bars for one case. Every method: nothing thrown. local-dynamics-6dof at 20 ms and
+// The acceptance bars for one case. Every method: nothing thrown. local-dynamics-6dof at 20 ms and
 // proxy-6dof at 1 ms: Coulomb's μ Σm g within 5 % where the boxes slide steadily; off centre,
 // the reference's mean |f| within 10 %, its box positions within 2 cm and its turning direction.
 // local-dynamics-6dof's result is a property of the push: a 10 µm nudge moves its force and box

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Experiment t3.7's report: tables, plots and the checks over the runs of t3_7.cc.
+// Experiment t3.7's report: tables, plots and the acceptance checks over the runs of t3_7.cc.
 #include <fmt/format.h>
 
 #include <cmath>
@@ -108,7 +108,7 @@ int RunT37(const std::filesystem::path& out, bool quiet, const T37Options& optio
           {"end_yaw_rad", r.yaw},
           {"thrown", v.thrown},
           {"spun", v.spun}};
-      // The bars: nothing is thrown (every method); the proposed method and proxy-6dof
+      // The acceptance bars: nothing is thrown (every method); the proposed method and proxy-6dof
       // at 1 ms meet the analytic expectations, follow the reference off centre and turn its
       // way.
       if (k == 0) continue;

@@ -24,12 +24,12 @@
 namespace mrh::experiments::internal {
 namespace {
 
-// The T4.1 parameters (SPEC §5): 60 kg at 0.017 m/s; an elastic bounce returns 2mv.
+// The T4.1 parameters (thesis §4.5.3): 60 kg at 0.017 m/s; an elastic bounce returns 2mv.
 constexpr double kMass = 60.0;
 constexpr double kSpeed = 0.017;
 // Gap between the cube's face and the sphere at t = 0 in scenes/t4_1.xml (m).
 constexpr double kGap = 0.005;
-// Acceptance (SPEC T4.1): single-rate within 2 % of the elastic bounce; local-dynamics within
+// Acceptance (T4.1): single-rate within 2 % of the elastic bounce; local-dynamics within
 // 2 % of single-rate (the thesis' table 4.3 shows them equal to its 2 significant digits); the
 // impulse method clearly larger: the thesis measured +60 %, we require at least a third of that
 // excess (+20 %), since the overshoot grows with the step's share of the contact time, which the
@@ -48,7 +48,7 @@ struct Published {
 
 constexpr Published kThesis[] = {{"single-rate", 2.0}, {"impulse", 3.2}, {"local-dynamics", 2.0}};
 
-// Sweep of SPEC T4.1's two parameters around the thesis' point (issue 5).
+// Sweep of T4.1's two parameters (mass, speed) around the thesis' point.
 constexpr double kSweepMasses[] = {15.0, 30.0, 60.0, 120.0, 240.0};
 constexpr double kSweepSpeeds[] = {0.005, 0.01, 0.017, 0.05, 0.1};
 
@@ -158,7 +158,7 @@ MethodResult RunCase(const session::Session& session, const Case& c,
 // interface: one physics step from the initial state, read the snapshot's A.
 ir::Mat63 MeasureAccelerance() {
   session::Session s = CaseSession("local-dynamics", Case{}, {});
-  s.engine.rendering.local_model = "perturbation";  // the thesis' A (issue 13's model has none)
+  s.engine.rendering.local_model = "perturbation";  // the thesis' A (the contact model has none)
   world::World world = session::LoadWorld(s);
   world.set_timestep(s.engine.physics_dt);
   physics::MethodContext context{.world = &world,
@@ -319,7 +319,7 @@ bool AccelerancePasses(nlohmann::json* summary) {
   return error <= kAccelTolerance;
 }
 
-// The checks of SPEC T4.1 on whichever methods ran; writes summary.json, returns the exit code.
+// The checks of T4.1 on whichever methods ran; writes summary.json, returns the exit code.
 int FinishT41(const std::filesystem::path& out, const std::vector<MethodResult>& results,
               bool quiet, nlohmann::json* summary) {
   Checks checks;

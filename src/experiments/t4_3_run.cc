@@ -20,7 +20,7 @@
 namespace mrh::experiments::internal::t4_3 {
 namespace {
 
-// Scene (thesis sizes n/g, SPEC App. B): 0.1 m cubes of 0.2 kg on a floor, in rows of up to 10
+// Scene (the thesis gives no sizes): 0.1 m cubes of 0.2 kg on a floor, in rows of up to 10
 // along x with 2 cm gaps, rows 0.25 m apart; the pointer (2 cm sphere) pushes row 0 along +x at
 // 0.1 m/s, so row 0's cubes come into contact one after another as in the thesis' 10-cube run.
 constexpr double kHalf = 0.05;     // m, cube half size

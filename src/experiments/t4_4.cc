@@ -40,7 +40,7 @@ constexpr int kCubes = 4;
 // the next join.
 constexpr double kSettle = 0.5;  // s
 constexpr double kGuard = 0.05;  // s
-// Acceptance: felt mass within 5 % of k·m (issue 5: "within a few %").
+// Acceptance: felt mass within 5 % of k·m ("within a few %").
 constexpr double kMassTolerance = 0.05;
 constexpr const char* kNoPerturbation = "local-dynamics/no-perturbation";
 
@@ -98,7 +98,7 @@ session::Session MakeSession(const std::string& variant, const std::string& meth
   json["device"]["keyframes"] =
       edge ? Keyframes(kEdgeY + kEdgeOffset, kEdgeDuration) : Keyframes(0.0, kLineDuration);
   if (variant == kNoPerturbation) json["rendering"]["perturbation"] = false;
-  // T4.4 measures the thesis' accelerance A (issue 13's contact model has none).
+  // T4.4 measures the thesis' accelerance A (the contact local model has none).
   json["rendering"]["local_model"] = "perturbation";
   return session::ParseSession(json.dump(), ScenesDir(), {}, "scenes/t4_4.json (" + variant + ")");
 }

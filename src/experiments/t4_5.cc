@@ -37,7 +37,7 @@ constexpr double kTickBudgetUs = 1000.0;
 // Balls closer than this many radii (centre spacing of the Fibonacci sphere) get smaller, so
 // they never touch each other (MuJoCo contacts between them would tie them into one 128-dof
 // constraint island and push some off the pointer): 2 cm up to 32 balls, 1.5 cm at 64 and
-// 1.1 cm at 128 (with 2.5 radii, 128 balls of 1.5 cm lost two from the pointer).
+// 1.1 cm at 128 (with 2.5 radii, 128 balls of 1.5 cm lose two from the pointer).
 constexpr double kMinSpacingRadii = 3.5;
 
 double BallRadius(int balls) {
@@ -91,8 +91,8 @@ session::Session MakeSession(const std::filesystem::path& scene, const std::stri
                                {"haptic_dt", 0.001},
                                {"duration", duration},
                                {"pointer", {{"body", "pointer"}, {"radius", kPointerRadius}}},
-                               // The thesis' cost per locally simulated neighbor (A, b; issue
-                               // 13's contact model holds at most 32 island bodies).
+                               // The thesis' cost per locally simulated neighbor (A, b; the
+                               // contact local model holds at most 32 island bodies).
                                {"rendering", {{"stiffness", 1000.0}, {"damping", 5.0},
                                               {"local_model", "perturbation"}}},
                                {"safety", {{"ramp", false}}},

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Experiment T4.6 (thesis §4.6.3, issue 14 item 3): the 6×6 accelerance estimates measured
+// Experiment T4.6 (thesis §4.6.3): the 6×6 accelerance estimates measured
 // instead of estimated: accuracy against converged MuJoCo and cost per physics step.
 #include <fmt/format.h>
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Experiment t4.push (issue 13): a scripted pointer pushes resting boxes across a floor with
+// Experiment t4.push: a scripted pointer pushes resting boxes across a floor with
 // friction at 0.1 m/s; every method against single-rate (the 1 ms reference).
 #include <fmt/format.h>
 
@@ -21,7 +21,7 @@ namespace {
 
 constexpr double kSpeed = 0.1;       // m/s, pointer along +x
 constexpr double kX0 = -0.165;       // m, pointer centre at t = 0 (touches the box at t = 1 s)
-constexpr double kFrom = 2.0;        // s, statistics window (the issue's 2–5 s)
+constexpr double kFrom = 2.0;        // s, statistics window (the acceptance window, 2–5 s)
 constexpr double kTo = 5.0;          // s
 constexpr double kPositionAt = 5.0;  // s, box position compared 4 s after the touch
 constexpr const char* kPerturbation = "local-dynamics/perturbation";
@@ -123,7 +123,7 @@ std::string PushScript(const PushOptions& o) {
   return gp + "unset multiplot\n";
 }
 
-// The issue's bars for local-dynamics against single-rate.
+// The acceptance bars for local-dynamics against single-rate.
 bool MeetsBars(const PushResult& r, const PushResult& ref) {
   const bool mean = std::abs(r.mean_force - ref.mean_force) <= 0.05 * ref.mean_force;
   const bool sd = r.sd_force <= std::max(2.0 * ref.sd_force, 0.02 * ref.mean_force);
@@ -210,7 +210,7 @@ bool Compare(const std::string& name, const std::string& method, const PushResul
 
 // The pyramidal box's single-rate reference at the pointer offsets of its cases (scene
 // "box_pyramidal"): the largest spread of the box position at 5 s and of the mean force between
-// them. More than the issue's 2 cm position bar: a straight push on MuJoCo's pyramidal cone is
+// them. More than the 2 cm position bar: a straight push on MuJoCo's pyramidal cone is
 // unstable, and no method can be held to the bars there (check
 // pyramidal_push_single_rate_is_unstable; it fails if the reference became reproducible).
 void AddInstabilityCheck(const PushOptions& o, const std::vector<std::vector<PushResult>>& results,

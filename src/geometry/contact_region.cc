@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Plane + contact points of a pointer/object pair from the penetration region (SPEC §3.3.3).
+// Plane + contact points of a pointer/object pair from the penetration region (thesis §3.2.1).
 #include "mrh/geometry/contact_region.h"
 
 #include <algorithm>
@@ -66,7 +66,9 @@ Vec3 PlaneNormal(const ConvexPolyhedron& object, const Pose& X_WO, const Distanc
   return ObjectNormalAt(object, X_WO, d.p_WB, face_tolerance);
 }
 
-// SPEC §3.3.3 fallback: the pointer-side witness point is the only contact point.
+// Fallback for a pair that is separated or touching, or whose region cannot be analysed (the
+// thesis is silent; Springhead does the same): the pointer-side witness point is the only
+// contact point, so the haptic side still sees a contact that begins between two physics steps.
 ContactRegion Fallback(RegionStatus status, const DistanceResult& d, const Vec3& n) {
   ContactRegion region;
   region.status = status;
@@ -102,14 +104,16 @@ std::vector<Halfspace> PairHalfspaces(const ConvexPolyhedron& pointer, const Pos
 
 // Where qhull's dual transform is centred: a point strictly inside every halfspace, or the
 // fallback status when there is none. kTouching when the intersection has no volume (its
-// largest inscribed ball has radius <= tolerance, SPEC §3.3.2 step 5), kFailed when that ball
+// largest inscribed ball has radius <= tolerance: the dual transform needs an interior point),
+// kFailed when that ball
 // cannot be found.
 struct Interior {
   std::optional<Vec3> point;
   RegionStatus fallback = RegionStatus::kFailed;
 };
 
-// The witness midpoint o (SPEC §3.3.2) when it is well inside; otherwise the Chebyshev centre.
+// The witness midpoint o (the thesis' origin for the dual transform, §3.2.1) when it is well
+// inside; otherwise the Chebyshev centre.
 // o is not always inside: FCL's EPA witnesses of an edge–edge penetration lie on the two edges,
 // and beside a sharp edge the segment between them leaves the other body; the polyhedra of
 // curved shapes also lie up to their approximation error inside the surfaces the witnesses
@@ -173,7 +177,7 @@ ContactRegion ComputeContactRegion(const ConvexPolyhedron& pointer, const Pose& 
   if (pointer.unbounded()) return Fallback(RegionStatus::kFailed, d, n);
   if (d.distance >= -options.touching_tolerance) return Fallback(RegionStatus::kTouching, d, n);
 
-  // Zero-volume guard (SPEC §3.3.2 step 5): without a point strictly inside both polyhedra the
+  // Zero-volume guard: without a point strictly inside both polyhedra the
   // region has no volume to analyse, and qhull would fail on it.
   const std::vector<Halfspace> halfspaces = PairHalfspaces(pointer, X_WP, object, X_WO);
   const Interior interior = InteriorPoint(halfspaces, d, options.touching_tolerance);
@@ -183,7 +187,7 @@ ContactRegion ComputeContactRegion(const ConvexPolyhedron& pointer, const Pose& 
   if (!vertices) return Fallback(RegionStatus::kFailed, d, n);
 
   // Contact points: the region's vertices below the plane through c; the ones on it (within
-  // the tolerance) are where the object's surface bounds the region (SPEC §3.3.3). For a curved
+  // the tolerance) are where the object's surface bounds the region (thesis §3.2.1). For a curved
   // object "on it" means on the polyhedron's supporting plane, while depths stay measured from
   // c on the true surface.
   const double clearance = PlaneClearance(object, X_WO, n, d.p_WB);

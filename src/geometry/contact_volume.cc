@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// Intersection polyhedron of a convex pair and the pressure integrals of SPEC §1.4 B2.
+// Intersection polyhedron of a convex pair and the pressure integrals of B2 (Hasegawa & Sato
+// 2004, thesis ref. [1]; see include/mrh/geometry/contact_volume.h).
 #include "mrh/geometry/contact_volume.h"
 
 #include <algorithm>

@@ -29,7 +29,7 @@ namespace {
 // GJK stopping tolerance (relative to the pair's size) for separated shapes. On polytopes GJK
 // stops anyway once it no longer improves; on curved shapes this puts the witness points within
 // ~4e-9 of the surface. (FCL's signed query runs a GJK that stops at the EPA tolerance, whose
-// witness points on a cylinder rim were measured up to 8e-4 of the size inside the surface.)
+// witness points on a cylinder rim lie up to 8e-4 of the size inside the surface.)
 constexpr double kGjkTolerance = 1e-12;
 // EPA stopping tolerance on polytope pairs, relative to the pair's size. Fuzzing FCL 0.7 on
 // boxes, convex meshes, points and segments showed no failure down to 1e-12.

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // qhull_r behind a silent, leak-free wrapper: halfspace intersection (the Muller–Preparata dual
-// transform, SPEC §3.3.2) and convex hulls.
+// transform, thesis §3.2.1) and convex hulls.
 #include "geometry/qhull_halfspaces.h"
 
 #include <stdio.h>  // fopencookie (glibc)
@@ -95,8 +95,8 @@ void AppendUnique(std::vector<Vec3>& points, const Vec3& p, double tolerance) {
 
 // Reads the intersection vertices off the dual hull, in the frame centred at the interior point.
 // Each facet m·ŷ + offset = 0 (m unit, outward) of the hull of the dual points a_k / h_k maps
-// back to the vertex m / e with e = −offset > 0 (SPEC §3.3.2 step 4). e <= 0 means the origin
-// is not inside the dual hull, i.e. the intersection is unbounded.
+// back to the vertex m / e with e = −offset > 0 (the dual transform's inverse). e <= 0 means the
+// origin is not inside the dual hull, i.e. the intersection is unbounded.
 std::optional<std::vector<Vec3>> DualFacetsToVertices(qhT* qh) {
   std::vector<Vec3> raw;
   facetT* facet = nullptr;

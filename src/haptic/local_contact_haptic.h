@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// local-dynamics with the contact local model (issue 13): the haptic half.
+// local-dynamics with the contact local model: the haptic half.
 #pragma once
 
 #include <array>

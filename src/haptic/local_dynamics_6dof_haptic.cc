@@ -60,15 +60,16 @@ void LocalDynamics6dofHaptic::MapMotions() noexcept {
 }
 
 // Step 2 of the class comment: planes of island pairs on the local poses. The snapshot's normal
-// is the contact's at the end of the period it was built for (SPEC §4.9: the pointer there, 2 Δt^G
-// after the report). Where the contact turns about an edge or a vertex (a round pointer sliding
-// past a corner) that normal is tilted from the one at the period's start, and a plane through
-// the corner with it reaches deeper into the pointer than the corner does (a plane that supports
-// the contact at one relative pose over-estimates the depth at every other); the snapshot switch
-// is then also a step in the load, which the damper turns into a one-tick spike. Blending from
-// the last rendered normal keeps the normal, and so the depth, continuous and near the contact's
-// own, as IrInterpolator does on the other bodies. The blend runs in the frame the normal turns
-// with (the class comment, step 2), so the plane still turns with the body whose face it is.
+// is the contact's at the end of the period it was built for (by the timing rule of thesis
+// §4.1.3 and docs/architecture.md: the pointer there, 2 Δt^G after the report). Where the contact
+// turns about an edge or a vertex (a round pointer sliding past a corner) that normal is tilted
+// from the one at the period's start, and a plane through the corner with it reaches deeper into
+// the pointer than the corner does (a plane that supports the contact at one relative pose
+// over-estimates the depth at every other); the snapshot switch is then also a step in the load,
+// which the damper turns into a one-tick spike. Blending from the last rendered normal keeps the
+// normal, and so the depth, continuous and near the contact's own, as IrInterpolator does on the
+// other bodies. The blend runs in the frame the normal turns with (the class comment, step 2), so
+// the plane still turns with the body whose face it is.
 void LocalDynamics6dofHaptic::RePoseOnLocalBodies(double alpha, const Pose& X_WP) noexcept {
   for (std::size_t i = 0; i < tick_ir_.pairs.size(); ++i) {
     render::TickPair& pair = tick_ir_.pairs[i];
@@ -143,8 +144,8 @@ Vec3 LocalDynamics6dofHaptic::InFrame(Frame frame, const Vec3& n_W,
 // action = reaction holds in force and in moment with what the user feels, as in proxy-6dof.
 // The force alone at the pair's centre of pressure (f_k-weighted points) is not the contact's
 // moment: the f_k are offsets in the R_w metric, so its moment about the pointer origin is
-// k_t R_w Δθ where the proxy's is k_r Δθ (30× less for t3.6's box pointer); the box then lost
-// the face's straightening couple and yawed away from an off-centre push (issue 14, h14r).
+// k_t R_w Δθ where the proxy's is k_r Δθ (30× less for t3.6's box pointer); with the force alone
+// the box would lose the face's straightening couple and yaw away from an off-centre push.
 // The period's impulses record what was applied.
 void LocalDynamics6dofHaptic::PushLocalBodies() noexcept {
   for (std::size_t i = 0; i < output_.reactions.size() && i < tick_ir_.pairs.size(); ++i) {

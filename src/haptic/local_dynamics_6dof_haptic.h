@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Method `local-dynamics-6dof` (issue 14 item 2): the haptic half — the 6-DOF proxy rendered
+// Method `local-dynamics-6dof`: the haptic half — the 6-DOF proxy rendered
 // against planes fixed on the neighbors while the neighbors' contact island is simulated at 1 kHz.
 #pragma once
 
@@ -31,7 +31,7 @@ inline constexpr std::uint32_t kLocal6dofBodyFault = 1u << 3;
 ///     would tilt the plane by the object's turn against the pointer face the contact lies on
 ///     and pull the object back toward the snapshot's orientation, a step late), or neither (a
 ///     round object); the points' depths are recomputed. Static pairs and non-island bodies
-///     keep the interpolated IR. The normal is blended over the period (SPEC §3.9, α as in
+///     keep the interpolated IR. The normal is blended over the period (thesis §3.2.2, α as in
 ///     step 1) from the one the pair was last rendered with to the snapshot's, in its frame, so
 ///     it is continuous across the snapshot switch, as the interpolator's is;
 ///  3. render::ProxyRenderer solves the proxy (eq. 3.4–3.10) and renders eq. 3.7–3.8;

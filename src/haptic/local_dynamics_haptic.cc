@@ -8,8 +8,9 @@
 namespace mrh::haptic::internal {
 
 // A body that continues keeps its local state (the local simulation owns it while it stays a
-// neighbor, SPEC §4.4) and gets the correction of eq. 4.18 at its first tick; a new neighbor
-// starts from the global state. Normals blend from the last rendered one (SPEC §4.6).
+// neighbor, thesis §4.2.1) and gets the correction of eq. 4.18 at its first tick; a new neighbor
+// starts from the global state. Normals blend from the last rendered one (thesis §4.3.1, after
+// Hasegawa et al. 1999).
 void LocalDynamicsHaptic::Adopt(const ir::PhysicsSnapshot& snapshot) noexcept {
   CarryRenderedNormals(snapshot, snapshot_, rendered_n_, &previous_n_);
   const LocalBodies& old = local();
@@ -97,7 +98,7 @@ void LocalDynamicsHaptic::RenderContacts(const TickInput& in, double alpha,
 }
 
 // eq. 4.14–4.15 with this tick's reaction, and the period's impulse bookkeeping: the last
-// reaction force becomes the next perturbation force (SPEC §4.7).
+// reaction force becomes the next perturbation force (thesis §4.3.2, §4.2.2).
 void LocalDynamicsHaptic::StepLocalBodies(const TickInput& in, TickOutput* out) noexcept {
   for (ir::BodyImpulse& entry : period_.impulses) entry.last_force = Vec3::Zero();
   for (std::size_t b = 0; b < snapshot_.bodies.size(); ++b) {

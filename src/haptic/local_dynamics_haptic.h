@@ -22,7 +22,7 @@ struct LocalDynamicsHapticCounters {
   std::int64_t corrections = 0;   ///< eq. 4.18 velocity corrections applied
 };
 
-/// The haptic half of `local-dynamics` (SPEC §4): simulates each dynamic neighbor of the
+/// The haptic half of `local-dynamics` (thesis ch. 4): simulates each dynamic neighbor of the
 /// snapshot locally from its accelerance A and bias b (eq. 4.13–4.15) and renders corrected
 /// eq. 4.11 against planes that move with it, feeding the reaction (eq. 4.12) to the local
 /// simulation in the same tick; a static or kinematic body is blended between its step poses as

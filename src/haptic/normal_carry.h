@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// Start of the normal blend of the point IR (SPEC §3.9, §4.6) when a new snapshot is adopted.
+// Start of the normal blend of the point IR (thesis §3.2.2, §4.3.1: the IR is interpolated over
+// the physics period) when a new snapshot is adopted.
 #pragma once
 
 #include <array>

@@ -9,7 +9,7 @@
 
 namespace mrh::haptic::internal {
 
-/// B5 (Berkelman & Hollis 2000, SPEC §1.4), haptic half (RT-safe): the geometric IR
+/// B5 (Berkelman & Hollis 2000, thesis ref. [43], §3.1.1), haptic half (RT-safe): the geometric IR
 /// interpolated with α as proxy-6dof does, then render::PenaltySumRenderer: the wrench
 /// Σᵢ (kδᵢ + dδ̇ᵢ) nᵢ with torque Σᵢ rᵢ × fᵢ about the pointer origin. There is no proxy
 /// (TickOutput::X_WQ stays the pointer pose) and no friction. The per-pair reactions are summed

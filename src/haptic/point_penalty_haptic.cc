@@ -10,7 +10,7 @@
 namespace mrh::haptic::internal {
 
 void PointPenaltyHaptic::Adopt(const ir::PhysicsSnapshot& snapshot) noexcept {
-  // Carry each pair's last rendered normal as the start of its blend (SPEC §3.9); a new pair
+  // Carry each pair's last rendered normal as the start of its blend (thesis §4.3.1); a new pair
   // starts at its new normal.
   CarryRenderedNormals(snapshot, snapshot_, rendered_n_, &previous_n_);
   snapshot_ = snapshot;

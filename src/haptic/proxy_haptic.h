@@ -10,7 +10,8 @@
 
 namespace mrh::haptic::internal {
 
-/// The haptic half of proxy-6dof (SPEC §3.4–3.11). HapticTick (RT-safe): α = min(1, (j+1)/n)
+/// The haptic half of proxy-6dof (thesis §3.2.2–3.2.4, eq. 3.1–3.10; docs/theory.md).
+/// HapticTick (RT-safe): α = min(1, (j+1)/n)
 /// (docs/architecture.md: the last tick of a period renders the newest poses),
 /// IrInterpolator::Evaluate at the device pose, ProxyRenderer::Tick, and the per-row reactions
 /// summed into per-body impulses (render::AddReactionImpulses) for EndPeriod. TickOutput::w_W is

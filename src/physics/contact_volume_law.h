@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// Contact-volume penalty law of one convex pair (B2, Hasegawa & Sato 2004; SPEC §1.4).
+// Contact-volume penalty law of one convex pair (B2, Hasegawa & Sato 2004; thesis ref. [1],
+// §1.2.1, fig. 1.4).
 #pragma once
 
 #include <optional>

@@ -20,7 +20,8 @@ struct ContactVolumeStats {
   int pointer_contacts = 0; ///< of them, pairs with a pointer geom
 };
 
-/// B2 (Hasegawa & Sato 2004, SPEC §1.4), physics half; single-rate (physics_dt = haptic_dt).
+/// B2 (Hasegawa & Sato 2004, thesis ref. [1], §1.2.1), physics half; single-rate
+/// (physics_dt = haptic_dt).
 ///
 /// The world is loaded with world::LoadOptions::penalty_contacts (MuJoCo computes no contact).
 /// Each step: the pointer (mocap) is put at the device pose of the report; every pair of geoms

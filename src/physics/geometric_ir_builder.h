@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Physics side of 6-DOF rendering: neighbor search and the geometric IR (SPEC §3.2–3.3).
+// Physics side of 6-DOF rendering: neighbor search and the geometric IR (thesis §3.2.1).
 #pragma once
 
 #include <cstdint>
@@ -39,7 +39,7 @@ struct GeometricIrStats {
   double total_s = 0.0;
 };
 
-/// Builds the geometric IR of a pointer made of convex geoms (SPEC §3.2–3.3): every geom of the
+/// Builds the geometric IR of a pointer made of convex geoms (thesis §3.2.1): every geom of the
 /// pointer body is a convex piece, and every piece/object-geom pair is its own IR pair.
 ///
 /// Broad phase: world AABBs of all collidable geoms of the other bodies and of the pointer

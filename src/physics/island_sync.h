@@ -48,7 +48,7 @@ class IslandSync {
   /// The global step's own end state of an owned body is a transient of MuJoCo's soft contacts
   /// at a 20 ms step started from the local hard-contact state (a resting box sinks by up to
   /// 4 mm and pitches by up to 0.08 rad, 3–5 rad/s of spin for one step); exported from there,
-  /// the rows of a level local box's raised edge fell outside the margin.
+  /// the rows of a level local box's raised edge fall outside the margin.
   void HoldOwned(double coast_s);
 
   /// The island of `seeds` (world body ids; `motions` their snapshot indices) exported into

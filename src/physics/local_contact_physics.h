@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// local-dynamics with the contact local model (issue 13, rendering.local_model = "contact"):
+// local-dynamics with the contact local model (rendering.local_model = "contact"):
 // the physics half.
 #pragma once
 
@@ -20,7 +20,8 @@ using LocalContactCounters = IslandCounters;
 /// Method `local-dynamics`, local model "contact" (docs/architecture.md, "The contact local
 /// model"), physics half: (0) overwrite every island body of the period just rendered with its
 /// local end state (eq. 4.16–4.17, all island bodies, so the group needs no separate
-/// synchronization); (1) the global step without the user's force (SPEC I10); (2) neighbor
+/// synchronization); (1) the global step without the user's force (it enters only through the
+/// overwrite); (2) neighbor
 /// search and plane IR; (3) export of the island — the dynamic neighbors plus every free body
 /// they touch, transitively — with every contact of an island body, found at the step's end
 /// state with a 5 mm margin (world/contact_export.h). A body the local simulation owns ends the

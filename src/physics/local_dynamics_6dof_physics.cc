@@ -58,13 +58,14 @@ void LocalDynamics6dofPhysics::PhysicsStep(const ir::HapticReport& report,
   world_->Step();
   // Every owned body ends the step at its local end state coasted over the step: the local
   // simulation, not MuJoCo, moves it (IslandSync::HoldOwned). From MuJoCo's own end state a box
-  // the local solver rests exactly on the floor, above MuJoCo's soft resting depth, dropped or
-  // rolled (1.6 mm, ±2.9 rad/s per 20 ms step on t3_6_push), and the IR, the exported contacts
+  // the local solver rests exactly on the floor, above MuJoCo's soft resting depth, drops or
+  // rolls (1.6 mm, ±2.9 rad/s per 20 ms step on t3_6_push), and the IR, the exported contacts
   // and the recorded state would all come from that transient.
   sync_.HoldOwned(physics_dt_);
   phases_.world_step_ms = MsSince(t0);
   t0 = std::chrono::steady_clock::now();
-  // This snapshot is rendered in the period after the next one (SPEC §4.9: step k reads period
+  // This snapshot is rendered in the period after the next one (the timing rule of thesis
+  // §4.1.3 and docs/architecture.md: step k reads period
   // k−1's report, period k+1 renders step k's snapshot), so the pointer will be 1–2 Δt^G past
   // the report's pose. The IR is built for it at the end of that period: its contact points then
   // cover the region the pointer will penetrate (built at the report's pose, a pointer that is

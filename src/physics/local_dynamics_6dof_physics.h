@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Method `local-dynamics-6dof` (issue 14 item 2): the physics half.
+// Method `local-dynamics-6dof`: the physics half.
 #pragma once
 
 #include <cstdint>
@@ -20,7 +20,8 @@ using LocalDynamics6dofCounters = IslandCounters;
 /// Method `local-dynamics-6dof`, physics half. PhysicsStep: (0) every island body of the period
 /// just rendered is overwritten with its local end state (eq. 4.16–4.17; a never-pushed island
 /// is left to MuJoCo, as in the contact local model), and the period's reaction impulses act as
-/// J/Δt^G over the global step; (1) the global step without the user's force (SPEC I10);
+/// J/Δt^G over the global step; (1) the global step without the user's force (it enters only
+/// through the overwrite);
 /// (2) proxy-6dof's geometric IR (GeometricIrBuilder) for the report's pointer pose; (3) the
 /// island of every dynamic body that has a geometric pair — those bodies plus every free body
 /// they touch, transitively — with its contact rows (world::ContactExporter), in

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// Physics half of local-dynamics: synchronization, global step, IR and perturbations (SPEC §4.9).
+// Physics half of local-dynamics: synchronization, global step, IR and perturbations (thesis
+// §4.1.3, fig. 4.5).
 #include "local_dynamics_physics.h"
 
 #include <algorithm>
@@ -13,7 +14,8 @@ namespace mrh::physics::internal {
 namespace {
 
 // A user force below this (N) is no usable test force: the perturbed velocities would be
-// dominated by solver tolerance. The nominal force along −n is used instead (SPEC I8).
+// dominated by solver tolerance. The nominal force along −n is used instead (the thesis leaves
+// the zero-force case open).
 constexpr double kMinUserForce = 1e-3;
 
 Vec6 ToVec6(const Twist& t) {
@@ -64,8 +66,9 @@ void LocalDynamicsPhysics::PhysicsStart(const ir::HapticReport& initial, ir::Phy
   out->physics_dt = physics_dt_;
 }
 
-// SPEC §4.9, inside physics step k: (0) overwrite, (1) global step recording f_n, (2) neighbor
-// search and IR, (3) perturbations, (4) fill the snapshot.
+// Inside physics step k (thesis §4.1.3, fig. 4.5, with the overwrite of eq. 4.16–4.17 done at
+// the step's start): (0) overwrite, (1) global step recording f_n, (2) neighbor search and IR,
+// (3) perturbations, (4) fill the snapshot.
 void LocalDynamicsPhysics::PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot* out) {
   LocalDynamicsTiming& last = counters_.last;
   auto t0 = std::chrono::steady_clock::now();
@@ -97,8 +100,9 @@ const LocalDynamicsPhysics::SentBody* LocalDynamicsPhysics::FindSent(
   return nullptr;
 }
 
-// (1) The global step, without the user's force (SPEC I10), recording each dynamic neighbor's
-// velocity correction for eq. 4.18 (CorrectionModel).
+// (1) The global step, without the user's force (it reaches the neighbors only through the
+// overwrite of eq. 4.16–4.17; applying it here too would count it twice), recording each dynamic
+// neighbor's velocity correction for eq. 4.18 (CorrectionModel).
 void LocalDynamicsPhysics::GlobalStep(const ir::HapticReport& report) {
   const bool residual = correction_ == CorrectionModel::kVelocityResidual;
   if (residual) {
@@ -122,8 +126,8 @@ void LocalDynamicsPhysics::GlobalStep(const ir::HapticReport& report) {
 }
 
 // Every dynamic neighbor with its nearest contact's plane point and the first test force: the
-// reaction the user applied at the end of the last period (SPEC §4.9), or the nominal force
-// into the object (SPEC I8).
+// reaction the user applied at the end of the last period (thesis §4.2.2), or the nominal force
+// into the object when there is none.
 void LocalDynamicsPhysics::FindTargets(const ir::HapticReport* report,
                                       const ir::PhysicsSnapshot& out) {
   targets_.clear();
@@ -156,7 +160,8 @@ void LocalDynamicsPhysics::FindTargets(const ir::HapticReport* report,
   }
 }
 
-// (3) Perturbation runs: one shared zero-force run, then three per target (SPEC I9).
+// (3) Perturbation runs: one shared zero-force run (it gives every target's b), then three per
+// target (eq. 4.3–4.10).
 void LocalDynamicsPhysics::MeasureTargets(ir::PhysicsSnapshot* out) {
   const auto t0 = std::chrono::steady_clock::now();
   measured_.clear();

@@ -21,16 +21,16 @@ using physics::LocalDynamicsTiming;
 
 using settings::RenderingSettings;
 
-/// Method `local-dynamics` (SPEC §4): the physics half overwrites the neighbors with the local
+/// Method `local-dynamics` (thesis ch. 4): the physics half overwrites the neighbors with the local
 /// states of the previous period (eq. 4.16–4.17) and moves the rest of each neighbor's contact
 /// group along with it (below), steps the world recording the velocity
 /// correction f_n (eq. 4.18, see CorrectionModel), builds the plane IR and
 /// measures every dynamic neighbor's A and b by perturbation simulations (eq. 4.3–4.10, a
-/// shared zero-force run, SPEC I9). The haptic half simulates each dynamic neighbor locally
+/// shared zero-force run). The haptic half simulates each dynamic neighbor locally
 /// (eq. 4.13–4.15) and renders corrected eq. 4.11 against planes that move with it, feeding the
 /// reaction (eq. 4.12) to the local simulation in the same tick.
 ///
-/// [EXTENSION of SPEC §4.8.1] Group synchronization. A, measured with the whole world, makes the
+/// [EXTENSION of thesis §4.4.1] Group synchronization. A, measured with the whole world, makes the
 /// local body move as its contact group would (a pushed row of k cubes feels like k·m), but
 /// eq. 4.16–4.17 write only the neighbor back: the rest of the group never receives the user's
 /// push, lags, and the global step then brakes the neighbor (or, with soft contacts, kicks the
@@ -38,7 +38,8 @@ using settings::RenderingSettings;
 /// rotation vector) is mapped onto every other group body j that is not itself locally simulated:
 /// Δ_j = A_jB A_B⁺ Δ, with A_jB the cross accelerance from the same perturbation runs. In the
 /// linear model Δ = A_B (∫f, ∬f) exactly, so this gives j the state the user's force would have
-/// given it. Neighbors in one group still do not couple to each other (SPEC I9).
+/// given it. Neighbors in one group still do not couple to each other (each neighbor's A maps
+/// only the force on itself).
 ///
 /// The world is overwritten with the state the next period starts from: the local end state
 /// plus the eq. 4.18 correction sent for that period's first tick. (Writing the bare end state

@@ -52,8 +52,8 @@ void LocalDynamicsPhysics::SyncGroup(const SentBody& sent, const world::BodyStat
   const Eigen::Matrix<double, 3, 2> phi = sent.A.completeOrthogonalDecomposition().solve(delta);
   for (std::size_t i = sent.first_member; i < sent.first_member + sent.members; ++i) {
     const world::GroupResponse& member = group_before_[i];
-    // A body simulated locally itself is synchronized from its own state (no cross-coupling
-    // between neighbors, SPEC I9).
+    // A body simulated locally itself is synchronized from its own state (each neighbor's A maps
+    // only the force on itself; neighbors are not cross-coupled).
     if (FindSent(sent_before_, member.body) != nullptr) continue;
     const Eigen::Matrix<double, 6, 2> delta_j = member.A * phi;
     const world::BodyState state = world_->body_state(member.body);

@@ -19,7 +19,8 @@ geometry::Shape PointerSphere(double radius) {
   return s;
 }
 
-// Unit normal from the object toward the pointer (SPEC §2). While the sphere's centre is outside
+// Unit normal from the object toward the pointer (thesis §4.2.1: Adachi's plane + point IR).
+// While the sphere's centre is outside
 // the object (depth < radius) the object's witness is its closest point to the centre, so
 // centre − witness is well conditioned; deeper, the EPA witness pair gives the separating
 // direction.

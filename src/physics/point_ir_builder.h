@@ -18,9 +18,9 @@ namespace mrh::physics::internal {
 
 using settings::RenderingSettings;
 
-/// Builds PhysicsSnapshot bodies and point contacts for a sphere pointer (SPEC §4.4): a bounding
-/// sphere broad phase inflated by `neighbor_margin`, then an FCL signed-distance narrow phase;
-/// geoms within `neighbor_distance` get a plane through the object's witness point. Owns the
+/// Builds PhysicsSnapshot bodies and point contacts for a sphere pointer (thesis §4.2.1): a
+/// bounding sphere broad phase inflated by `neighbor_margin`, then an FCL signed-distance narrow
+/// phase; geoms within `neighbor_distance` get a plane through the object's witness point. Owns the
 /// prepared collision shapes. Physics thread only; not RT-safe.
 class PointIrBuilder {
  public:

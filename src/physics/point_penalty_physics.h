@@ -10,7 +10,8 @@
 
 namespace mrh::physics::internal {
 
-/// The physics half of the conventional multi-rate method (SPEC B4) and, with n = 1, of the
+/// The physics half of the conventional multi-rate method (B4: Hasegawa et al. 1999, thesis
+/// ref. [35], §4.5) and, with n = 1, of the
 /// single-rate baseline (B1): applies the previous period's reaction impulse J as the constant
 /// force J/Δt^G over the step, steps the world, then builds the plane IR of every neighbor.
 /// Its haptic half is haptic::internal::PointPenaltyHaptic.

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// proxy-6dof's reaction evaluated on the physics side at the objects' current poses (issue 14).
+// proxy-6dof's reaction evaluated on the physics side at the objects' current poses.
 #pragma once
 
 #include <memory>
@@ -24,12 +24,12 @@ class World;
 
 namespace mrh::physics::internal {
 
-/// rendering.proxy_reaction = "local" (issue 14 item 1): how the physics step applies
-/// proxy-6dof's reaction so that light objects stay stable at physics_dt = 20 ms.
+/// rendering.proxy_reaction = "local": how the physics step applies proxy-6dof's reaction so
+/// that light objects stay stable at physics_dt = 20 ms.
 ///
 /// The plain method applies the period's impulse J/Δt^G, measured by the haptic side against the
-/// object pose of two steps ago; for the issue-14 box that loop has gain k_r Δt²/I ≈ 10 and
-/// flings it. Instead, each physics step:
+/// object pose of two steps ago; for a light object that loop's gain k_r Δt²/I is well above 1
+/// (about 10 for t3.6's box), and it flings the object. Instead, each physics step:
 /// 1. builds its own geometric IR of the objects as they are now, for the pointer where it will
 ///    be at the step's end (the report's pose moved on with the report's velocity), so the
 ///    contact points cover the region it will penetrate;
@@ -44,8 +44,8 @@ namespace mrh::physics::internal {
 ///    applied reaction did not cause);
 /// 3. AfterStep (after World::Step) sets every island body to the local run's end state, the
 ///    step's contact forces and friction having been resolved together with the reaction at h
-///    (a friction force estimated one 20 ms step late sticks and slips in turn: the box moved in
-///    0.27 m/s jerks, force sd 29x the 1 ms reference's). A body outside an island gets the
+///    (a friction force estimated one 20 ms step late would stick and slip in turn, moving the
+///    body in jerks). A body outside an island gets the
 ///    constant wrench J/Δt^G whose impulse J gives the world's step the local run's
 ///    displacement (MuJoCo's semi-implicit step moves a body by its end-of-step velocity, so J
 ///    sets that velocity to the local run's mean one, less the rest of the world's share).

@@ -119,8 +119,8 @@ void ProxyPhysics::PhysicsStart(const ir::HapticReport& initial, ir::PhysicsSnap
 }
 
 void ProxyPhysics::PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot* out) {
-  // SPEC §3.6 / I5: what the user pushed during the last period acts as a constant wrench over
-  // this whole step, so the objects answer one physics step late (the chapter-3 design).
+  // What the user pushed during the last period acts as a constant wrench over this whole step,
+  // so the objects answer one physics step late (the chapter-3 design, thesis §3.5).
   if (local_) {
     local_->Apply(*world_, report);
   } else {
@@ -135,9 +135,10 @@ void ProxyPhysics::PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapsh
   t0 = std::chrono::steady_clock::now();
   // With the local reaction the objects move with the pointer's push, so at the report's pose
   // a pushing pointer is often just arriving at them and gets only its closest point, about
-  // which the haptic proxy then spins (a 9.7 N·m spike and a 1.4 N·m twist held by friction on
-  // the t3.6 face push). As local-dynamics-6dof does, the IR is built for where the pointer will
-  // be when the snapshot is rendered (SPEC §4.9: 1–2 Δt^G past the report).
+  // which the haptic proxy then spins (a torque spike, then a twist that friction holds). As
+  // local-dynamics-6dof does, the IR is built for where the pointer will be when the snapshot is
+  // rendered (1–2 Δt^G past the report, by the timing rule of thesis §4.1.3 and
+  // docs/architecture.md).
   Build(*builder_, local_ ? PointerAhead(report, 2.0 * physics_dt_) : report.X_WP, out);
   phases_.ir_ms = MsSince(t0);
 }

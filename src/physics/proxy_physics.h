@@ -15,16 +15,16 @@ namespace mrh::physics::internal {
 
 using settings::RenderingSettings;
 
-/// The physics half of the chapter-3 method (SPEC §3.1–3.11), registered as "proxy-6dof".
+/// The physics half of the chapter-3 method (thesis §3.1–3.2), registered as "proxy-6dof".
 ///
 /// PhysicsStep k: applies the reaction — with rendering.proxy_reaction "impulse", the impulses J
 /// of haptic period k−1 as the constant wrench J/Δt^G about each body's COM over this step
-/// (SPEC §3.6, I5: the reaction arrives one physics step late, as in the thesis); with "local"
-/// (default, issue 14), the reaction of a physics-side proxy run over the step against the
+/// (the reaction arrives one physics step late, as in thesis §3.5); with "local"
+/// (default), the reaction of a physics-side proxy run over the step against the
 /// objects' predicted poses (ProxyLocalReaction) — then remembers the poses before the step,
-/// steps the world, and builds the geometric IR for the pointer pose of the report (GeometricIrBuilder).
-/// PhysicsStart builds from the initial state without stepping. Its haptic half is
-/// haptic::internal::ProxyHaptic.
+/// steps the world, and builds the geometric IR for the pointer pose of the report
+/// (GeometricIrBuilder). PhysicsStart builds from the initial state without stepping. Its haptic
+/// half is haptic::internal::ProxyHaptic.
 class ProxyPhysics final : public MethodPhysics {
  public:
   /// @throws mrh::SceneError from GeometricIrBuilder (a pointer without convex geoms). Not

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// Haptic-side interpolation of the geometric IR between physics steps (SPEC §3.9).
+// Haptic-side interpolation of the geometric IR between physics steps (thesis §3.2.2, which
+// interpolates the planes and contact points but gives no formulas).
 #include "mrh/render/ir_interpolator.h"
 
 #include <algorithm>
@@ -45,7 +46,7 @@ Vec3 BlendNormal(const Vec3& previous, const Vec3& next, double alpha) noexcept 
 
 // Each persisting pair starts its blend from the normal it was last rendered with, so the
 // normal is continuous across the snapshot switch; a new pair has no history and starts at its
-// new normal (SPEC §3.9, last bullet).
+// new normal.
 void IrInterpolator::Adopt(const ir::PhysicsSnapshot& snapshot) noexcept {
   for (std::size_t i = 0; i < snapshot.pairs.size(); ++i) {
     const ir::GeometricPair& pair = snapshot.pairs[i];

@@ -20,7 +20,7 @@ Quat IntegrateWorldRotation(const Quat& q, const Vec3& w_W, double dt) noexcept 
   // exp(ω dt/2) = (cos h, sin(h) ω/|ω|) = (cos h, sinc(h) · ω dt/2), h = |ω| dt/2.
   const Vec3 axis_part = (0.5 * dt * sinc) * w_W;
   const Quat dq(std::cos(half_angle), axis_part.x(), axis_part.y(), axis_part.z());
-  // World-frame ω multiplies from the left (SPEC §4.7, I12).
+  // World-frame ω multiplies from the left (eq. 4.15's Q assumes a body-frame ω).
   return (dq * q).normalized();
 }
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The contact local model of local-dynamics (issue 13): semi-implicit Euler + projected
+// The contact local model of local-dynamics: semi-implicit Euler + projected
 // Gauss–Seidel on the island's contact rows, at the haptic rate.
 #include "mrh/render/local_contact_solver.h"
 
@@ -26,8 +26,8 @@ void Tangents(const Vec3& n, Vec3* t1, Vec3* t2) {
 // set |f_t1| + |f_t2| <= mu f_n about its contact frame (t1 = the exported tangent t rotated
 // like n and made orthogonal to n) is the square |f_e1|, |f_e2| <= mu f_n / sqrt 2 about the
 // diagonals e1,2 = (t1 ± t2) / sqrt 2: two independently clamped rows, which Gauss–Seidel solves
-// exactly (a Euclidean projection on the pyramid's edges, coupling both, lost a quarter of a
-// pushed box's friction and let it turn away).
+// exactly (a Euclidean projection on the pyramid's edges, coupling both, loses a quarter of a
+// pushed box's friction and lets it turn away).
 void FrictionDirections(const Vec3& n, const Vec3& t, bool pyramidal, Vec3* d1, Vec3* d2) {
   const Vec3 u = t - t.dot(n) * n;
   Vec3 t1, t2;
@@ -48,7 +48,8 @@ void FrictionDirections(const Vec3& n, const Vec3& t, bool pyramidal, Vec3* d1, 
 
 // (l1, l2) scaled onto the disc |(l1, l2)| <= limit (the elliptic cone).
 void ProjectOnDisc(double limit, double* l1, double* l2) {
-  // Impulses are far from overflow: the plain root (glibc's hypot was 6 % of a 1000-contact tick).
+  // Impulses are far from overflow: the plain root (glibc's hypot costs 6 % of a 1000-contact
+  // tick).
   const double mag2 = *l1 * *l1 + *l2 * *l2;
   if (mag2 <= limit * limit) return;
   const double s = mag2 > 0.0 ? limit / std::sqrt(mag2) : 0.0;
@@ -370,7 +371,7 @@ void LocalContactSolver::PrepareRows(double dt) noexcept {
 
 namespace {
 
-// MuJoCo 2.2.2's impedance d(|r|) of solimp (dmin, dmax, width, midpoint, power).
+// MuJoCo's impedance d(|r|) of solimp (dmin, dmax, width, midpoint, power).
 double Impedance(const double* solimp, double depth) {
   const double dmin = solimp[0], dmax = solimp[1], width = solimp[2];
   const double mid = solimp[3], power = solimp[4];

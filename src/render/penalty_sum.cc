@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// Baseline B5: per-contact penalty springs summed over the geometric IR (SPEC §1.4).
+// Baseline B5: per-contact penalty springs summed over the geometric IR (Berkelman & Hollis
+// 2000, thesis ref. [43], §3.1.1).
 #include "mrh/render/penalty_sum.h"
 
 #include <algorithm>

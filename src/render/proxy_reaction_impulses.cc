@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// The proxy's per-pair reactions summed per body into the period's impulses (SPEC §3.6).
+// The proxy's per-pair reactions summed per body into the period's impulses (applied by the
+// next physics step, thesis §3.5).
 #include <array>
 
 #include "mrh/render/proxy_renderer.h"

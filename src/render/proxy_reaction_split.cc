@@ -14,13 +14,14 @@ constexpr int kMaxNewtonSteps = 20;
 
 }  // namespace
 
-// Several touched pairs (SPEC §3.6 with I5, made physical). Where the pointer presses several
+// Several touched pairs (the reaction on the objects, which the thesis only says is computed on
+// the haptic side, §3.5, made physical). Where the pointer presses several
 // objects, the solver's multipliers f_k split the load in one of many ways (1000 coplanar
 // points over 8 boxes: the active set loads two corners), and the proxy's torque k_r Δθ is not
 // the moment of its rows' forces (those are offsets in the R_w metric). Either way, giving each
 // object its rows' share makes forces act far from where that object is touched: a light box
 // far from the pointer origin then takes the couple of a lever glued to it, tilts into the
-// pointer, presses harder and diverges (issue 14, the 1000-contact benchmark).
+// pointer, presses harder and diverges (as in the 1000-contact benchmark).
 //
 // So the rendered wrench (F, τ about the pointer origin) is matched by forces λ_k a_k >= 0 at
 // the penetrating points themselves, spread as a compliant contact would spread them:

@@ -88,7 +88,7 @@ void ProxyRenderer::Tick(const TickIr& ir, const Pose& X_WP, double dt, ProxyOut
   Remember(ir, *out);
 }
 
-// SPEC §3.8 step 5: the proxy offset (Δr, Δθ) and the multipliers f of this tick's rows.
+// Thesis §3.2.4 step 5: the proxy offset (Δr, Δθ) and the multipliers f of this tick's rows.
 void ProxyRenderer::Solve(ProxyOutput* out) noexcept {
   const std::span<const ProxyRow> rows(rows_.data(), row_count_);
   const std::span<double> f(f_.data(), row_count_);
@@ -128,8 +128,9 @@ bool ProxyRenderer::InputIsFinite(const TickIr& ir, const Pose& X_WP, double dt)
   return true;
 }
 
-// SPEC §3.7 with I6: each pair's "previous proxy" is last tick's proxy carried along by its
-// object's motion since then, or the current pointer on the contact's first tick (sticking).
+// Thesis §3.2.3 (eq. 3.9) on moving objects: each pair's "previous proxy" is last tick's proxy
+// carried along by its object's motion since then, or the current pointer on the contact's first
+// tick (sticking; the thesis is silent on both, and Springhead does the same).
 void ProxyRenderer::CarryPreviousProxy(const TickIr& ir, const Pose& X_WP) noexcept {
   for (std::size_t i = 0; i < ir.pairs.size(); ++i) {
     const TickPair& pair = ir.pairs[i];
@@ -151,12 +152,13 @@ void ProxyRenderer::CarryPreviousProxy(const TickIr& ir, const Pose& X_WP) noexc
   }
 }
 
-// SPEC §3.6 / I5, made consistent with what the user feels: pair i's rows contribute
+// The reaction on the objects (thesis §3.5 only says the haptic side computes it), made
+// consistent with what the user feels: pair i's rows contribute
 // Δr_i = Σ f_k a_k and Δθ_i = Σ f_k R_w⁻¹(r_k × a_k) to the proxy offset (Σ_i Δr_i = Δr,
 // Σ_i Δθ_i = Δθ), so it pushes the pointer with the spring–damper share
 // F_i = k_t Δr_i + d_t (Δr_i − Δr_i,prev)/dt and τ_i = k_r Δθ_i + d_r (Δθ_i − Δθ_i,prev)/dt
 // about the pointer origin; DistributeReactions hands −(F_i, τ_i) to the objects. Summed over
-// the pairs this is exactly minus the rendered wrench (action = reaction). SPEC's per-row
+// the pairs this is exactly minus the rendered wrench (action = reaction). A per-row
 // moment Σ (p_k − c) × k_t f_k a_k would instead give the objects k_t R_w Δθ, which for the
 // thesis weights (R_w = 3.33–8420 m², k_t ≈ k_r) is 3–8000× the torque the user feels.
 void ProxyRenderer::ComputeReactions(const TickIr& ir, const Pose& X_WP, double dt,

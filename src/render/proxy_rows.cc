@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
-// The proxy's constraint rows for one tick (SPEC §3.8 steps 2–4): a normal row (eq. 3.1) per
+// The proxy's constraint rows for one tick (thesis §3.2.4, steps 2–4): a normal row (eq. 3.1) per
 // penetrating point, then its friction row (eq. 3.9–3.10), each warm-started from last tick's f
-// when the same row existed (SPEC §3.5 / I7). This is the per-contact cost of a tick, so it is
+// when the same row existed (the thesis iterates eq. 3.6 "until f converges", §3.2.2; a warm
+// start gets there in fewer sweeps). This is the per-contact cost of a tick, so it is
 // one loop over plain arrays.
 #include <cmath>
 #include <cstdint>
@@ -12,7 +13,7 @@ namespace mrh::render {
 namespace {
 
 // A tangential offset |s| below this is rounding of metre-scale poses (~1e-16 m), not motion:
-// no friction row (SPEC §3.7, "|s| about 0").
+// no friction row (eq. 3.10 needs a slip direction).
 constexpr double kMinSlip = 1e-12;
 
 // Warm-start identity of a row: pair, point index in the tick IR and row kind. Within one

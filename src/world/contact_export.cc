@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Export of the contact local model (issue 13): island growth through MuJoCo's contacts and the
+// Export of the contact local model: island growth through MuJoCo's contacts and the
 // contact rows in body-fixed terms.
 #include "mrh/world/contact_export.h"
 
@@ -44,8 +44,8 @@ bool ContactExporter::IsFreeBody(int body) const {
 // The margin of geom g: margin_, or the distance any of its points may travel over the rows'
 // horizon (two physics steps: rows found at the start state of step k are used in the haptic
 // period after it) if that is larger. A box tipping over at 10 rad/s moves its landing face's
-// corners 3 cm in 40 ms: with a fixed 5 mm margin that face had no rows when it landed, fell
-// 1 cm into the floor and was thrown out. Speed bound: |v_origin| + |ω| (|offset| + rbound).
+// corners 3 cm in 40 ms: with a fixed 5 mm margin that face would have no rows when it lands,
+// fall 1 cm into the floor and be thrown out. Speed bound: |v_origin| + |ω| (|offset| + rbound).
 double ContactExporter::GeomMargin(int g) const {
   const World::Impl& w = *world_->impl_;
   const mjModel& m = *w.model;

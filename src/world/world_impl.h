@@ -35,7 +35,7 @@ using DataPtr = std::unique_ptr<mjData, DataDeleter>;
 
 /// True if neither `body` nor any of its ancestors has a joint: the world, bodies welded to it
 /// and mocap bodies (whose poses the user sets) with what is welded to them. (MuJoCo 3's
-/// body_weldid no longer maps mocap bodies to the world.)
+/// body_weldid does not map mocap bodies to the world.)
 inline bool HasNoDofs(const mjModel& m, int body) {
   for (int b = body; b > 0; b = m.body_parentid[b]) {
     if (m.body_jntnum[b] > 0) return false;

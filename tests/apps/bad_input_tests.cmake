@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: Apache-2.0
-# Issue 18: every reproducer of bad input exits 2 with ONE line naming the file and the key (or
+# Every reproducer of bad input exits 2 with ONE line naming the file and the key (or
 # runs correctly). Included by tests/apps/CMakeLists.txt (mrh_bin, fixtures, mrh_cli_test).
 set(one_line ${CMAKE_CURRENT_SOURCE_DIR}/expect_one_line.sh)
 set(bad ${fixtures}/bad)
@@ -103,7 +103,7 @@ mrh_cli_test(ProxyRunsWithoutPointerRadius 0 stdout "^ok: " validate ${bad}/box_
 mrh_cli_test(ConcaveMeshWarns 0 stderr "^mrh: warning: .*concave_mesh\\.xml: mesh 'L' .*convex hull"
              run ${bad}/concave_mesh.json --quiet --out ${CMAKE_CURRENT_BINARY_DIR}/concave_out)
 
-# Divergence is a fault (issue 33): exit 1 with one line naming the scene, the body and the time.
+# Divergence is a fault: exit 1 with one line naming the scene, the body and the time.
 function(diverged_test name regex)
   add_test(NAME cli.diverged.${name} COMMAND ${one_line} 1 ${regex} -- ${mrh_bin} ${ARGN}
            WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
@@ -138,7 +138,7 @@ foreach(method virtual-coupling local-dynamics proxy-6dof)
                --out ${CMAKE_BINARY_DIR}/cli_mesh_asset_${method})
 endforeach()
 
-# Errors of the engine's own checks name the file to edit (issue 39 item 8): the session for a
+# Errors of the engine's own checks name the file to edit: the session for a
 # settings conflict, the scene for a massless 6-DOF pointer.
 bad_input_test(WatchdogShorterThanTwoStepsNamesTheSession
                "${err}tests/apps/fixtures/tiny\\.json: safety\\.watchdog_timeout = 0\\.01 s must exceed"
@@ -147,11 +147,11 @@ bad_input_test(MasslessPointerNamesTheScene
                "${err}.*massless_pointer_scene\\.xml: pointer body 'pointer' has mass 0 kg"
                run ${fixtures}/massless_pointer.json)
 
-# Issue 39 item 1: a real device in lockstep mode never gets an answer; the session is refused.
+# A real device in lockstep mode never gets an answer; the session is refused.
 bad_input_test(UdpDeviceInLockstepNamesTheModeToUse
                "${err}tests/apps/fixtures/tiny\\.json: mode: \"lockstep\" with the real device \"udp\".*expected \"realtime\".*--mode realtime"
                run ${fixtures}/tiny.json --mode lockstep --set "device={\"type\": \"udp\"}")
 
-# The compound (non-convex) example scene runs as shipped (issue 39 item 10).
+# The compound (non-convex) example scene runs as shipped.
 mrh_cli_test(CompoundMugSessionRuns 0 stdout "^summary: "
              run scenes/compound_mug.json --out ${CMAKE_BINARY_DIR}/cli_compound_mug)

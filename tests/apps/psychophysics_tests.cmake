@@ -41,7 +41,7 @@ if(TARGET mrh_viewer)
                        PROPERTIES LABELS viewer TIMEOUT 120 SKIP_RETURN_CODE 77
                                   ENVIRONMENT "ASAN_OPTIONS=detect_leaks=0")
 endif()
-# Data from another tool with only the five columns the fit needs (issue 39 item 7).
+# Data from another tool with only the five columns the fit needs.
 mrh_cli_test(PsychophysicsAnalyzeAcceptsFiveEssentialColumns 0 stdout "P1"
              psychophysics analyze ${fixtures}/five_column_trials.csv
              --out ${CMAKE_BINARY_DIR}/psychophysics_five_columns)

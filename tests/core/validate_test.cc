@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The shared range checks: numbers printed faithfully, one message shape (issue 18).
+// The shared range checks: numbers printed faithfully, one message shape.
 #include "mrh/core/validate.h"
 
 #include <gmock/gmock.h>

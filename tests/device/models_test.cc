@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The device model table: every model the issue names is there, and its limits are sane.
+// The device model table: every supported model is there, and its limits are sane.
 #include "mrh/device/models.h"
 
 #include <gtest/gtest.h>

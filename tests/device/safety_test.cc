@@ -58,7 +58,7 @@ TEST(SafetyFilterTest, ClampKeepsForceDirectionAndLimitsMagnitude) {
   EXPECT_NEAR(out.f.z(), 0.0, kForceTol);
 }
 
-// Issue 18: scaling by limit / |f| can round to 20.000000000000007 N; the clamp re-checks.
+// Scaling by limit / |f| can round to 20.000000000000007 N; the clamp re-checks.
 TEST(SafetyFilterTest, ClampNeverExceedsTheLimitByRounding) {
   Specifications specs;
   specs.max_force = 20.0;

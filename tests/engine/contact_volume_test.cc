@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
-// Contact-volume penalty (B2, SPEC §1.4) in lockstep under gravity, against closed forms: a face
-// pressed to depth δ gives k δ whatever its area; a wedge gives the force and centre of pressure
-// of its linear pressure; a stack rests at its weights over k; friction holds below μN and
-// slides above it at g (sin α − μ cos α).
+// Contact-volume penalty (B2, Hasegawa & Sato 2004) in lockstep under gravity, against closed
+// forms: a face pressed to depth δ gives k δ whatever its area; a wedge gives the force and centre
+// of pressure of its linear pressure; a stack rests at its weights over k; friction holds below μN
+// and slides above it at g (sin α − μ cos α).
 #include <gtest/gtest.h>
 
 #include <cmath>

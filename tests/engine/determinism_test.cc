@@ -56,25 +56,23 @@ TEST(DeterminismTest, LockstepRerunIsBitIdentical) {
 TEST(DeterminismTest, LockstepTraceMatchesGoldenHash) {
   // Golden values of this build configuration family (g++ 12, -ffp-contract=off, x86-64 SSE2,
   // MuJoCo 3.14.0 from the pinned wheel). A change here means the simulation changed: review it,
-  // then update. MuJoCo 2.2.2 -> 3.14.0 left the T4.1 traces (one slide-jointed cube) bit for bit
-  // and changed the t3.6 box pushes (box-floor contacts: 8266108435880990875 and
-  // 14868773309384318601 before).
+  // then update. The T4.1 traces (one slide-jointed cube) have no box-floor contacts; the t3.6
+  // box pushes do, so a MuJoCo upgrade may move those alone.
   EXPECT_EQ(RunAndHash("impulse"), 11173333966864450744ull);
   EXPECT_EQ(RunAndHash("single-rate"), 11100527457005068796ull);
-  // Issue 14: proxy-6dof's default reaction on the pushed T4.1 cube is "local" (it was
-  // 5953774388721870096 with the plain J/Δt, now rendering.proxy_reaction "impulse").
+  // proxy-6dof's default reaction on the pushed T4.1 cube is "local" (the plain J/Δt,
+  // rendering.proxy_reaction "impulse", gives local-dynamics-6dof's hash below).
   EXPECT_EQ(RunAndHash("proxy-6dof", "thesis"), 15725993211209883540ull);
   // The default torque model, "contact": the touched cube receives the proxy's contact forces.
   EXPECT_EQ(RunAndHash("proxy-6dof"), 3454479041474762608ull);
   EXPECT_EQ(RunAndHash("local-dynamics"), 15579156835783394508ull);
-  // Issue 14 item 2. T4.1's cube is slide-jointed, so it is not in the contact island, and the
+  // T4.1's cube is slide-jointed, so it is not in the contact island, and the
   // fixed device does not move, so this equals proxy-6dof's "impulse" trace; the island itself
   // is pinned by the t3.6 face push below.
   EXPECT_EQ(RunAndHash("local-dynamics-6dof"), 5953774388721870096ull);
-  // Changed when the local solver took the scene's friction cone (t3_6_push.xml: pyramidal),
-  // when the island pairs took the renderer's wrench (was: the force at the f_k centre of
-  // pressure), and when a face–face pair's normal became the object face's own (was: the
-  // minimal penetration direction, 15673619272957921004).
+  // Pins the local solver's use of the scene's friction cone (t3_6_push.xml: pyramidal), the
+  // renderer's wrench on island pairs (not the force at the f_k centre of pressure), and a
+  // face–face pair's normal being the object face's own (not the minimal penetration direction).
   EXPECT_EQ(PushHash("local-dynamics-6dof"), 6295776439145346778ull);
   // proxy-6dof's "local" reaction through the box's contact island, its contacts warm-started
   // across steps.

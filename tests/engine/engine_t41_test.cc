@@ -46,7 +46,7 @@ TEST_P(T41Test, CubeBouncesBack) {
 INSTANTIATE_TEST_SUITE_P(Methods, T41Test, ::testing::Values("single-rate", "impulse"));
 
 TEST(T41BaselineTest, SingleRateBounceIsNearlyElastic) {
-  // Undamped spring at 1 kHz: the bounce returns ~2mv (SPEC T4.1 sanity check), up to the
+  // Undamped spring at 1 kHz: the bounce returns ~2mv (T4.1's elastic limit), up to the
   // discretisation's small energy error.
   auto engine = T41Engine(T41Settings("single-rate"));
   const RunStats stats = engine->Run(nullptr);

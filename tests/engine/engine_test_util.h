@@ -11,8 +11,8 @@
 
 namespace mrh::engine::testing {
 
-/// The T4.1 world (SPEC §5): zero gravity, 60 kg cube with rotation locked, moving at 0.017 m/s
-/// toward a fixed 0.02 m sphere pointer, 5 mm gap.
+/// The T4.1 world (thesis §4.5.3): zero gravity, 60 kg cube with rotation locked, moving at 0.017
+/// m/s toward a fixed 0.02 m sphere pointer, 5 mm gap.
 inline constexpr double kCubeMass = 60.0;
 inline constexpr double kCubeSpeed = 0.017;
 

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// Tests of the 6-DOF neighbor search and geometric IR: the SPEC §3.3.3 cases, fallbacks,
+// Tests of the 6-DOF neighbor search and geometric IR: the thesis §3.2.1 cases (face, edge,
+// vertex), fallbacks,
 // capacities, errors, and the neighbor set against brute force on random scenes.
 #include "physics/geometric_ir_builder.h"
 
@@ -31,7 +32,7 @@ using ::testing::ThrowsMessage;
 // points and depths hold to 1e-9 m.
 constexpr double kHalf = 0.1;
 constexpr double kExact = 1e-9;
-constexpr double kDepth = 0.005;  // penetration of the §3.3.3 cases (m)
+constexpr double kDepth = 0.005;  // penetration of the face, edge and vertex cases (m)
 
 constexpr const char* kCubeOnFloor = R"(
 <mujoco>

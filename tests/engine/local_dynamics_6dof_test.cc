@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// local-dynamics-6dof (issue 14 item 2): the 6-DOF proxy against the locally simulated contact
+// local-dynamics-6dof: the 6-DOF proxy against the locally simulated contact
 // island, at physics_dt = 20 ms against proxy-6dof at 1 ms (the 6-DOF reference), lockstep, with
 // gravity, friction and resting contact.
 #include <gtest/gtest.h>
@@ -22,7 +22,7 @@ namespace {
 // scenes/t3_6_push.json: the pointer reaches the box at 1.25 s; by 2 s the push is steady.
 constexpr double kFrom = 2.0;
 constexpr double kDuration = 5.0;
-constexpr double kPoseAt = 4.0;  // the issue's "box positions within 2 cm after 4 s"
+constexpr double kPoseAt = 4.0;  // the bar "box positions within 2 cm after 4 s"
 
 settings::EngineSettings PushSettings(const char* method, double physics_dt, double duration) {
   settings::EngineSettings s;
@@ -114,7 +114,7 @@ Stats RunPush(const char* method, double physics_dt, double y) {
   return tap.Finish();
 }
 
-// The issue's "Done means" for t3.6's face push, local-dynamics-6dof at 20 ms against
+// The acceptance bars for t3.6's face push, local-dynamics-6dof at 20 ms against
 // proxy-6dof at 1 ms: mean |f| within 5 %, force sd at most 2× the reference's, box position
 // within 2 cm after 4 s, peak spin at most the reference's + 1 rad/s. No torque bar: the
 // reference's felt torque (eq. 3.8 under the thesis torque model) is not a property of the push.
@@ -128,9 +128,9 @@ TEST(LocalDynamics6dofTest, FacePushAt20MsMeetsTheForceSpreadPositionAndSpinBars
   EXPECT_LE(run.peak_w, ref.peak_w + 1.0);
 }
 
-// The off-centre push (3 cm to the side), which turns the box: the issue's force, position and
-// spin bars against proxy-6dof at 1 ms. With only the contact force at its f_k centre of
-// pressure applied to the local box (h14c) the box yawed 0.66 rad and ended 2.25 cm off at 4 s.
+// The off-centre push (3 cm to the side), which turns the box: the force, position and spin
+// bars against proxy-6dof at 1 ms. It fails if only the contact force at its f_k centre of
+// pressure is applied to the local box (the box then yaws away from the push).
 TEST(LocalDynamics6dofTest, OffCentrePushAt20MsMeetsTheForcePositionAndSpinBars) {
   const Stats ref = RunPush("proxy-6dof", 0.001, 0.03);
   const Stats run = RunPush("local-dynamics-6dof", 0.02, 0.03);

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// proxy-6dof on dynamic objects at physics_dt = 20 ms (issue 14 item 1), against the 1 ms
+// proxy-6dof on dynamic objects at physics_dt = 20 ms, against the 1 ms
 // single-rate reference, with gravity, friction and resting contact.
 #include <gtest/gtest.h>
 
@@ -18,7 +18,7 @@
 namespace mrh::engine::testing {
 namespace {
 
-// The issue's box: 10 cm, 0.5 kg, μ 0.5 on the floor (scenes/t3_6_push.xml).
+// The t3.6 box: 10 cm, 0.5 kg, μ 0.5 on the floor (scenes/t3_6_push.xml).
 constexpr double kBoxMass = 0.5;
 constexpr double kFloorMu = 0.5;
 constexpr double kGravity = 9.81;
@@ -119,9 +119,9 @@ world::World PushWorld() {
   return world::World::LoadFile(MRH_SOURCE_DIR "/scenes/t3_6_push.xml");
 }
 
-// Bars from issue 14 ("Done means"): proxy-6dof at 20 ms "no longer flings objects (peak
-// speed below 2× the reference's)"; the spin bar is the one the issue sets for its 6-DOF
-// target, peak spin at most the reference's + 1 rad/s. "Contact kept most of the time": at
+// Acceptance bars: proxy-6dof at 20 ms does not fling objects (peak speed below 2× the
+// reference's); the spin bar is local-dynamics-6dof's, peak spin at most the reference's
+// + 1 rad/s. "Contact kept most of the time": at
 // least 90 % of the ticks after the push has settled. The box slides at a steady mean speed,
 // so the reaction it receives must average the floor's kinetic friction μ m g (within 10 %).
 TEST(ProxyDynamicTest, BoxPushAt20MsStaysWithinReachOfThe1MsReference) {
@@ -146,7 +146,7 @@ TEST(ProxyDynamicTest, CentredFacePushSpinsNothingAgainstAnOffCentrePush) {
 }
 
 // The T3.3 kind of push: the box pointer pushes a row of three 10 cm, 0.5 kg cubes on a floor
-// (μ 0.5). Bounded: no cube faster than 2× the 1 ms reference's fastest (the issue's bar).
+// (μ 0.5). Bounded: no cube faster than 2× the 1 ms reference's fastest (the acceptance bar).
 world::World RowWorld() {
   return world::World::LoadString(R"(<mujoco><option timestep="0.02" gravity="0 0 -9.81"/>
     <default><geom condim="3" friction="0.5 0.005 0.0001"/></default><worldbody>
@@ -162,7 +162,7 @@ world::World RowWorld() {
     </body></worldbody></mujoco>)");
 }
 
-// The issue's bar for proxy-6dof at 20 ms ("no longer flings: below 2× the reference's") on
+// The acceptance bar for proxy-6dof at 20 ms (does not fling: below 2× the reference's) on
 // speed and spin; the cubes of the reference row themselves turn (~6.5 rad/s) as they collide.
 TEST(ProxyDynamicTest, RowOfThreeCubesPushedAt20MsStaysBounded) {
   const PushResult reference = RunPush(RowWorld(), 0.001, 0.0);

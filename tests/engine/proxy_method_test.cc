@@ -48,7 +48,7 @@ world::World FloorWorld() {
   return world::World::LoadString(Scene("0 0 -9.81", true, false, 1000));
 }
 
-// The T3.1 gains (SPEC §5 T3.1): k_t = k_r = 9000, d_t = d_r = 0, R_w = 3.33·1, μ = 0.
+// The T3.1 gains (thesis §3.3.2): k_t = k_r = 9000, d_t = d_r = 0, R_w = 3.33·1, μ = 0.
 settings::EngineSettings T31Settings(double duration) {
   settings::EngineSettings s;
   s.method = "proxy-6dof";
@@ -114,7 +114,7 @@ TEST(ProxyMethodTest, PointerHeldJustAboveFloorFeelsNothing) {
 
 // PGS needs ~900 sweeps from a cold start on a cube face at R_w = 3.33 m² (the rotation modes of
 // C are 333 times weaker than the translation mode), so tests at the T3.1 gains use enough
-// sweeps to converge, as the thesis does ("iterations set so that f converges", SPEC §3.5).
+// sweeps to converge, as the thesis does ("iterations set so that f converges", §3.2.2).
 constexpr int kConvergedSweeps = 2000;
 
 TEST(ProxyMethodTest, FacePressedIntoFloorFeelsKtTimesDepthUpwardAndNoTorque) {
@@ -124,7 +124,7 @@ TEST(ProxyMethodTest, FacePressedIntoFloorFeelsKtTimesDepthUpwardAndNoTorque) {
   Engine engine(FloorWorld(), device::MakeFixedDevice(At(0.02, -0.03, kHalf - kDepth)), {}, s);
   Tap tap;
   (void)engine.Run(&tap);
-  // U2 (SPEC §5.0): four face points at equal depth give Δr = δ n, Δθ = 0 whatever the count.
+  // Eq. 3.2–3.5: four face points at equal depth give Δr = δ n, Δθ = 0 whatever the count.
   // PGS stops once a sweep changes no f_k by more than tol; the error left is at most ~κ·tol per
   // multiplier, κ = λ_max/λ_min of C = 4 / (4h²/R_w) (translation vs rotation modes), so
   // |Δr error| <= m·κ·tol and |Δθ error| <= m·κ·tol·√2·h/R_w.
@@ -173,7 +173,7 @@ TEST(ProxyMethodTest, PushedBoxStartsMovingOneStepAfterTheFirstContactPeriod) {
         return t.contacts > 0;
       });
   ASSERT_NE(first, run.tap.ticks.end()) << "the pointer never touched the box";
-  // Period k's reaction is applied during step k + 1 (SPEC §3.6, §4.9).
+  // Period k's reaction is applied during step k + 1 (thesis §3.5; docs/architecture.md).
   const auto k = static_cast<std::size_t>(first->tick / run.n);
   ASSERT_LT(k + 1, run.tap.box_v.size());
   for (std::size_t i = 0; i <= k; ++i) EXPECT_EQ(run.tap.box_v[i], Vec3::Zero()) << "step " << i;
@@ -259,7 +259,7 @@ Press PressFaceWithHand(double hand_inertia) {
   // Hand spring and proxy spring in series: k_h (d − δ) = k_t δ.
   const double k_t = s.rendering.stiffness;
   p.f_eq = hand.stiffness * k_t / (hand.stiffness + k_t) * kTargetDepth;
-  // One edge (two points at lever h) at depth δ = f/k_t: τ = k_r δ h / (R_w + h²) (SPEC U1).
+  // One edge (two points at lever h) at depth δ = f/k_t: τ = k_r δ h / (R_w + h²) (eq. 3.2–3.5).
   p.tau_band = s.rendering.rot_stiffness * (p.f_eq / k_t) * kHalf / (3.33 + kHalf * kHalf);
   for (const ir::TickRecord& t : tap.ticks) {
     if (t.t >= s.duration - kHoldWindow && !(t.rendered_W.f.z() > 0.0)) p.lost_contact = true;
@@ -310,7 +310,7 @@ TEST(ProxyMethodTest, RotationWeightDefaultsToScaledUnitMassInertia) {
   s.rendering.rotation_weight_scale = 500.0;
   const world::World w = FloorWorld();
   const Mat3 R_w = physics::PointerRotationWeight(w, w.FindBody("pointer"), s.rendering);
-  // SPEC §3.10: 0.2 m cube, unit mass: 0.2²/6 = 6.67e-3 m²; × 500 = 3.33 m² (the T3.1 value).
+  // Thesis §3.4.1: 0.2 m cube, unit mass: 0.2²/6 = 6.67e-3 m²; × 500 = 3.33 m² (the T3.1 value).
   const double kTol = 1e-12;
   EXPECT_TRUE(R_w.isApprox(Mat3::Identity() * 500.0 * 0.04 / 6.0, kTol)) << R_w;
 }

@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
-// Round bodies in the local island (issue 33, item 2): the island's floor contact follows the
+// Round bodies in the local island: the island's floor contact follows the
 // rolling point, so a ball pushed under local-dynamics (3-DOF) or local-dynamics-6dof rolls
 // ahead instead of being kicked and spun by a contact point that turned with it.
 //  - Case A, scenes/bump_ball.json: a 0.3 kg ball (r 0.04) bumped by a sphere pointer at
-//    0.12 m/s. Single-rate at 1 ms leaves at 0.23 m/s, 5.8 rad/s; before the fix local-dynamics
-//    left at 0.61 m/s, 17 rad/s.
+//    0.12 m/s. Single-rate at 1 ms leaves at 0.23 m/s, 5.8 rad/s; a contact point that turns
+//    with the ball roughly triples both.
 //  - Case B, scenes/push_sphere.json: a box pointer pushes the ball 2 cm off its centre line at
-//    0.1 m/s. proxy-6dof: 0.16 m/s peak; before the fix local-dynamics-6dof peaked at 0.33 m/s.
+//    0.1 m/s. proxy-6dof: 0.16 m/s peak; a contact point that turns with the ball doubles it.
 #include <gtest/gtest.h>
 
 #include <algorithm>

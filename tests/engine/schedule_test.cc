@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The lockstep scheduler reproduces the data-flow rule of SPEC §4.9 exactly.
+// The lockstep scheduler reproduces the timing rule (thesis §4.1.3; docs/architecture.md) exactly.
 #include <gtest/gtest.h>
 
 #include <vector>

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
-// Virtual coupling (B3, SPEC §1.4): the tool's inertia is felt in free motion (−m_t ẍ_t against
-// the tool's linear steady state), and pressed into a floor the force settles at the spring's.
+// Virtual coupling (B3, Colgate et al. 1995): the tool's inertia is felt in free motion (−m_t ẍ_t
+// against the tool's linear steady state), and pressed into a floor the force settles at the
+// spring's.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -238,8 +239,8 @@ TEST(VirtualCoupling, UnstableGainsForALightToolAreRefusedAndTheDefaultsRun) {
 }
 
 // Pressed 1 cm below the resting light tool, the force is about the coupling spring's k·0.01 =
-// 10 N. (MuJoCo 3's broadphase tests per-body collision masks: a tool whose geoms were made to
-// collide after compilation, without updating them, fell through the floor and felt 3.6 N.)
+// 10 N. (MuJoCo 3's broadphase tests per-body collision masks: a tool whose geoms are made to
+// collide after compilation, without updating them, falls through the floor and feels 3.6 N.)
 TEST(VirtualCoupling, PressedLightToolFeelsTheCouplingSpring) {
   const settings::RenderingSettings defaults;
   const RunStats stats = RunLightTool(defaults);

@@ -11,7 +11,7 @@ namespace {
 
 constexpr double kGravity = 9.81;   // m/s², the scenes'
 constexpr double kFloorMu = 0.5;    // the scenes' box–floor friction
-constexpr double kForceTol = 0.05;  // relative, the force bar
+constexpr double kForceTol = 0.05;  // relative, the acceptance force bar
 // scenes/two_hands_push.xml: the left box is 0.5 kg, the right 0.3 kg.
 constexpr double kCoulomb[2] = {kFloorMu * 0.5 * kGravity, kFloorMu * 0.3 * kGravity};
 
@@ -32,7 +32,7 @@ TEST(GraspHandsTest, SingleRateEachHandFeelsItsOwnBoxsCoulombForce) {
   ExpectEachHandFeelsItsOwnBox(GraspRun{"single-rate", 0.001});
 }
 
-// The bar for two hands, at 20 ms.
+// The acceptance bar for two hands, at 20 ms.
 TEST(GraspHandsTest, LocalDynamicsAt20MsEachHandFeelsItsOwnBoxsCoulombForce) {
   ExpectEachHandFeelsItsOwnBox(GraspRun{"local-dynamics", 0.02});
 }

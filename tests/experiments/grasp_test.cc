@@ -14,7 +14,7 @@ constexpr double kLift = 0.05;          // m, the pinch's lift
 constexpr double kHandStiffness = 300;  // N/m, device::HandSettings' default pull
 constexpr double kStiffness = 800;      // N/m, the driver's rendering.stiffness
 constexpr double kHeightTol = 0.001;    // m
-constexpr double kForceTol = 0.05;      // relative, the force bar
+constexpr double kForceTol = 0.05;      // relative, the acceptance force bar
 constexpr double kGravity = 9.81;       // m/s², the scene's
 
 TEST(GraspTest, SingleRateLiftsAndHoldsTheBox) {
@@ -31,7 +31,7 @@ TEST(GraspTest, SingleRateLiftsAndHoldsTheBox) {
   EXPECT_GT(r.mean_force[0], weight / 2.0);  // a squeeze, not a touch
 }
 
-// The essential result: at 20 ms the local-dynamics methods lift and hold the box as
+// The essential result: at 20 ms the local-dynamics methods lift and hold the box as
 // single-rate does at 1 ms: hold height within 5 mm, each finger's mean force within 5 %, force
 // sd at most 2x the reference's; the fingers carry the weight.
 TEST(GraspTest, LocalDynamicsMethodsAt20MsHoldAsSingleRateAt1Ms) {

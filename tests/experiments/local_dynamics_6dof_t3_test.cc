@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
-// Issue 14: "local-dynamics-6dof reproduces T3.1 and T3.2 on a static floor". The T3.1 (edge →
+// local-dynamics-6dof reproduces T3.1 and T3.2 on a static floor. The T3.1 (edge →
 // roll → face of a 0.2 m cube pointer, no friction) and T3.2 (a sliding plate pointer, μ 0.5)
 // sessions run with method local-dynamics-6dof: the floor is static, so there is nothing to
 // simulate locally and the rendering must be proxy-6dof's, tick by tick (to 1e-9), with the
-// thesis' analytic values (SPEC U1/U2: the edge's peak torque, the face's force) where known.
+// analytic values (eq. 3.2–3.5 in closed form: the edge's peak torque, the face's force) where
+// known.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -69,7 +70,7 @@ TEST(LocalDynamics6dofStaticTest, T31EdgeRollFaceIsProxy6dofsAndTheAnalyticFace)
   EXPECT_NEAR(peak, analytic, 0.01 * analytic);
   EXPECT_LE(d.force, 1e-9 * d.max_force);
   EXPECT_LE(d.torque, 1e-9 * d.max_torque);
-  // The face lands flat at the trajectory's 3.5 N depth: f = k_t δ_f, no torque (SPEC U2).
+  // The face lands flat at the trajectory's 3.5 N depth: f = k_t δ_f, no torque (eq. 3.2–3.5).
   ASSERT_FALSE(run.rendered.empty());
   EXPECT_NEAR(run.rendered.back().f.z(), 3.5, 1e-4);
   EXPECT_NEAR(run.rendered.back().tau.norm(), 0.0, 1e-6);

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The T3.2 driver shows static/kinetic friction switching with μ = 0.5 (SPEC T3.2 acceptance).
+// The T3.2 driver shows static/kinetic friction switching with μ = 0.5 (thesis §3.3.3).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -25,8 +25,8 @@ TEST(T32ExperimentTest, KineticFrictionIsMuTimesNormalAndStaticStaysBelow) {
   const nlohmann::json s = nlohmann::json::parse(in);
   testing::ExpectAllChecksPass(s);
   const nlohmann::json& n = s["numbers"];
-  // ε bounds what the proxy's rotation can bend a row (SPEC U1); it must be small for the
-  // comparison to mean anything.
+  // ε bounds what the proxy's rotation can bend a row (c_kk − 1 of eq. 3.5); it must be small for
+  // the comparison to mean anything.
   const double eps = n["rotation_share_eps"].get<double>();
   ASSERT_LT(eps, 1e-4);
   EXPECT_GT(n["kinetic_ticks"].get<int>(), 1000);

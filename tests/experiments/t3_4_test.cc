@@ -48,8 +48,8 @@ TEST(T34ExperimentTest, PrismBaseGivesOneContactPerSideAndAFrictionRowEach) {
 // δ = 1 mm deep and slides at v = 0.1 m/s, so f = k_t δ ẑ − min(k_t v t, μ k_t δ) x̂ (sticking
 // for μδ/v = 5 ms, then kinetic on the cone boundary), on all 12 base vertices with a friction
 // row each once it has moved (at t = 0 there is no tangential offset, hence no friction row,
-// SPEC §3.7). Every base vertex is on the floor, so any tilt of the proxy would push half of them
-// into it: the proxy only translates and the torque stays 0.
+// eq. 3.10 needs a slip direction). Every base vertex is on the floor, so any tilt of the proxy
+// would push half of them into it: the proxy only translates and the torque stays 0.
 TEST(T34SessionTest, SessionSlidesTheTwelveGonWithTheDriversForce) {
   const session::Session session = session::LoadSession(internal::ScenesDir() / "t3_4.json");
   const internal::ProxyRun run = internal::RunProxySession(session, {}, "", /*quiet=*/true);

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // The T3.5 driver: a small rotation weight lets free vertices penetrate, a large one weakens the
-// torque (SPEC §3.10). The torque reference is derived here from the scene's numbers, sharing
+// torque (thesis §3.4.1). The torque reference is derived here from the scene's numbers, sharing
 // no code with the driver.
 #include <gtest/gtest.h>
 
@@ -51,7 +51,7 @@ Roll ReadRoll(const std::filesystem::path& file) {
   return roll;
 }
 
-// The peak of the one-edge torque over the roll in closed form (SPEC U1): one edge at depth δ
+// The peak of the one-edge torque over the roll in closed form (eq. 3.2–3.5): one edge at depth δ
 // and lever r gives τ = k_r δ r/(R_w + r²), the lever going 0 → h. Its maximum over r is
 // k_r δ/(2√R_w) at r = √R_w if √R_w < h, else k_r δ h/(R_w + h²) at the flat end.
 double PeakTorque(double k_r, double depth, double R_w) {

@@ -5,7 +5,7 @@
 // proxy-6dof at 20 ms, which renders the box one step late, does not; no method throws a box
 // in any case; off centre, local-dynamics-6dof turns the box the reference's way; and, except
 // where the box tips over its edge, nudging the pointer 10 µm sideways moves
-// local-dynamics-6dof's mean |f| and box positions by less than one of the bars (5 % of
+// local-dynamics-6dof's mean |f| and box positions by less than one of the acceptance bars (5 % of
 // the reference's |f|, 2 cm).
 #include <gtest/gtest.h>
 

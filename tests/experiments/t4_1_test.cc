@@ -19,11 +19,11 @@
 namespace mrh::experiments {
 namespace {
 
-// Analytic: an undamped bounce returns 2mv = 2 · 60 kg · 0.017 m/s (SPEC T4.1).
+// Analytic: an undamped bounce returns 2mv = 2 · 60 kg · 0.017 m/s (T4.1, thesis §4.5.3).
 constexpr double kElastic = 2.04;
-// Single-rate integrates the bounce at 1 ms: within 2 % of 2mv (SPEC T4.1 acceptance).
+// Single-rate integrates the bounce at 1 ms: within 2 % of 2mv.
 constexpr double kSingleRateTolerance = 0.02;
-// Local-dynamics within 2 % of single-rate (issue 5; table 4.3 shows both 2.0 N·s).
+// Local-dynamics within 2 % of single-rate (the thesis' table 4.3 shows both 2.0 N·s).
 constexpr double kLocalTolerance = 0.02;
 // The impulse method overshoots by one to two physics steps of unopposed approach: the thesis
 // measured +60 % (3.2 vs 2.0 N·s); its sizes are not given, so we require a third of that excess.

@@ -14,7 +14,7 @@ namespace {
 
 // scenes/t4_4.xml: 2 kg cubes; k cubes in the pushed group weigh k·2 kg.
 constexpr double kCubeMass = 2.0;
-// "Within a few %" (issue 5); single-rate, the reference, lands within 1.2 % of k·m.
+// "Within a few %"; single-rate, the reference, lands within 1.2 % of k·m.
 constexpr double kMassTolerance = 0.05;
 // Free cube pushed at lever y = 4 cm: ω_z/v_x = −y·m/I_zz = −0.04 / (0.1²/6) = −24 1/m.
 constexpr double kEdgeRatio = -24.0;

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
-// t4.push (issue 13): local-dynamics with the contact local model against single-rate (1 ms, the
+// t4.push: local-dynamics with the contact local model against single-rate (1 ms, the
 // reference) when pushing resting boxes across a floor with friction; the thesis' perturbation
-// model, which the issue found chattering, is run on the one-box case to show the bars can fail.
+// model, which chatters there, is run on the one-box case to show the bars can fail.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,7 +14,7 @@
 namespace mrh::experiments::internal {
 namespace {
 
-// The issue's "Done means" bars.
+// The acceptance bars.
 constexpr double kMeanTolerance = 0.05;   // relative to single-rate's mean |f|
 constexpr double kSdRatio = 2.0;          // × single-rate's standard deviation ...
 constexpr double kSdFloor = 0.02;         // ... or this share of its mean, whichever is larger

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// Tests of the penetration region and contact points against the analytic cases of SPEC §3.3.3.
+// Tests of the penetration region and contact points against the analytic cases of thesis
+// §3.2.1 (face–face, edge–face, vertex–face).
 #include "mrh/geometry/contact_region.h"
 
 #include <gmock/gmock.h>
@@ -33,7 +34,7 @@ using ::testing::SizeIs;
 using testing::SphereShape;
 using ::testing::UnorderedElementsAre;
 
-// The accuracy for depths, normals and points on 0.1 m shapes.
+// The required accuracy for depths, normals and points on 0.1 m shapes.
 constexpr double kTol = 1e-9;
 // Penetration depth of the analytic cases: 1 mm, well above every tolerance.
 constexpr double kDelta = 1e-3;
@@ -50,7 +51,7 @@ ContactRegion Analyse(const Shape& pointer, const Pose& X_WP, const Shape& objec
                               ConvexPolyhedron::FromShape(object, kSegments), X_WO, d);
 }
 
-// The 0.2 m cube pointer of SPEC §3.3.3.
+// The 0.2 m cube pointer of T3.1 (thesis §3.3.2).
 Shape Cube() {
   return BoxShape(0.1, 0.1, 0.1);
 }

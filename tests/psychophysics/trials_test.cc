@@ -87,7 +87,7 @@ TEST(TrialsTest, BadFilesNameTheLineAndTheColumn) {
   EXPECT_THAT(ErrorOf(header + "A,0,impulse\n"), HasSubstr("column standard_method"));
 }
 
-// Issue 39 item 7: data from another tool holds only what the fit needs, in any order.
+// Data from another tool holds only what the fit needs, in any order.
 TEST(TrialsTest, FiveEssentialColumnsAreEnough) {
   const fs::path dir = TempDir("mrh_trials_five_");
   std::ofstream(dir / "t.csv") << "comparison_mass,subject,comparison_heavier,method,standard_mass\n"

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: Apache-2.0
-# Several pointers through `mrh run` (issue 35): scenes/two_finger_grasp.json lifts the box with
+# Several pointers through `mrh run`: scenes/two_finger_grasp.json lifts the box with
 # two fingertips; ticks.csv names each row's pointer and summary.json has a block per pointer;
 # a bad element is one line naming it, exit 2.
 import csv

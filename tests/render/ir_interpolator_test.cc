@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Tests of the haptic-side IR interpolation (SPEC §3.9): blends, new pairs, re-posed points.
+// Tests of the haptic-side IR interpolation (thesis §3.2.2): blends, new pairs, re-posed points.
 #include "mrh/render/ir_interpolator.h"
 
 #include <gtest/gtest.h>

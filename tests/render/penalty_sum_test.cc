@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Tests of the B5 per-contact penalty sum (SPEC §1.4 B5, §5.0 U2): stiffness that grows with the
+// Tests of the B5 per-contact penalty sum (Berkelman & Hollis 2000): stiffness that grows with the
 // contact count, the tilted-box wrench, damping, reactions and bad input.
 #include "mrh/render/penalty_sum.h"
 
@@ -56,7 +56,7 @@ TEST(PenaltySum, FourCoplanarContactsGiveFourTimesTheSpringAndNoTorque) {
   PenaltySumOutput out;
   renderer.Tick(ir, X_WP, kDt, &out);
   EXPECT_EQ(out.contacts, 4);
-  // 4 k δ: four times what the proxy renders for the same face (SPEC §5.0 U2).
+  // 4 k δ: four times what the proxy renders for the same face (k_t δ, by eq. 3.2–3.5).
   EXPECT_NEAR(out.w_W.f.z(), 4.0 * kK * kDepth, 1e-9);
   EXPECT_NEAR(out.w_W.f.head<2>().norm(), 0.0, 1e-12);
   EXPECT_NEAR(out.w_W.tau.norm(), 0.0, 1e-12);

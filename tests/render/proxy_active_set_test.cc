@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // Tests of the exact active-set proxy solver: KKT conditions of the LCP (eq. 3.4), agreement with
-// converged PGS, analytic cases (U1, U2, rotational friction), warm start, caps, infeasibility.
+// converged PGS, analytic cases (one contact, symmetric contacts, rotational friction), warm
+// start, caps, infeasibility.
 #include "mrh/render/proxy_active_set.h"
 
 #include <gmock/gmock.h>

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
-// Tests of the 6-DOF proxy renderer (SPEC §3.4–3.8, §5.0 U1–U4): wrench, friction states,
-// moving objects, reactions, RT contract and settings errors.
+// Tests of the 6-DOF proxy renderer (thesis §3.2.2–3.2.4, eq. 3.1–3.10; one contact and
+// symmetric contacts in closed form, Coulomb friction, no force without contact): wrench, friction
+// states, moving objects, reactions, RT contract and settings errors.
 #include "mrh/render/proxy_renderer.h"
 
 #include <gmock/gmock.h>
@@ -305,7 +306,7 @@ TEST(ProxyRendererTest, DampersActOnTheChangeOfTheProxyOffset) {
   EXPECT_GT(out.dr.z(), dr1.z());
 }
 
-// Issue 18: a pointer that starts inside an object has no previous offset; its dampers start at
+// A pointer that starts inside an object has no previous offset; its dampers start at
 // rest instead of seeing the whole offset appear in one tick (15 N against a steady 5 N).
 TEST(ProxyRendererTest, FirstTickAfterStartRendersTheSpringOnly) {
   ProxyRendererSettings settings = T31();
@@ -466,7 +467,7 @@ TEST(ProxyRendererTest, RowsBeyondCapacityAreDroppedWithTheRowsFullBit) {
 }
 
 TEST(ProxyRendererTest, RotationWeightFromInertiaScalesTheUnitMassInertia) {
-  // SPEC §3.10: a 0.2 m cube has 0.2²/6 m²; ×500 gives T3.1's R_w ≈ 3.33.
+  // Thesis §3.4.1: a 0.2 m cube has 0.2²/6 m²; ×500 gives T3.1's R_w ≈ 3.33.
   const Mat3 weight = RotationWeightFromInertia((0.04 / 6.0) * Mat3::Identity(), 500.0);
   EXPECT_NEAR(weight(0, 0), 3.3333333333, 1e-9);
   EXPECT_EQ(weight(0, 1), 0.0);

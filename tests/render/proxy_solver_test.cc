@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Tests of the proxy LCP solver (SPEC §3.4–3.5, §5.0 U1, U2, U5): analytic cases, LCP conditions
+// Tests of the proxy LCP solver (thesis §3.2.2, eq. 3.4–3.6): analytic cases, LCP conditions
 // and equality of the O(m) sweep with the dense eq. 3.6 iteration.
 #include "mrh/render/proxy_solver.h"
 
@@ -23,7 +23,7 @@ using ::testing::ThrowsMessage;
 // Depths are ~1e-3 m and levers ~0.1 m; double rounding of f is ~1e-19 m, so 1e-14 m is far
 // above noise and far below anything physical.
 constexpr double kExact = 1e-14;
-// The bound for the O(m) sweep against the dense reference (m).
+// The required bound for the O(m) sweep against the dense reference (m).
 constexpr double kDenseAgreement = 1e-10;
 // LCP residuals after convergence to kConvergence (m).
 constexpr double kConvergence = 1e-14;

@@ -105,7 +105,7 @@ TEST(SummaryTest, HoldsEveryFaultCounter) {
   EXPECT_EQ(f.at("ir_status").get<std::uint32_t>(), 0x5u);
 }
 
-// Issue 39 item 6: the device's own counters (network packets, vendor errors) are in the
+// The device's own counters (network packets, vendor errors) are in the
 // summary, not only on stdout.
 TEST(SummaryTest, HoldsTheDeviceCounters) {
   const TempDir dir;

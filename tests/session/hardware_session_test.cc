@@ -161,7 +161,7 @@ TEST(HardwareSessionTest, ForcesWrittenToTheDhdEqualTheDisplayedWrenchInTheDevic
   EXPECT_EQ(fake.Get<int()>("fakedhd_IsOpen")(), 0);
 }
 
-// Issue 39 item 1: lockstep never waits for a real device (8 s of simulation in 0.02 s, no packet
+// Lockstep never waits for a real device (8 s of simulation in 0.02 s, no packet
 // answered). A real device's session runs in real time unless it names a mode; "lockstep" is
 // refused naming the mode to use.
 TEST(HardwareSessionTest, RealDevicesRunInRealTimeAndRefuseLockstep) {

@@ -46,7 +46,7 @@ TEST(SessionTest, LoadsThePointerRenderingAndSafetyBlocks) {
   EXPECT_DOUBLE_EQ(s.engine.safety.watchdog_fade, 0.05);
 }
 
-// Issue 14 item 4: the proposed method, not the impulse baseline.
+// The default method is the proposed one, not the impulse baseline.
 TEST(SessionTest, ASessionThatNamesNoMethodGetsTheProposedMethod) {
   EXPECT_EQ(Parse(Minimal()).engine.method, "local-dynamics");
   EXPECT_EQ(Parse(Minimal(R"("method": "impulse")")).engine.method, "impulse");

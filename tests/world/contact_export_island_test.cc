@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Issue 13 item 3: the contact export collides only the geoms that may touch the island; its
+// The contact export collides only the geoms that may touch the island; its
 // bodies and rows must be exactly those of a whole-world collision pass.
 #include <gtest/gtest.h>
 

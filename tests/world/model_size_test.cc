@@ -41,8 +41,8 @@ TEST(ModelSizeTest, PileOf150BoxesWithFrictionDropsNoContacts) {
   EXPECT_THAT(w.SimulatorWarnings(), ::testing::IsEmpty());
 }
 
-// MuJoCo 2.2.2's dense constraint arrays held ~650 such boxes (1000 failed to allocate). The
-// arena holds 1000 resting on a floor with pyramidal friction (16 rows each), dropping nothing.
+// The arena holds 1000 boxes resting on a floor with pyramidal friction (16 rows each),
+// dropping nothing.
 TEST(ModelSizeTest, ThousandBoxesWithPyramidalFrictionLoadAndStep) {
   World w = World::LoadString(BoxPile(1000, "", 3, 1000), kNoPointer, "pile.xml");
   for (int i = 0; i < 10; ++i) w.Step();  // one layer, 1 mm up: landed within 20 ms

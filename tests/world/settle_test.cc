@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
-// Round and mesh objects left on a box table come to rest, as a new user's scene expects. MuJoCo
-// 2.2.2 gave cylinder-on-box and mesh-on-box one contact point: a cylinder spun at 10 rad/s and
-// drifted 15 cm in 4 s even at 1 ms. MuJoCo 3's convex collision gives several points.
+// Round and mesh objects left on a box table come to rest, as a new user's scene expects. That
+// needs several contact points for cylinder-on-box and mesh-on-box (MuJoCo 3's convex collision
+// gives them): on one point a cylinder spins at 10 rad/s and drifts 15 cm in 4 s even at 1 ms.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -69,7 +69,7 @@ const std::string kMesh =
     "<body name=\"obj\" pos=\"0 0 0.441\"><freejoint/>"
     "<geom type=\"mesh\" mesh=\"hexprism\" mass=\"0.3\"/></body>";
 
-// "At rest": a thousandth of the speeds the old engine showed, and no drift beyond a millimetre.
+// "At rest": speeds far below any a push would give, and no drift beyond a millimetre.
 constexpr double kRestSpeed = 1e-3;   // m/s
 constexpr double kRestSpin = 1e-2;    // rad/s
 constexpr double kRestDrift = 1e-3;   // m

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Issue 13 item 3: the friction piles (t4.3 with condim 3, the 500-cube step benchmark) use
+// The friction piles (t4.3 with condim 3, the 500-cube step benchmark) use
 // MuJoCo's Newton solver at tolerance 1e-10 instead of CG (MuJoCo 3.14's default 1e-8 stops
 // 4.7 µm/s short on this pile). A solver change must not change
 // the physics: from every state of a reference trajectory (Newton at tolerance 1e-15, i.e.

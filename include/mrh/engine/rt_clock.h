@@ -27,7 +27,8 @@ void SleepUntilNs(std::int64_t deadline_ns, std::int64_t spin_ns = kDeadlineSpin
 /// The one deadline loop of the haptic rate (the engine's real-time mode, the viewer's haptic
 /// thread): absolute deadlines every `period_ns` from the start, and on an overrun (a wake more
 /// than one period late) the deadline moves to the wake time, so missed periods are skipped
-/// instead of burst through (STYLE §6.5). RT-safe; owned by one thread.
+/// instead of burst through (catching up would run ticks back to back, each assuming a full period
+/// had passed). RT-safe; owned by one thread.
 class PeriodicDeadline {
  public:
   struct Wake {

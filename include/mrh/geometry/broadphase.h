@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// Axis-aligned bounding boxes of shapes and an incremental sweep-and-prune broad phase (SPEC §3.2).
+// Axis-aligned bounding boxes of shapes and an incremental sweep-and-prune broad phase (thesis
+// §3.2.1, after Cohen et al. 1995).
 #pragma once
 
 #include <array>

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // Penetration region of two convex polyhedra (Muller–Preparata via qhull_r) and the plane +
-// contact-point description of a contact (SPEC §3.3).
+// contact-point description of a contact (thesis §3.2.1).
 #pragma once
 
 #include <optional>
@@ -30,7 +30,7 @@ enum class RegionStatus {
   kFailed,     ///< region analysis failed (qhull error): fallback
 };
 
-/// Plane + contact points of one pointer/object pair, world frame (SPEC §3.3.3).
+/// Plane + contact points of one pointer/object pair, world frame (thesis §3.2.1).
 struct ContactRegion {
   RegionStatus status = RegionStatus::kSeparated;
   double distance = 0.0;          ///< signed distance (m), < 0 penetrating

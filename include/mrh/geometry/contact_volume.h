@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // The intersection polyhedron of a convex pair and its pressure integrals (contact-volume
-// penalty, B2: Hasegawa & Sato 2004, SPEC §1.4).
+// penalty, B2: Hasegawa & Sato 2004, thesis ref. [1], §1.2.1).
 #pragma once
 
 #include <array>
@@ -42,11 +42,12 @@ std::optional<IntersectionVolume> IntersectConvex(const ConvexPolyhedron& a, con
 
 /// Which triangles a pressure integral runs over.
 enum class PressureSurface {
-  kClosed,  ///< every triangle: the spring term, Σ = V n for the pressure δ (SPEC §1.4 B2)
+  kClosed,  ///< every triangle: the spring term, Σ = V n for the pressure δ (B2's volume law)
   kUpper,   ///< only the triangles facing +n (B's surface inside A): a pressure field once
 };
 
-/// ∫ pressure over the surface as SPEC §1.4 B2 writes it, with `pressure[k]` the pressure at
+/// ∫ pressure over the surface as B2 (Hasegawa & Sato 2004) integrates it, with `pressure[k]`
+/// the pressure at
 /// vertex k (any unit u: u·m² for the force, u·m³ for the moment): vertices p_k relative to c,
 /// projected p'_k = p_k − (p_k·n) n, S = (p'_1 − p'_0) × (p'_2 − p'_0); force Σ (Σ_k pressure_k /
 /// 6) S, moment about c Σ (Σ_ab w_ab pressure_b p'_a) × S, w_ab = 1/12 (a = b), 1/24 otherwise.

@@ -20,7 +20,7 @@ struct TickInput {
   Pose X_WP;              ///< pointer (device tool) pose, world frame
   Twist V_WP;             ///< pointer velocity, world frame
 
-  /// The blend weight α = min(1, (j + 1) / n) of the interpolated IR (SPEC §3.9, §4.6): 1/n
+  /// The blend weight α = min(1, (j + 1) / n) of the interpolated IR (thesis §3.2.2, §4.3.1): 1/n
   /// at a snapshot's first tick, 1 from its last tick on; n < 1 is taken as 1.
   double alpha() const noexcept {
     return std::min(1.0, static_cast<double>(j + 1) / static_cast<double>(std::max(n, 1)));

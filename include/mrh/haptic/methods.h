@@ -74,7 +74,7 @@ struct PointerGains {
 std::vector<std::unique_ptr<MethodHaptic>> MakeLocalContactHapticGroup(
     const std::vector<PointerGains>& pointers);
 
-/// Haptic half of "local-dynamics-6dof" (issue 14): the 6-DOF proxy with `settings`
+/// Haptic half of "local-dynamics-6dof": the 6-DOF proxy with `settings`
 /// (physics::ProxySettingsFor) against planes riding on the snapshot's contact island, simulated
 /// at the haptic rate; the proxy's reaction pushes the island in the same tick. TickOutput::status
 /// carries render::ProxyStatusBits plus bit 3 (a local body became non-finite). RT-safe after

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The contact local model of local-dynamics (issue 13): the neighbors' contact island as exported
+// The contact local model of local-dynamics: the neighbors' contact island as exported
 // by the physics step, simulated by the haptic thread at 1 kHz (render/local_contact_solver.h).
 #pragma once
 
@@ -57,7 +57,7 @@ struct LocalContactRow {
   /// defaults here): the local solve reproduces the reference's soft contacts with them.
   double solref[2] = {0.02, 1.0};
   double solimp[5] = {0.9, 0.95, 0.001, 0.5, 2.0};
-  /// Round surfaces (issue 33): r_A > 0 when A's geom is a sphere or a capsule. Its surface is
+  /// Round surfaces: r_A > 0 when A's geom is a sphere or a capsule. Its surface is
   /// then the points within r_A of a core point s_A (the sphere's centre, or the point of the
   /// capsule's segment nearest the contact), A's body frame, and the local solve re-derives the
   /// contact point each tick as s_A - r_A n at the local pose: a point fixed on a rolling body

@@ -18,7 +18,7 @@ namespace mrh::ir {
 /// Capacities of the exchanged structures. Overflow drops items and sets a Status bit.
 inline constexpr std::size_t kMaxNeighborBodies = 128;
 inline constexpr std::size_t kMaxPointContacts = 256;
-/// Pointer-geom/object-geom pairs of the geometric IR (6-DOF, SPEC §3.3.3).
+/// Pointer-geom/object-geom pairs of the geometric IR (6-DOF, thesis §3.2.1).
 inline constexpr std::size_t kMaxGeometricPairs = 64;
 /// Contact points over all geometric pairs (an N-gon prism face gives N; T3.4 goes to 1000).
 inline constexpr std::size_t kMaxPairPoints = 2048;
@@ -46,7 +46,7 @@ struct BodyMotion {
   Twist V_WCm;                  ///< COM velocity at the end of the step (world frame)
   bool is_static = false;       ///< a static body takes no reaction
 
-  // Dynamic IR (method local-dynamics, SPEC §4.5, §4.8.2); unused by the other methods.
+  // Dynamic IR (method local-dynamics, thesis §4.2.2, §4.4.2); unused by the other methods.
   bool has_dynamics = false;    ///< A, b and dV_n below are valid
   /// Accelerance A (eq. 4.10): COM acceleration (linear rows 0–2, m/s² per N; angular rows 3–5,
   /// rad/s² per N) per unit force applied at the contact point p_BA, world frame.
@@ -60,8 +60,8 @@ struct BodyMotion {
   bool continues = false;
 };
 
-/// Adachi's plane + point IR for a 3-DOF pointer (SPEC §4.4): a plane fixed on the object through
-/// its closest point, with a world normal pointing from the object toward the pointer.
+/// Adachi's plane + point IR for a 3-DOF pointer (thesis §4.2.1): a plane fixed on the object
+/// through its closest point, with a world normal pointing from the object toward the pointer.
 struct PointContact {
   int motion = -1;              ///< index into PhysicsSnapshot::bodies
   int geom = -1;                ///< world geom id (for diagnostics)
@@ -78,7 +78,7 @@ struct PointContact {
   ContactMaterial material;     ///< the geom's haptic material (none: rendering.*)
 };
 
-/// One pointer-geom/object-geom pair of the geometric IR (SPEC §3.3.3): a plane fixed on the
+/// One pointer-geom/object-geom pair of the geometric IR (thesis §3.2.1): a plane fixed on the
 /// object and the pointer's contact points below it.
 /// The body a geometric pair's contact normal belongs to (its face, or the face a feature of the
 /// other body lies on): the normal turns with that body while the other moves relative to it.
@@ -126,7 +126,8 @@ struct LocalBodyState {
   Twist V_WCm;                  ///< COM velocity, world frame
 };
 
-/// Everything physics step k hands to haptic period k+1 (SPEC §4.9). Immutable once published.
+/// Everything physics step k hands to haptic period k+1 (the timing rule in
+/// docs/architecture.md). Immutable once published.
 struct PhysicsSnapshot {
   std::int64_t step = -1;       ///< physics step index k; -1 before the first step
   double t = 0.0;               ///< simulation time at the end of the step (s)
@@ -135,7 +136,7 @@ struct PhysicsSnapshot {
   FixedVector<PointContact, kMaxPointContacts> contacts;
   FixedVector<GeometricPair, kMaxGeometricPairs> pairs;
   FixedVector<PairPoint, kMaxPairPoints> points;
-  /// The contact local model (local-dynamics with rendering.local_model "contact", issue 13).
+  /// The contact local model (local-dynamics with rendering.local_model "contact").
   LocalContactModel local_model;
   /// contact-volume (B2): the penalty wrench the scene exerts on the pointer during the step
   /// (world frame, torque about the pointer origin) and its number of penetrating pairs; zero
@@ -153,7 +154,7 @@ struct BodyImpulse {
   Vec3 last_force = Vec3::Zero();  ///< reaction force at the period's last tick (N)
 };
 
-/// Everything haptic period k hands to physics step k+1 (SPEC §4.9).
+/// Everything haptic period k hands to physics step k+1 (the timing rule in docs/architecture.md).
 struct HapticReport {
   std::int64_t period = -1;     ///< haptic period index
   std::int64_t ticks = 0;       ///< ticks in this period

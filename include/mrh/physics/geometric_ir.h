@@ -12,7 +12,7 @@ class World;
 
 namespace mrh::physics {
 
-/// Builds the geometric IR (SPEC §3.2–3.3) of `pointer_body` at X_WP (world) against the world
+/// Builds the geometric IR (thesis §3.2.1) of `pointer_body` at X_WP (world) against the world
 /// in its current state, with the neighbor and tessellation settings of `rendering`, into
 /// `out` (pairs, contact points in the pointer frame, bodies; status bits on overflow). The
 /// same builder as the proxy-6dof method, set up from scratch: for inspection (`mrh ir`) and

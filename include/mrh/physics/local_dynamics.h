@@ -13,9 +13,9 @@
 namespace mrh::physics {
 
 /// How the velocity correction of eq. 4.18 (the effect of what A cannot predict) is obtained
-/// (SPEC §4.8.2, I11).
+/// (thesis §4.4.2, which leaves the computation of f_n open).
 enum class CorrectionModel {
-  /// Springhead's realization (SPEC §4.11): (u_after − u_before) − b_pred Δt over the global
+  /// Springhead's realization: (u_after − u_before) − b_pred Δt over the global
   /// step. Captures new and broken contacts alike. Relies on the group synchronization (see
   /// LocalDynamicsPhysics): without it, a pushed group's catching up in the global step is
   /// attributed to the neighbor, and a row of k cubes feels like about k²·m.

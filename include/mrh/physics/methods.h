@@ -44,7 +44,7 @@ std::unique_ptr<MethodPhysics> MakeLocalDynamicsPhysics(const MethodContext& con
 /// "contact"): the contact island export (world/contact_export.h).
 std::unique_ptr<MethodPhysics> MakeLocalContactPhysics(const MethodContext& context);
 
-/// The physics half of `local-dynamics-6dof` (issue 14): proxy-6dof's geometric IR plus the
+/// The physics half of `local-dynamics-6dof`: proxy-6dof's geometric IR plus the
 /// contact island of every dynamic body with a geometric pair, synchronized as the contact local
 /// model. @throws mrh::SceneError from the geometric IR builder. Not RT-safe.
 std::unique_ptr<MethodPhysics> MakeLocalDynamics6dofPhysics(const MethodContext& context);
@@ -54,7 +54,7 @@ std::unique_ptr<MethodPhysics> MakeLocalDynamics6dofPhysics(const MethodContext&
 /// cube, keeps the thesis' perturbation model).
 bool UsesContactLocalModel(const MethodContext& context);
 
-/// The rotation weight R_w (m², world frame) proxy-6dof uses for `rendering` (SPEC §3.10):
+/// The rotation weight R_w (m², world frame) proxy-6dof uses for `rendering` (thesis §3.4.1):
 /// diag(rendering.rotation_weight) when given, else rotation_weight_scale × the pointer's
 /// unit-mass inertia about its body origin, I_O/m = I_Cm/m + |c|²·1 − c cᵀ (c = p_BCm), in the
 /// pointer's body axes taken as world axes.

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// Haptic-side interpolation of the geometric IR between physics steps (SPEC §3.9).
+// Haptic-side interpolation of the geometric IR between physics steps (thesis §3.2.2, which
+// interpolates the planes and contact points but gives no formulas).
 #pragma once
 
 #include <array>
@@ -43,7 +44,7 @@ inline std::uint64_t PairKey(int pointer_geom, int object_geom) noexcept {
          static_cast<std::uint32_t>(object_geom);
 }
 
-/// The normal blend of SPEC §3.9 from `previous` to `next` at alpha in [0, 1], unit. Where the
+/// The normal blend from `previous` to `next` at alpha in [0, 1], unit. Where the
 /// two nearly cancel (a normal that flipped, alpha near 1/2) the blend has no reliable direction
 /// and `next` is returned. RT-safe.
 Vec3 BlendNormal(const Vec3& previous, const Vec3& next, double alpha) noexcept;

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// A rigid body simulated in the haptic thread from its dynamic IR (SPEC §4.7, eq. 4.13–4.15).
+// A rigid body simulated in the haptic thread from its dynamic IR (thesis §4.3.2, eq. 4.13–4.15).
 #pragma once
 
 #include "mrh/core/spatial.h"
@@ -10,10 +10,11 @@ namespace mrh::render {
 
 /// A sphere pointer against a plane fixed on a local body, as evaluated for one tick.
 
-/// A neighbor object simulated locally at the haptic rate (SPEC §4.7). Its state is the COM
+/// A neighbor object simulated locally at the haptic rate (thesis §4.3.2). Its state is the COM
 /// position, a unit orientation quaternion (body → world) and the COM twist, all in the world
 /// frame. Each tick applies eq. 4.14, u += (A f + b) Δt, then eq. 4.15 with the new velocity
-/// (semi-implicit Euler): x += v Δt and q ← exp(ω Δt / 2) ⊗ q for the world-frame ω (SPEC I12),
+/// (semi-implicit Euler): x += v Δt and q ← exp(ω Δt / 2) ⊗ q for the world-frame ω (the
+/// printed Q of eq. 4.15 assumes a body-frame ω),
 /// renormalized. A is taken as measured for a force at the IR contact point, so a force given
 /// to Step() is treated as acting there. Fixed size, no allocation; every member is RT-safe.
 class LocalBody {

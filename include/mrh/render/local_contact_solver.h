@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The contact local model of local-dynamics (issue 13): the neighbors' contact island simulated
+// The contact local model of local-dynamics: the neighbors' contact island simulated
 // at the haptic rate with its own contacts (normal + Coulomb friction cone) under gravity.
 #pragma once
 

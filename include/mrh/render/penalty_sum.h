@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// Baseline B5 (Berkelman & Hollis 2000, SPEC §1.4): independent per-contact penalty springs summed
-// over the geometric IR's contact points.
+// Baseline B5 (Berkelman & Hollis 2000, thesis ref. [43], §3.1.1): independent per-contact penalty
+// springs summed over the geometric IR's contact points.
 #pragma once
 
 #include <array>

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// 3-DOF penalty rendering of a point against a plane IR (SPEC §4.6, eq. 4.11 with the sign fixed).
+// 3-DOF penalty rendering of a point against a plane IR (thesis §4.3.1, eq. 4.11 with the sign
+// fixed: as printed it pulls the hand into the object).
 #pragma once
 
 #include "mrh/core/spatial.h"
@@ -25,7 +26,7 @@ struct PointPenaltyResult {
 };
 
 /// Corrected eq. 4.11: f_d = {k(x_o − x_p) + d(ẋ_o − ẋ_p)}·n n while δ > 0, else 0; the scalar is
-/// clamped at ≥ 0 so the damper never pulls the hand into the object (SPEC I19).
+/// clamped at ≥ 0 so the damper never pulls the hand into the object.
 /// @param k spring (N/m) @param d damper (N·s/m). RT-safe.
 inline PointPenaltyResult RenderPointPenalty(const PlaneContactState& c, double k,
                                              double d) noexcept {
@@ -62,7 +63,8 @@ inline SphereContact TouchSpherePlane(const Vec3& p_WO, const Vec3& v_WO, const 
 }
 
 /// Plane point of a body that the haptic thread does not simulate (static, kinematic, or B4's
-/// dynamic body), blended between its step poses with weight alpha (SPEC §3.9): the point p_BC
+/// dynamic body), blended between its step poses with weight alpha (thesis §4.3.1, after
+/// Hasegawa et al. 1999): the point p_BC
 /// (body frame) in the world, its velocity from the step-end COM twist, and the COM. RT-safe.
 struct BlendedPoint {
   Vec3 p_WO = Vec3::Zero();   ///< m
@@ -80,7 +82,7 @@ inline BlendedPoint BlendBodyPoint(const ir::BodyMotion& body, const Vec3& p_BC,
   return b;
 }
 
-/// The blended normal of SPEC §3.9: from the last rendered n_prev to the snapshot's n, unit.
+/// The blended normal (thesis §4.3.1): from the last rendered n_prev to the snapshot's n, unit.
 inline Vec3 BlendNormal(const Vec3& n_prev, const Vec3& n, double alpha) noexcept {
   return ((1.0 - alpha) * n_prev + alpha * n).normalized();
 }

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // Splits one wrench into non-negative forces at contact points, spread as a compliant contact
-// would spread them (the 6-DOF proxy's reaction over several touched objects, issue 14).
+// would spread them (the 6-DOF proxy's reaction over several touched objects).
 #pragma once
 
 #include <array>

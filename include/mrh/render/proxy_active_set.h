@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Exact dual active-set solver (Goldfarb–Idnani) for the 6-DOF proxy problem of SPEC §3.4.
+// Exact dual active-set solver (Goldfarb–Idnani) for the 6-DOF proxy problem of thesis §3.2.2.
 #pragma once
 
 #include <array>
@@ -13,8 +13,8 @@ namespace mrh::render {
 
 /// Solves the same problem as ProxySolver, exactly, in a bounded number of steps.
 ///
-/// The proxy LCP of eq. 3.4–3.5 is the KKT system of a 6-variable quadratic program (SPEC §3.4,
-/// "equivalent view"):
+/// The proxy LCP of eq. 3.4–3.5 is the KKT system of a 6-variable quadratic program (its f are
+/// the multipliers; docs/theory.md):
 ///   min ½|Δr|² + ½ Δθᵀ R_w Δθ   s.t.   a_k·(Δθ × r_k + Δr) ≥ rhs_k  for every row k,
 /// with the multipliers f_k >= 0 of the rows. (Δr, Δθ) is unique; f is not when rows are
 /// redundant. With y = (Δr, Kᵀ⁻¹Δθ), R_w⁻¹ = K Kᵀ, the program is the projection of the origin

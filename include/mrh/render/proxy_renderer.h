@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// 6-DOF proxy rendering with friction cones on the interpolated geometric IR (SPEC §3.4–3.8).
+// 6-DOF proxy rendering with friction cones on the interpolated geometric IR (thesis §3.2.2–3.2.4,
+// eq. 3.1–3.10; docs/theory.md).
 #pragma once
 
 #include <array>
@@ -21,7 +22,8 @@ namespace mrh::render {
 
 /// Most constraint rows one tick can have: a normal and a friction row per contact point.
 inline constexpr std::size_t kMaxProxyRows = 2 * ir::kMaxPairPoints;
-/// Compile-time ceiling on ProxyRendererSettings::max_iterations (STYLE §6.4).
+/// Compile-time ceiling on ProxyRendererSettings::max_iterations, so a tick's work stays bounded
+/// whatever the settings say.
 inline constexpr int kMaxProxyIterations = 100000;
 
 /// Status bits of one ProxyRenderer::Tick.
@@ -62,13 +64,13 @@ enum class ProxyTorqueModel : std::uint8_t {
   kThesis,
 };
 
-/// Parameters of the proxy renderer (SPEC §3.4–3.10). Designated initializers welcome.
+/// Parameters of the proxy renderer (thesis §3.2.2–3.2.3, §3.4.1). Designated initializers welcome.
 struct ProxyRendererSettings {
   double k_t = 1000.0;  ///< translational spring of eq. 3.7 (N/m, >= 0)
   double d_t = 0.0;     ///< translational damper of eq. 3.7 (N·s/m, >= 0)
   double k_r = 10.0;    ///< rotational spring of eq. 3.8 (N·m/rad, >= 0)
   double d_r = 0.0;     ///< rotational damper of eq. 3.8 (N·m·s/rad, >= 0)
-  /// Rotation weight R_w (m², world frame, symmetric positive definite; SPEC §3.10), kThesis
+  /// Rotation weight R_w (m², world frame, symmetric positive definite; thesis §3.4.1), kThesis
   /// only. For the thesis recipe use RotationWeightFromInertia; a diagonal one is
   /// Vec3(...).asDiagonal().
   Mat3 rotation_weight = Mat3::Identity();
@@ -94,7 +96,7 @@ struct ProxyRendererSettings {
   /// constraint violation / c_kk, so this is a penetration tolerance. On face and edge
   /// contacts with R_w ≫ |r|² PGS converges slowly (~1700 cold sweeps to 1e-10 m for a T3.1
   /// cube face; never within 50 for a 1000-point face). In sustained contact the warm-started
-  /// solve reaches 1e-7 m (SPEC App. B; ~1 mN at k_t = 9000) in about 2 sweeps (T3.4 bench),
+  /// solve reaches 1e-7 m (~1 mN at k_t = 9000) in about 2 sweeps (T3.4 bench),
   /// while 1e-10 m mostly exhausts max_iterations.
   double tolerance = 1e-10;
   /// PGS only. If > 0, a time budget independent of the contact count: a tick with m rows runs at
@@ -111,7 +113,7 @@ struct ProxyRendererSettings {
   void Validate() const;
 };
 
-/// R_w = scale · unit_mass_inertia: the thesis recipe (SPEC §3.10). unit_mass_inertia is the
+/// R_w = scale · unit_mass_inertia: the thesis recipe (§3.4.1). unit_mass_inertia is the
 /// pointer's inertia tensor about its origin for mass 1 (m², world-aligned frame at the pose
 /// where R_w is used; for a box a_x × a_y × a_z it is diag(a_y²+a_z², a_x²+a_z², a_x²+a_y²)/12).
 /// @throws mrh::InvalidArgument if scale is not finite and > 0 or the tensor is not finite,
@@ -132,7 +134,8 @@ struct ProxyRowInfo {
   int pair = -1;   ///< index into TickIr::pairs
 };
 
-/// Reaction of one TickIr pair on its object this tick (SPEC §3.6, I5, made action = reaction):
+/// Reaction of one TickIr pair on its object this tick (the thesis computes it on the haptic
+/// side, §3.5; here made action = reaction):
 /// the pair's rows make up Δr_i = Σ_pair f_k a_k and Δθ_i = Σ_pair f_k R_w⁻¹(r_k × a_k) of the
 /// proxy offset, so the pair pushes the pointer with its share of eq. 3.7–3.8,
 /// F_i = k_t Δr_i + d_t ΔΔr_i/dt and τ_i = k_r Δθ_i + d_r ΔΔθ_i/dt about the pointer origin.
@@ -173,7 +176,7 @@ struct ProxyOutput {
   /// of the contact forces (ProxyTorqueModel::kContact) or f_d and τ_d of eq. 3.7–3.8
   /// (kThesis). It pulls the pointer toward the proxy.
   Wrench w_W;
-  Pose X_WQ;                       ///< proxy pose Q: {x_p + Δr, exp(Δθ) q_p} (SPEC §3.5)
+  Pose X_WQ;                       ///< proxy pose Q: {x_p + Δr, exp(Δθ) q_p} (thesis §3.2.2)
   Vec3 dr = Vec3::Zero();          ///< Δr, proxy − pointer translation (m, world)
   Vec3 dtheta = Vec3::Zero();      ///< Δθ, proxy rotation vector relative to the pointer (rad)
   std::span<const ProxyRow> rows;  ///< rows solved this tick (world)
@@ -186,19 +189,20 @@ struct ProxyOutput {
   ProxyDiagnostics diagnostics;
 };
 
-/// Haptic-thread half of the 6-DOF proxy method (SPEC §3.8): from the tick's IR and pointer pose
-/// it builds a normal row per penetrating point and a friction row per point that moved relative
-/// to the previous proxy (eq. 3.9–3.10), solves the LCP with ProxySolver, and outputs the
+/// Haptic-thread half of the 6-DOF proxy method (thesis §3.2.4): from the tick's IR and pointer
+/// pose it builds a normal row per penetrating point and a friction row per point that moved
+/// relative to the previous proxy (eq. 3.9–3.10), solves the LCP with ProxySolver, and outputs the
 /// spring–damper wrench (eq. 3.7–3.8), the proxy pose and the reactions on the objects.
 ///
 /// Friction state across ticks. The previous proxy point of eq. 3.9 is the contact's body-fixed
 /// point p_PV placed by the previous tick's proxy pose. Moving objects: each pair remembers (by
 /// TickPair::key) its object pose X_WB at the previous tick, and the previous proxy pose is
 /// carried with the object's pose change, X_WQ' = X_WB(t) X_WB(t−1)⁻¹ X_WQ(t−1) (the
-/// "object's pose change" form of SPEC I6, as Springhead's relative pose; it needs no point
+/// "object's pose change" form, as Springhead's relative pose (the thesis assumes a static
+/// object); it needs no point
 /// correspondence across snapshots). First tick of a contact: if the pair had no penetrating
 /// point on the previous tick (or is unknown), the previous proxy is the current pointer, s = 0,
-/// and the contact starts sticking (SPEC §3.7).
+/// and the contact starts sticking (eq. 3.9 with s = 0).
 ///
 /// Warm start: row k starts from the previous tick's f of row k when both are the same kind of
 /// row (normal / friction) of the same pair key and point index of the tick IR; otherwise from 0.
@@ -309,7 +313,7 @@ class ProxyRenderer {
   Vec3 previous_dtheta_ = Vec3::Zero();
 };
 
-/// Adds one tick's reactions to the period's report as impulses (SPEC §3.6): for every
+/// Adds one tick's reactions to the period's report as impulses (thesis §3.5): for every
 /// non-static body, the sum over its pairs of force · dt (N·s) and moment · dt (N·m·s, about the
 /// COM); last_force of every entry becomes the body's force at this tick (zero if untouched).
 /// The physics thread applies each sum / Δt^G as a constant wrench during its next step.

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Projected Gauss–Seidel for the 6-DOF proxy LCP (SPEC §3.4–3.5, eq. 3.4–3.6) in O(m) per sweep.
+// Projected Gauss–Seidel for the 6-DOF proxy LCP (thesis §3.2.2, eq. 3.4–3.6) in O(m) per sweep.
 #pragma once
 
 #include <Eigen/Core>
@@ -23,7 +23,8 @@ struct ProxyRow {
   double rhs = 0.0;        ///< depth δ_i (normal row) or σ_i (friction row) (m)
 };
 
-/// Iteration budget of the projected Gauss–Seidel solver (SPEC §3.5, I7).
+/// Iteration budget of the projected Gauss–Seidel solver (thesis §3.2.2 iterates "until f
+/// converges" and gives no count: a cap plus a tolerance).
 struct ProxySolverSettings {
   /// Sweeps at most (>= 1). Each sweep visits every row once, in order.
   int max_iterations = 50;
@@ -32,7 +33,7 @@ struct ProxySolverSettings {
   double tolerance = 1e-10;
 };
 
-/// What one solve did (STYLE §0.4: every loop reports its work).
+/// What one solve did (every bounded loop reports its work).
 struct ProxySolveResult {
   int iterations = 0;       ///< sweeps run
   bool converged = false;   ///< the last sweep's max_change was <= tolerance

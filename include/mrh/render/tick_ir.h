@@ -10,7 +10,7 @@
 
 namespace mrh::render {
 
-/// One pair at this tick (SPEC §3.9): the object pose blended over the physics step and the
+/// One pair at this tick (thesis §3.2.2): the object pose blended over the physics step and the
 /// plane it carries.
 struct TickPair {
   std::uint64_t key = 0;      ///< stable identity of the pair across snapshots (geom ids)

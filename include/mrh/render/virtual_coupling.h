@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The spring–damper of baseline B3 (virtual coupling, Colgate et al. 1995; SPEC §1.4 B3).
+// The spring–damper of baseline B3 (virtual coupling, Colgate et al. 1995; thesis §1.2.3, §2.2).
 #pragma once
 
 #include <algorithm>

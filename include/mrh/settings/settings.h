@@ -12,7 +12,8 @@
 
 namespace mrh::settings {
 
-/// How the two halves are scheduled. Both modes run the same data flow (SPEC §4.9).
+/// How the two halves are scheduled. Both modes run the same data flow (the timing rule in
+/// docs/architecture.md).
 enum class Mode {
   kLockstep,  ///< one thread, virtual time, bit-identical on rerun
   kRealtime,  ///< a physics thread and a haptic thread at haptic_dt against the wall clock
@@ -59,7 +60,7 @@ struct RenderingSettings {
   /// largest gap is r·(1 − cos(π/segments)) (docs/architecture.md).
   int curved_segments = 16;
 
-  // 6-DOF proxy rendering (method proxy-6dof, SPEC §3.4–3.10).
+  // 6-DOF proxy rendering (method proxy-6dof, thesis §3.2.2–3.2.4, §3.4.1).
   /// Rotational spring k_r of eq. 3.8 (N·m/rad).
   double rot_stiffness = 10.0;
   /// Rotational damper d_r of eq. 3.8 (N·m·s/rad); torque_model "thesis" only (must be 0 with
@@ -73,7 +74,7 @@ struct RenderingSettings {
   /// given a moment), so it is for static worlds (T3.1–T3.5).
   std::string torque_model = "contact";
   /// Diagonal of the rotation weight R_w (m²), torque_model "thesis" only. Empty: the pointer's
-  /// unit-mass inertia times rotation_weight_scale (SPEC §3.10).
+  /// unit-mass inertia times rotation_weight_scale (thesis §3.4.1).
   std::optional<Vec3> rotation_weight;
   /// Multiplier on the unit-mass inertia when rotation_weight is empty (dimensionless, > 0).
   double rotation_weight_scale = 1.0;
@@ -90,25 +91,26 @@ struct RenderingSettings {
   /// Tolerance of the proxy solve (m): PGS stops when no multiplier changed more than this in a
   /// sweep; active-set stops when no row is violated by more than this.
   double solver_tolerance = 1e-10;
-  /// How the physics step applies proxy-6dof's reaction (issue 14): "local" (default: a
+  /// How the physics step applies proxy-6dof's reaction: "local" (default: a
   /// physics-side proxy run at the haptic rate over the step against the touched objects'
   /// predicted poses, physics::internal::ProxyLocalReaction; stable on light objects at 20 ms)
-  /// or "impulse" (the thesis' constant wrench J/Δt^G of the haptic period, SPEC I5; flings
+  /// or "impulse" (the thesis' constant wrench J/Δt^G of the haptic period, §3.5; flings
   /// light objects when k Δt²/I ≳ 1).
   std::string proxy_reaction = "local";
 
-  // Local simulation (method local-dynamics, SPEC §4.5–4.8).
+  // Local simulation (method local-dynamics, thesis §4.2.2–4.4).
   /// Run the perturbation simulations that measure A and b. false: A from the object's own
   /// mass and inertia and b = 0 (the t4.3 "without perturbations" variant).
   bool perturbation = true;
   /// Test force along −n when the user's last force is zero (N, > 0; Springhead uses 0.5 N).
   double perturbation_force = 0.5;
-  /// Local model of local-dynamics (issue 13): "contact" (default: the neighbors' contact
+  /// Local model of local-dynamics: "contact" (default: the neighbors' contact
   /// island, its contacts with the world and each other, normal + Coulomb friction, simulated at
   /// the haptic rate) or "perturbation" (the thesis' accelerance A and bias b, eq. 4.3–4.10).
   std::string local_model = "contact";
 
-  // Virtual coupling (B3, SPEC §1.4): the spring–damper between the device pose and the tool.
+  // Virtual coupling (B3, Colgate et al. 1995; thesis §1.2.3): the spring–damper between the
+  // device pose and the tool.
   double coupling_stiffness = 1000.0;  ///< k_vc (N/m, >= 0)
   double coupling_damping = 10.0;      ///< b_vc (N·s/m, >= 0)
   /// k_vc,r (N·m/rad, >= 0). Unset: k_vc · I_min / m_t, the translational coupling's natural

@@ -20,7 +20,7 @@ struct ViewerSettings {
   /// the haptic loop stops after its tick at `at` (rounded to the haptic period), the physics
   /// side finishes the step in progress, and one frame of that state is drawn, then return.
   /// The bodies drawn are those the haptic thread renders against at `at` (the physics step
-  /// ahead of it, SPEC §1.3). Exclusive with frames. < 0: unused.
+  /// ahead of it, by the timing rule in docs/architecture.md). Exclusive with frames. < 0: unused.
   double at = -1.0;
   /// With frames > 0 or at >= 0 (optional): write the last frame here as a PNG.
   std::filesystem::path screenshot;

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // 6×6 accelerance of a body (contact wrench → body motion) and its estimates compared in T4.6
-// (issue 14 item 3): the thesis' 1 + 18 perturbation runs, its unverified 2-run estimate, an
+// (thesis §4.6.3): the thesis' 1 + 18 perturbation runs, its unverified 2-run estimate, an
 // analytic one from the constraint solver, and the converged-MuJoCo reference.
 #pragma once
 
@@ -58,7 +58,7 @@ Mat66 FreeBodyInverseMass(const World& world, int body);
 AcceleranceEstimate MeasureConvergedAccelerance(World* world, int body, const Wrench& applied,
                                                 const ConvergedSettings& settings = {});
 
-/// The thesis' full 6-DOF estimate (SPEC §4.10, thesis §4.6.3): the zero-force run and 18
+/// The thesis' full 6-DOF estimate (thesis §4.6.3): the zero-force run and 18
 /// runs, each of the 3 test forces of eq. 4.5–4.7 (TestForces(f_user), perturbation.h) combined
 /// with a torque of ±`torque` (N·m) about each world axis; A is the least-squares fit of
 /// y_k = (u_k − u_0)/Δt = A w_k over the 18 wrenches (exact when the response is linear: the
@@ -66,7 +66,7 @@ AcceleranceEstimate MeasureConvergedAccelerance(World* world, int body, const Wr
 /// torque > 0. ok = true. Not RT-safe.
 AcceleranceEstimate EstimateFull18(World* world, int body, const Vec3& f_user, double torque);
 
-/// The thesis' unverified cheap estimate (SPEC §4.10): 2 runs, the zero-force run and one with
+/// The thesis' unverified cheap estimate (thesis §4.6.3): 2 runs, the zero-force run and one with
 /// the user's wrench w. Read here as the symmetric rank-one (SR1) correction of the free-body
 /// prior A₀ = FreeBodyInverseMass: with d = A₀ w − y, A = A₀ − d dᵀ / (dᵀ w), which reproduces
 /// the measured response (A w = y) and is exact when the constraints that hold the body act in

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Export of the contact local model (issue 13): the pointer neighbors' contact island with its
+// Export of the contact local model: the pointer neighbors' contact island with its
 // contact rows, from MuJoCo's collision detection at the end of a physics step.
 #pragma once
 

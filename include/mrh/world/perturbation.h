@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// Perturbation simulations on the global world: accelerance A and bias b of neighbors (SPEC §4.5).
+// Perturbation simulations on the global world: accelerance A and bias b of neighbors (thesis
+// §4.2.2, eq. 4.3–4.10).
 #pragma once
 
 #include <Eigen/Core>
@@ -109,7 +110,8 @@ struct PerturberCounters {
 };
 
 /// The three test forces of eq. 4.5–4.7 as columns: f1, |f1|·unit(e1 + e2) and |f1|·unit(e1 + e3)
-/// (eq. 4.6 corrected, SPEC C7), with e1 = unit(f1), e2 = unit(x̂ − (x̂·e1)e1) (ŷ instead when x̂
+/// (eq. 4.6 corrected: the thesis prints it as a copy of eq. 4.5, which would make the force
+/// matrix singular), with e1 = unit(f1), e2 = unit(x̂ − (x̂·e1)e1) (ŷ instead when x̂
 /// is nearly parallel to e1) and e3 = e1 × e2, so |det| = |f1|³/2. @pre f1 finite, |f1| > 0.
 /// Not RT-safe (physics thread).
 Mat3 TestForces(const Vec3& f1);
@@ -117,14 +119,14 @@ Mat3 TestForces(const Vec3& f1);
 /// Key of a contact between two geoms, independent of their order. Not RT-safe.
 std::uint64_t ContactKey(int geom_a, int geom_b);
 
-/// Perturbation simulations (SPEC §4.5) on a World: save the state, run one step without and
+/// Perturbation simulations (thesis §4.2.2) on a World: save the state, run one step without and
 /// with test forces on selected bodies, read their COM twists, and restore the state exactly, so
 /// that the next World::Step is bit-identical to one without the runs. Buffers are allocated at
 /// construction and in the first Begin() for a given body count. Physics thread only; not
 /// RT-safe.
 ///
 ///   perturber.Begin(bodies);           // save
-///   perturber.ZeroForceRun();          // u_0 for every listed body (shared, SPEC I9)
+///   perturber.ZeroForceRun();          // u_0 for every listed body (one run shared by all)
 ///   DynamicIr ir = perturber.Measure(i, f_user, p_W);  // 3 runs on bodies[i]
 ///   perturber.End();                   // restore
 class Perturber {
@@ -144,9 +146,9 @@ class Perturber {
   /// body is dynamic (has degrees of freedom).
   void Begin(std::span<const int> bodies);
 
-  /// The zero-force run (step 2 of §4.5): one step without test force; afterwards
-  /// zero_force_velocity(i) holds u_0 of bodies[i]. The state the world had at Begin() is not
-  /// changed. @pre Begin() is open.
+  /// The zero-force run (eq. 4.3 with f = 0, thesis §4.2.2): one step without test force;
+  /// afterwards zero_force_velocity(i) holds u_0 of bodies[i]. The state the world had at Begin()
+  /// is not changed. @pre Begin() is open.
   void ZeroForceRun();
 
   /// One step from the saved state with force f_W (N, world) at p_W (m, world) on bodies[index];
@@ -176,8 +178,9 @@ class Perturber {
   /// Right after a World::Step (before any state query): the COM twist change (world) that the
   /// step's contacts touching `body` whose geom pair is not in `known` (sorted ContactKey()s)
   /// gave it, M_B⁻¹ J_Bᵀ f Δt over the body's own degrees of freedom. This is the velocity jump
-  /// of eq. 4.18 realized from the constraints that are new since A was measured (SPEC I11,
-  /// second realization). Zero for a body without degrees of freedom. Needs no Begin().
+  /// of eq. 4.18 realized from the constraints that are new since A was measured (the thesis
+  /// leaves f_n's computation open; this is one of two realizations, see CorrectionModel). Zero
+  /// for a body without degrees of freedom. Needs no Begin().
   Twist NewContactVelocityChange(int body, std::span<const std::uint64_t> known);
 
   /// True when the open Begin() runs with mj_forwardSkip (see PerturbationPath::kAuto).

@@ -173,7 +173,7 @@ class World {
 
  private:
   friend class Perturber;  // perturbation runs work on the MuJoCo data directly (perturbation.h)
-  friend class ContactExporter;  // local contact model export (contact_export.h, issue 13)
+  friend class ContactExporter;    // local contact model export (contact_export.h)
   friend class AcceleranceAccess;  // analytic accelerance and converged reference (accelerance.h)
   struct Impl;
   explicit World(std::unique_ptr<Impl> impl);
