@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: Apache-2.0
-"""Writes the thesis' demo D1 (§4.6.4, issue 36 item 3): scenes/d1.xml, 80 free objects of four
+"""Writes the thesis' demo D1 (thesis §4.6.4): scenes/d1.xml, 80 free objects of four
 shapes (boxes, spheres, capsules, convex meshes) of different sizes and masses resting on a
 table, and scenes/d1.json, the session that sweeps a simulated hand through them with the
 proposed method (local-dynamics) in real time.
@@ -139,7 +139,7 @@ def scene_xml(seed):
             ((tx, rt, rh / 2), (0, -(ty - rt))), ((tx, rt, rh / 2), (0, ty - rt)),
             ((rt, ty - 2 * rt, rh / 2), (-(tx - rt), 0)), ((rt, ty - 2 * rt, rh / 2), (tx - rt, 0))]))
     return f"""<!-- SPDX-License-Identifier: Apache-2.0 -->
-<!-- Demo D1 (thesis 4.6.4, issue 36): 80 free objects - boxes, spheres, capsules lying on their
+<!-- Demo D1 (thesis §4.6.4): 80 free objects - boxes, spheres, capsules lying on their
      sides and convex meshes (hexagonal prisms, square frustums, roof prisms) - of different sizes
      and masses (densities 500, 1000, 2700 kg/m^3) resting on a table with a raised edge, for a simulated hand to
      feel by motion, shape and weight. Written by scripts/make-d1-scene.py --seed {seed}; edit

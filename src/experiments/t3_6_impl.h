@@ -28,7 +28,7 @@ struct Case {
   // friction (the scene's geom default; 0: not a steady slide).
   double slide_mu;
   double tool_mu;     // the scene's box friction: MuJoCo's tool–box contact takes it (max rule)
-  bool open = false;  // a known failure (docs/architecture.md): reported, not checked
+  bool open = false;  // a known failure (docs/notes/local-dynamics-6dof.md): reported, not checked
   // The push ends in an unstable equilibrium (a box jammed and tipping over its edge): a 10 µm
   // nudge may change where it falls, so the nudged runs are reported, not held to one bar.
   bool tips = false;

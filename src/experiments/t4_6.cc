@@ -47,7 +47,7 @@ constexpr double kFreeQuat[4] = {0.9659258262890683, 0.14942924536134225, 0.1494
                                  0.14942924536134225};  // 30° about unit(1, 1, 1)
 constexpr double kBoxMass = 0.5;                        // kg, both scenes
 constexpr int kSettleSteps = 50;                        // 1 s at 20 ms
-// Bounds of the checks (see docs/architecture.md, "T4.6"): the analytic estimate is the exact
+// Bounds of the checks (docs/notes/accelerance-estimates.md): the analytic estimate is the exact
 // linearization MuJoCo's converged step follows, so it may differ from the converged central
 // differences only by their rounding (~1e-16 m/s over 2ε·Δt ~ 1e-5 m/s: ~1e-10).
 constexpr double kExactTolerance = 1e-9;

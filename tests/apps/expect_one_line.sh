@@ -1,7 +1,7 @@
 #!/bin/sh
 # SPDX-License-Identifier: Apache-2.0
 # Runs a command that must fail on bad input: exit code CODE and exactly one line on stderr,
-# matching REGEX (issue 18: one line naming file and key; no third-party output).
+# matching REGEX (one line naming file and key; no third-party output).
 # Usage: expect_one_line.sh CODE REGEX -- COMMAND [ARGS...]
 set -u
 code=$1 regex=$2
