@@ -254,6 +254,7 @@ class ProxyRenderer {
   void ComputeReactions(const TickIr& ir, const Pose& X_WP, double dt, ProxyOutput* out) noexcept;
   void ComputeContactForces(const TickIr& ir, const Pose& X_WP, double dt,
                             ProxyOutput* out) noexcept;
+  Wrench LimitedTotal(const TickIr& ir, double largest, ProxyOutput* out) noexcept;
   void AddRowForces() noexcept;
   void PushReactions(const TickIr& ir, const Pose& X_WP, ProxyOutput* out) const noexcept;
   void DistributeReactions(const TickIr& ir, const Pose& X_WP, double dt,
