@@ -162,25 +162,46 @@ void PrintRunResults(const RunOptions& o, const engine::RunStats& stats, const f
   fmt::print("summary: {}\n", (out / "summary.json").string());
 }
 
+namespace {
+
+// The device is built here (not by MakeEngine) to read its fault counters after the run.
+// Several pointers: the engine builds and owns every device (their counters reach summary.json
+// per pointer), and the engine always owns the loop: null.
+std::unique_ptr<device::Device> OwnedDevice(const session::Session& s) {
+  return s.pointer_devices.empty() ? session::MakeDevice(s) : nullptr;
+}
+
+// The run's engine: with several pointers it builds and owns every device, with one it takes
+// `device` (null then).
+std::unique_ptr<engine::Engine> MakeRunEngine(const session::Session& s,
+                                              std::unique_ptr<device::Device> device) {
+  if (!s.pointer_devices.empty()) return session::MakeEngine(s);
+  return session::MakeEngine(s, std::move(device));
+}
+
+// Closes the CSV files of a run that ended in a fault; a failure there is not reported (the
+// fault is the error to report, not a CSV's).
+void KeepRecordsUpToFault(report::CsvRecorder* recorder, const fs::path& out) {
+  try {
+    recorder->Close();
+    fmt::print("records up to the fault: {}\n", out.string());
+  } catch (const std::exception&) {
+  }
+}
+
+}  // namespace
+
 int RunCommand(const RunOptions& o) {
   const session::Session s = session::LoadSession(o.session, Overrides(o));
   CheckStudy(o.session, Overrides(o));
-  // The device is built here (not by MakeEngine) to read its fault counters after the run.
-  // Several pointers: the engine builds and owns every device (their counters reach
-  // summary.json per pointer), and the engine always owns the loop.
-  const bool several = !s.pointer_devices.empty();
-  std::unique_ptr<device::Device> owned_device = several ? nullptr : session::MakeDevice(s);
+  std::unique_ptr<device::Device> owned_device = OwnedDevice(s);
   device::Device* device = owned_device.get();
   // A device whose vendor scheduler owns the servo thread runs the engine inside its callback
   // (real time); otherwise the engine owns the loop.
   auto* servo = dynamic_cast<device::ServoDevice*>(device);
   const bool on_servo_thread = servo != nullptr && s.engine.mode == settings::Mode::kRealtime;
-  std::unique_ptr<engine::Engine> engine;
-  if (several) {
-    engine = session::MakeEngine(s);
-  } else if (!on_servo_thread) {
-    engine = session::MakeEngine(s, std::move(owned_device));
-  }
+  std::unique_ptr<engine::Engine> engine =
+      on_servo_thread ? nullptr : MakeRunEngine(s, std::move(owned_device));
   const fs::path out = OutputDir(o, s);
   report::CsvRecorder recorder(out, engine ? engine->pointer_names() : std::vector<std::string>{});
 
@@ -199,11 +220,7 @@ int RunCommand(const RunOptions& o) {
     // A fault (a diverged simulation) ends the run: keep what was recorded up to it, the
     // evidence of what diverged, then report the fault.
     bar.Finish();
-    try {
-      recorder.Close();
-      fmt::print("records up to the fault: {}\n", out.string());
-    } catch (const std::exception&) {  // the fault is the error to report, not a CSV's
-    }
+    KeepRecordsUpToFault(&recorder, out);
     throw;
   }
   bar.Finish();

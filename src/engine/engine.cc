@@ -65,16 +65,11 @@ void CheckLanePointer(const world::World& world, int i, int body) {
 PointerLane::PointerLane(std::unique_ptr<device::Device> d, const device::Calibration& c)
     : device(std::move(d)), calibration(c), reports(kReportRingPeriods) {}
 
-EngineState::EngineState(world::World w, std::vector<std::unique_ptr<device::Device>> devices,
-                         const std::vector<device::Calibration>& calibrations,
-                         const settings::EngineSettings& s)
-    : settings(s),
-      world(std::move(w)),
-      reports(kReportRingPeriods),
-      tick_records(kTickRecordCapacity),
-      body_poses(InitialBodyPoses(world)) {
-  settings.Validate();
-  const int n = settings.num_pointers();
+namespace {
+
+// One device and one calibration per pointer, no device null.
+void CheckDevices(int n, const std::vector<std::unique_ptr<device::Device>>& devices,
+                  const std::vector<device::Calibration>& calibrations) {
   if (static_cast<int>(devices.size()) != n || static_cast<int>(calibrations.size()) != n) {
     throw InvalidArgument(fmt::format(
         "engine: {} pointer(s) but {} device(s) and {} calibration(s); give one of each per "
@@ -85,6 +80,58 @@ EngineState::EngineState(world::World w, std::vector<std::unique_ptr<device::Dev
   for (const auto& d : devices) {
     if (!d) throw InvalidArgument("engine: no device given");
   }
+}
+
+// Pointer i (>= 1)'s lane: its device, calibration, checked pointer body and radius.
+std::unique_ptr<PointerLane> MakeLane(const world::World& world,
+                                      const settings::EngineSettings& settings, int i,
+                                      std::unique_ptr<device::Device> device,
+                                      const device::Calibration& calibration) {
+  auto lane = std::make_unique<PointerLane>(std::move(device), calibration);
+  const settings::PointerSettings& p = settings.pointers[static_cast<std::size_t>(i)].pointer;
+  lane->pointer_body = FindPointerBody(world, fmt::format("pointers[{}].body", i), p.body, false);
+  CheckLanePointer(world, i, lane->pointer_body);
+  lane->pointer_radius = PointerRadius(world, lane->pointer_body, p);
+  return lane;
+}
+
+void CheckWatchdog(const settings::EngineSettings& settings) {
+  if (settings.safety.watchdog_timeout <= 2.0 * settings.physics_dt) {
+    throw InvalidArgument(fmt::format(
+        "safety.watchdog_timeout = {} s must exceed 2 x physics_dt = {} s, or the watchdog "
+        "fades the force in normal operation; raise it",
+        settings.safety.watchdog_timeout, 2.0 * settings.physics_dt));
+  }
+}
+
+// Every pointer's haptic side, pointer 0's first (after the methods are made).
+void EmplaceHapticSides(EngineState* st) {
+  const settings::EngineSettings& settings = st->settings;
+  st->haptic.emplace(st->method.haptic.get(), st->device.get(), st->calibration, settings.safety,
+                     st->ticks_per_step, settings.haptic_dt,
+                     HapticSide::Exchange{&st->snapshots, &st->reports, &st->tick_records});
+  for (std::size_t i = 0; i < st->lanes.size(); ++i) {
+    PointerLane& lane = *st->lanes[i];
+    lane.haptic.emplace(lane.haptic_method.get(), lane.device.get(), lane.calibration,
+                        settings.safety, st->ticks_per_step, settings.haptic_dt,
+                        HapticSide::Exchange{&lane.snapshots, &lane.reports, &st->tick_records,
+                                             static_cast<int>(i) + 1});
+  }
+}
+
+}  // namespace
+
+EngineState::EngineState(world::World w, std::vector<std::unique_ptr<device::Device>> devices,
+                         const std::vector<device::Calibration>& calibrations,
+                         const settings::EngineSettings& s)
+    : settings(s),
+      world(std::move(w)),
+      reports(kReportRingPeriods),
+      tick_records(kTickRecordCapacity),
+      body_poses(InitialBodyPoses(world)) {
+  settings.Validate();
+  const int n = settings.num_pointers();
+  CheckDevices(n, devices, calibrations);
   if (n >= 2) {
     settings.pointer = settings.pointers[0].pointer;
     settings.rendering = settings.pointers[0].rendering;
@@ -98,33 +145,14 @@ EngineState::EngineState(world::World w, std::vector<std::unique_ptr<device::Dev
                                  settings.pointer.body, tool);
   pointer_radius = PointerRadius(world, pointer_body, settings.pointer);
   for (int i = 1; i < n; ++i) {
-    auto lane = std::make_unique<PointerLane>(std::move(devices[static_cast<std::size_t>(i)]),
-                                              calibrations[static_cast<std::size_t>(i)]);
-    const settings::PointerSettings& p = settings.pointers[static_cast<std::size_t>(i)].pointer;
-    lane->pointer_body = FindPointerBody(world, fmt::format("pointers[{}].body", i), p.body, false);
-    CheckLanePointer(world, i, lane->pointer_body);
-    lane->pointer_radius = PointerRadius(world, lane->pointer_body, p);
-    lanes.push_back(std::move(lane));
+    lanes.push_back(MakeLane(world, settings, i, std::move(devices[static_cast<std::size_t>(i)]),
+                             calibrations[static_cast<std::size_t>(i)]));
   }
   MakeMethodForSettings();
-  if (settings.safety.watchdog_timeout <= 2.0 * settings.physics_dt) {
-    throw InvalidArgument(fmt::format(
-        "safety.watchdog_timeout = {} s must exceed 2 x physics_dt = {} s, or the watchdog "
-        "fades the force in normal operation; raise it",
-        settings.safety.watchdog_timeout, 2.0 * settings.physics_dt));
-  }
+  CheckWatchdog(settings);
   ticks_per_step = settings.ticks_per_step();
   MakeLaneMethods();
-  haptic.emplace(method.haptic.get(), device.get(), calibration, settings.safety, ticks_per_step,
-                 settings.haptic_dt,
-                 HapticSide::Exchange{&snapshots, &reports, &tick_records});
-  for (std::size_t i = 0; i < lanes.size(); ++i) {
-    PointerLane& lane = *lanes[i];
-    lane.haptic.emplace(lane.haptic_method.get(), lane.device.get(), lane.calibration,
-                        settings.safety, ticks_per_step, settings.haptic_dt,
-                        HapticSide::Exchange{&lane.snapshots, &lane.reports, &tick_records,
-                                             static_cast<int>(i) + 1});
-  }
+  EmplaceHapticSides(this);
 }
 
 namespace {

@@ -129,9 +129,10 @@ Checks CheckD1(const D1Run& run, const D1Run& rest, const D1Run* ref, bool realt
   return c;
 }
 
-nlohmann::json Numbers(const D1Run& run, const D1Run& rest, const D1Run* ref, double rss_mb) {
+// The run's timing, rates and resources.
+nlohmann::json TimingNumbers(const D1Run& run, double rss_mb) {
   const engine::RunStats& s = run.stats;
-  nlohmann::json n = {
+  return {
       {"mode", settings::ModeName(s.mode)},
       {"objects", run.objects},
       {"physics_dt_ms", s.physics_dt * 1e3},
@@ -150,6 +151,13 @@ nlohmann::json Numbers(const D1Run& run, const D1Run& rest, const D1Run* ref, do
       {"peak_rss_mb", rss_mb},
       {"warnings", s.warnings},
       {"realtime_priority", s.realtime_priority},
+  };
+}
+
+// What the hand and the objects did in the run, and the objects at rest.
+nlohmann::json MotionNumbers(const D1Run& run, const D1Run& rest) {
+  const engine::RunStats& s = run.stats;
+  return {
       {"max_body_speed_m_per_s", run.max_body_speed},
       {"fastest_body", run.fastest_body},
       {"fastest_t_s", run.fastest_t},
@@ -166,6 +174,12 @@ nlohmann::json Numbers(const D1Run& run, const D1Run& rest, const D1Run* ref, do
       {"rest_max_displacement_m", rest.max_displacement},
       {"rest_max_speed_m_per_s", rest.max_body_speed},
   };
+}
+
+// summary.json's numbers (one object: its keys sort as any nlohmann::json's).
+nlohmann::json Numbers(const D1Run& run, const D1Run& rest, const D1Run* ref, double rss_mb) {
+  nlohmann::json n = TimingNumbers(run, rss_mb);
+  n.update(MotionNumbers(run, rest));
   if (ref != nullptr) {
     n["reference_method"] = ref->stats.method;
     n["reference_max_body_speed_m_per_s"] = ref->max_body_speed;

@@ -88,6 +88,32 @@ TapResult RunTap(session::Session s, double x, double v) {
   return r;
 }
 
+// A tap's residual transient and its spectrum, rows of d3_transients.csv and d3_spectra.csv.
+void AddTrace(const char* material, double v, const TapResult& r, double haptic_dt, double f_max,
+              Table* traces, Table* spectra) {
+  for (std::size_t i = 0; i < r.tau.size(); ++i) {
+    traces->AddFormatted("{},{},{:.4f},{:.6e}", material, v, r.tau[i], r.residual[i]);
+  }
+  const std::vector<double> spectrum = Spectrum(r.residual, haptic_dt, 1.0, f_max);
+  for (std::size_t i = 0; i < spectrum.size(); ++i) {
+    spectra->AddFormatted("{},{},{},{:.6e}", material, v, i, spectrum[i]);
+  }
+}
+
+// A tap's bars: the fitted transient's f, B and a·v and the stiffness felt at rest.
+void AddTapChecks(const std::string& tag, const DecayFit& fit,
+                  const settings::VibrationSettings& vib, double v, double k_rest, double k,
+                  Checks* checks) {
+  const double f_err = std::abs(fit.frequency / vib.frequency - 1.0);
+  const double b_err = std::abs(fit.decay / vib.decay - 1.0);
+  const double a_err = std::abs(fit.amplitude / (vib.amplitude * v) - 1.0);
+  const double k_err = std::abs(k_rest / k - 1.0);
+  checks->Add(tag + "_frequency_within_5pct", f_err <= kFrequencyTol, f_err, kFrequencyTol);
+  checks->Add(tag + "_decay_within_25pct", b_err <= kDecayTol, b_err, kDecayTol);
+  checks->Add(tag + "_amplitude_a_v_within_15pct", a_err <= kAmplitudeTol, a_err, kAmplitudeTol);
+  checks->Add(tag + "_rest_stiffness_within_1pct", k_err <= kStiffnessTol, k_err, kStiffnessTol);
+}
+
 }  // namespace
 
 int RunD3(const std::filesystem::path& out, bool quiet) {
@@ -111,22 +137,8 @@ int RunD3(const std::filesystem::path& out, bool quiet) {
       fits.AddFormatted("{},{},{},{:.3f},{},{:.3f},{:.4f},{:.4f},{},{:.3f},{:.2e}", block.material,
                         v, vib.frequency, fit.frequency, vib.decay, fit.decay, vib.amplitude * v,
                         fit.amplitude, k, k_rest, fit.rms_error);
-      for (std::size_t i = 0; i < r.tau.size(); ++i) {
-        traces.AddFormatted("{},{},{:.4f},{:.6e}", block.material, v, r.tau[i], r.residual[i]);
-      }
-      const std::vector<double> spectrum = Spectrum(r.residual, base.engine.haptic_dt, 1.0, f_max);
-      for (std::size_t i = 0; i < spectrum.size(); ++i) {
-        spectra.AddFormatted("{},{},{},{:.6e}", block.material, v, i, spectrum[i]);
-      }
-      const std::string tag = fmt::format("{}_{}m_s", block.material, v);
-      const double f_err = std::abs(fit.frequency / vib.frequency - 1.0);
-      const double b_err = std::abs(fit.decay / vib.decay - 1.0);
-      const double a_err = std::abs(fit.amplitude / (vib.amplitude * v) - 1.0);
-      const double k_err = std::abs(k_rest / k - 1.0);
-      checks.Add(tag + "_frequency_within_5pct", f_err <= kFrequencyTol, f_err, kFrequencyTol);
-      checks.Add(tag + "_decay_within_25pct", b_err <= kDecayTol, b_err, kDecayTol);
-      checks.Add(tag + "_amplitude_a_v_within_15pct", a_err <= kAmplitudeTol, a_err, kAmplitudeTol);
-      checks.Add(tag + "_rest_stiffness_within_1pct", k_err <= kStiffnessTol, k_err, kStiffnessTol);
+      AddTrace(block.material, v, r, base.engine.haptic_dt, f_max, &traces, &spectra);
+      AddTapChecks(fmt::format("{}_{}m_s", block.material, v), fit, vib, v, k_rest, k, &checks);
     }
   }
   WriteText(out / "d3.csv", fits.Csv());

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "experiments_chapter3.h"
 #include "mrh/core/spatial.h"
 #include "mrh/engine/engine.h"
 #include "mrh/physics/method_physics.h"
@@ -31,7 +32,7 @@ class Method;
 
 namespace mrh::experiments::internal {
 
-/// T3.3 (thesis §3.3.4): real-time computation ratio per method and cube count (rows of 3 resting
+/// T3.3 (issue 15): real-time computation ratio per method and cube count (rows of 3 resting
 /// cubes, the first row pushed by a box pointer). Lockstep; a method's ratio is its mean haptic
 /// compute per tick (run wall time − physics step time, over the ticks: engine bookkeeping
 /// included) / 1 ms plus its p50 physics step / physics_dt (20 ms; 1 ms for the single-rate
@@ -132,7 +133,7 @@ struct T43Options {
                                        "local-dynamics/no-perturbation"};
   std::vector<int> cubes = {1, 10, 100};  ///< frictionless (condim 1) runs
   /// Runs with friction (condim 3, μ = 1, pyramidal cones), file and summary keys
-  /// "<cubes>_friction".
+  /// "<cubes>_friction". MuJoCo 2.2.2 holds at most ~620 such cubes (World's buffer sizing).
   std::vector<int> friction_cubes = {1, 10, 100};
   double physics_dt = 0.02;      ///< s, multi-rate methods (single-rate steps at haptic_dt)
   int steps = 50;                ///< physics steps per multi-rate run
@@ -173,7 +174,7 @@ struct T45Options {
 
 int RunT45(const std::filesystem::path& out, bool quiet, const T45Options& options);
 
-/// T4.6 (thesis §4.6.3): a body's 6×6 accelerance (and the 3×3 point accelerance) estimated
+/// T4.6 (issue 14 item 3): a body's 6×6 accelerance (and the 3×3 point accelerance) estimated
 /// by the thesis' 1 + 18 perturbation runs, its 2-run estimate, the analytic island estimate
 /// and the thesis' 3-DOF 1 + 3 runs, against converged MuJoCo on a free box (zero gravity), a
 /// box resting on a floor (pushed, sticking; pushed harder, sliding) and a box pushed into a
@@ -202,9 +203,9 @@ struct LatencyOptions {
 
 int RunLatency(const std::filesystem::path& out, bool quiet, const LatencyOptions& options);
 
-/// A t4.push case: scene scenes/t4_push_<scene or name>.xml, pointer height z (m),
+/// A t4.push case (issue 13): scene scenes/t4_push_<scene or name>.xml, pointer height z (m),
 /// the time the pointer stops pushing (s), the run length (s), the pointer's lateral offset y
-/// (m) and whether local-dynamics is held to the acceptance bars on it (`checked`; false for the
+/// (m) and whether local-dynamics is held to the issue's bars on it (`checked`; false for the
 /// pyramidal-cone box, on which single-rate's straight push is unstable).
 struct PushCase {
   std::string name;
@@ -232,7 +233,7 @@ struct PushResult {
   double peak_spin = 0.0;        ///< rad/s
 };
 
-/// The acceptance cases (one box, heavy box, row of three, wall, tip), plus the row's two
+/// The issue's cases (one box, heavy box, row of three, wall, tip), plus the row's two
 /// chaos probes (10 µm lateral pointer offsets) and the row between rails (row_guided).
 PushOptions DefaultPushOptions();
 
@@ -240,7 +241,7 @@ PushOptions DefaultPushOptions();
 std::vector<std::vector<PushResult>> RunPushCases(const std::filesystem::path& out,
                                                   const PushOptions& options, bool quiet);
 
-/// t4.push: returns 0 if local-dynamics meets the acceptance bars against single-rate in every
+/// t4.push: returns 0 if local-dynamics meets the issue's bars against single-rate in every
 /// case (mean within 5 %, sd <= max(2x, 2 % of mean), contact loss <= single-rate's, box within
 /// 2 cm at 5 s).
 int RunT4Push(const std::filesystem::path& out, bool quiet);
@@ -253,7 +254,7 @@ struct GraspRun {
 };
 
 /// The runs of every grasp case: the reference (single-rate at 1 ms) first, then the methods at
-/// 20 ms: the local-dynamics methods (checked against the acceptance bars) and proxy-6dof and
+/// 20 ms: the local-dynamics methods (checked against the issue's bars) and proxy-6dof and
 /// impulse (reported: their reaction arrives one physics step late).
 std::vector<GraspRun> GraspRuns();
 
@@ -277,7 +278,7 @@ struct GraspResult {
 /// `out` is not empty.
 GraspResult RunGraspCase(const std::filesystem::path& out, const GraspRun& run);
 
-/// The acceptance bars for a grasp run against the reference: hold height within 5 mm, each
+/// The issue's bars for a grasp run against the reference: hold height within 5 mm, each
 /// finger's mean force within 5 % and its standard deviation at most 2x the reference's.
 bool MeetsBars(const GraspResult& r, const GraspResult& reference);
 
@@ -347,13 +348,13 @@ void RunGraspSlide(const std::filesystem::path& out, bool quiet, std::string* md
 /// with Coulomb's force within 5 % and local-dynamics meets the slide bars.
 int RunGrasp(const std::filesystem::path& out, bool quiet);
 
-/// Demo D1 (thesis §4.6.4): scenes/d1.json, a simulated hand sweeping through
+/// Demo D1 (thesis §4.6.4, issue 36 item 3): scenes/d1.json, a simulated hand sweeping through
 /// 80 objects of four shapes on a table with local-dynamics. First a lockstep run with the hand
 /// held above the table (the objects must stay at rest), then the session itself, then (by
 /// default) the same hand path with the single-rate reference. Checks: the
 /// objects stay on the table, the hand touches them, no object is faster than the speed the
 /// hand and gravity can give it, no warnings or faults, peak RSS < 300 MB; in real time also
-/// the acceptance bars (haptic rate >= 990 Hz, overruns <= 0.5 % of ticks, step p99 < physics_dt).
+/// the issue's bars (haptic rate >= 990 Hz, overruns <= 0.5 % of ticks, step p99 < physics_dt).
 /// Writes d1.csv (per physics step), d1.md, d1.png and summary.json; returns 0 if every check
 /// passes.
 struct D1Options {
@@ -378,162 +379,5 @@ int RunD1Full(const std::filesystem::path& out, bool quiet);
 int RunD3(const std::filesystem::path& out, bool quiet);
 /// D3's gnuplot figure from the CSVs in `out`.
 void PlotD3(const std::filesystem::path& out, bool quiet);
-
-// Chapter 3 (method proxy-6dof).
-
-/// One case × method of t3.6: rendered |f| and |τ| statistics over 2–5 s, peak |ω|
-/// of any box after a global step, every box's COM at 4 s.
-struct T36Result {
-  std::string case_name;
-  std::string method;                   ///< e.g. "local-dynamics-6dof@20ms"
-  double mean_f = 0.0, sd_f = 0.0;      ///< N
-  double mean_tau = 0.0, sd_tau = 0.0;  ///< N·m, of |τ|
-  Vec3 mean_tau_W = Vec3::Zero();       ///< N·m, mean rendered torque vector (world)
-  double sliding_f = 0.0;               ///< N, Coulomb's μ Σm |g| if the boxes slide, else 0
-  double peak_spin = 0.0;               ///< rad/s
-  double peak_speed = 0.0;              ///< m/s, the boxes' COM
-  std::vector<Vec3> pose_at;            ///< m, world, each box's COM at 4 s
-  double yaw_at = 0.0;                  ///< rad, the first box's heading about +z at 4 s
-};
-
-/// Runs t3.6's cases (face, offcentre, tip, wall, row, edge) × the reference (virtual coupling
-/// at 1 ms, first), proxy-6dof at 1 and 20 ms, local-dynamics-6dof at 20 ms, then the reference
-/// and local-dynamics-6dof with the pointer nudged 10 µm to −y and +y; runs/ CSVs under `out`;
-/// results[case][method].
-std::vector<std::vector<T36Result>> RunT36Cases(const std::filesystem::path& out, bool quiet);
-
-/// t3.6: returns 0 if every check passes (nothing thrown; Coulomb's force in steady slides; the
-/// off-centre push follows the reference; local-dynamics-6dof is robust to a 10 µm nudge).
-int RunT36(const std::filesystem::path& out, bool quiet);
-
-/// What t3.7 runs: the shape matrix (scenes/t3_7_*.xml) × pointers × centred and off-centre
-/// pushes, each with virtual coupling at 1 ms (the reference), proxy-6dof at 1 and 20 ms and
-/// local-dynamics-6dof at 20 ms.
-struct T37Options {
-  std::vector<std::string> shapes;              ///< empty: all six
-  std::vector<std::string> pointers = {"box"};  ///< "box", "sphere"
-  bool offcentre = true;  ///< also push off centre (box pointer 4 cm, sphere 2 cm)
-};
-
-/// One t3.7 run's figures (statistics window 2–5 s; peaks from the touch at 1 s).
-struct T37Result {
-  std::string shape, pointer, method;  ///< method: e.g. "local-dynamics-6dof@20ms"
-  bool offcentre = false;
-  double mean_f = 0.0;          ///< N, rendered |f| over 2–5 s
-  double sd_f = 0.0;            ///< N, its standard deviation over 2–5 s
-  Vec3 impulse = Vec3::Zero();  ///< N·s, ∫f dt of the rendered force from the touch on (world)
-  double coulomb_f = 0.0;       ///< N, μ m |g| where the push is a steady slide, else 0
-  double rolling_radius = 0.0;  ///< m, where the object rolls, else 0
-  double peak_speed = 0.0;      ///< m/s, the object's COM
-  double peak_spin = 0.0;       ///< rad/s
-  Vec3 end = Vec3::Zero();      ///< m, COM at the end (world)
-  double yaw = 0.0;             ///< rad, heading of the body's x axis about +z at the end
-};
-
-/// A run judged by the acceptance bars against the analytic expectations and the reference run
-/// of its case (virtual coupling at 1 ms). Unset optionals: the bar does not apply.
-struct T37Verdict {
-  /// m/s: 2.5× the larger of the pointer's speed and the reference's peak speed.
-  double speed_bound = 0.0;
-  bool thrown = false;  ///< peak speed above speed_bound
-  /// rad/s, rolling bodies: 2.5× the larger of v / r and the reference's peak spin.
-  std::optional<double> spin_bound;
-  bool spun = false;                  ///< peak spin above spin_bound
-  std::optional<double> slide_error;  ///< mean |f| / μ m g − 1 (steady slides)
-  std::optional<bool> slide_ok;       ///< |slide_error| ≤ 5 %
-  /// Off-centre, sliding: |J − J_ref| / |J_ref| of the impulses J = ∫f dt.
-  std::optional<double> force_vs_ref;
-  std::optional<double> pose_error;  ///< off-centre, sliding: m, end (x, y) from the reference's
-  std::optional<bool> follows_ref;   ///< pose_error ≤ 2 cm and |force_vs_ref| ≤ 10 %
-  std::optional<bool> same_turn;     ///< off-centre, sliding, the reference turned ≥ 5°
-};
-
-T37Verdict Judge(const T37Result& r, const T37Result& ref);
-
-/// Runs the matrix; results in case order, kVariants' order within a case (reference first).
-std::vector<T37Result> RunT37Cases(const std::filesystem::path& out, bool quiet,
-                                   const T37Options& options);
-
-/// t3.7 with the box pointer (`--full`: box and sphere pointers). Returns 0 if every check
-/// passes: nothing thrown; local-dynamics-6dof and proxy-6dof at 1 ms within the analytic bars;
-/// local-dynamics-6dof following the reference off centre.
-int RunT37(const std::filesystem::path& out, bool quiet);
-int RunT37(const std::filesystem::path& out, bool quiet, const T37Options& options);
-int RunT37Full(const std::filesystem::path& out, bool quiet);
-
-/// One haptic tick of a proxy-6dof run as the chapter-3 drivers see it (world frame).
-struct ProxyTick {
-  double t = 0.0;                        ///< s
-  Pose X_WP;                             ///< pointer
-  Wrench w_W;                            ///< rendered wrench (before the safety layer)
-  Pose X_WQ;                             ///< proxy
-  Vec3 dr = Vec3::Zero();                ///< Δr, proxy − pointer translation (m)
-  Vec3 dtheta = Vec3::Zero();            ///< Δθ, proxy rotation vector from the pointer (rad)
-  render::ProxyDiagnostics diagnostics;  ///< rows, friction states, PGS sweeps
-  std::vector<Vec3> constrained_p_PV;    ///< pointer-frame points with a normal row this tick
-};
-
-/// A proxy-6dof session run: the engine's statistics and one ProxyTick per haptic tick.
-struct ProxyRun {
-  engine::RunStats stats;
-  std::vector<ProxyTick> ticks;
-};
-
-/// Runs `session` (method proxy-6dof) in lockstep with the engine's own scheduler, sampling the
-/// method after every tick. When `dir` is not empty, writes ticks.csv, bodies.csv, steps.csv,
-/// summary.json and report.png there (a gnuplot failure is a warning unless `quiet`).
-/// @throws mrh::InvalidArgument if the session's method is not proxy-6dof. Defined in t3_1.cc.
-ProxyRun RunProxySession(const session::Session& session, const std::filesystem::path& dir,
-                         const std::string& title, bool quiet);
-
-/// T3.1's session (same device motion) run with method penalty-sum (B5) in lockstep through the
-/// public engine API: one record per tick. Defined in t3_1_penalty_sum.cc.
-std::vector<ir::TickRecord> RunPenaltySumTicks(const session::Session& session);
-
-/// The T3.1 windows the penalty-sum check reads: k (N/m), the held edge/face depths (m), the
-/// edge hold [t0, t1) and the time after which the face is held (s).
-struct PenaltySumWindows {
-  double k = 0.0, edge_depth = 0.0, face_depth = 0.0;
-  double edge_hold[2] = {0.0, 0.0};
-  double face_hold = 0.0;
-};
-
-/// B5 vs the proxy (Berkelman & Hollis 2000, thesis ref. [43]): checks the sum renders 2kδ on
-/// the held edge and 4kδ on the
-/// held face (the proxy: k_t δ on both), and writes the forces and force-per-depth stiffnesses
-/// into `numbers`. Returns the checks.
-nlohmann::json CheckPenaltySumT31(const std::vector<ir::TickRecord>& ticks,
-                                  const PenaltySumWindows& windows, nlohmann::json* numbers);
-
-/// T3.1: edge contact → roll → face contact of a 0.2 m cube at the thesis gains (figs.
-/// 3.10–3.11). Returns 0 if the analytic checks pass.
-int RunT31(const std::filesystem::path& out, bool quiet);
-
-/// T3.2: friction strokes and twist with μ = 0.5 (figs. 3.13–3.14). Returns 0 if the checks
-/// pass (kinetic |f_t| = μ|f_n|, static below, friction against the motion).
-int RunT32(const std::filesystem::path& out, bool quiet);
-
-/// T3.4: haptic tick time vs contact points (N-gon prism sliding on a floor), with and without
-/// friction (fig. 3.17). Returns 0 if every run had N contacts and finite timings.
-int RunT34(const std::filesystem::path& out, bool quiet);
-
-/// What RunT34 runs.
-struct T34Options {
-  std::vector<int> sides = {5, 10, 20, 50, 100, 200, 500, 1000};
-  double duration = 2.0;  ///< s simulated per run (ticks = duration / 1 ms)
-};
-
-int RunT34(const std::filesystem::path& out, bool quiet, const T34Options& options);
-
-/// T3.5: rotation-weight sweep on the T3.1 motion: penetration of unconstrained vertices and
-/// torque vs the multiplier on the unit-mass inertia (fig. 3.18). Returns 0 if the trends hold.
-int RunT35(const std::filesystem::path& out, bool quiet);
-
-/// What RunT35 runs.
-struct T35Options {
-  std::vector<double> multipliers = {1, 3, 10, 30, 100, 300, 500, 1000, 3000, 10000};
-};
-
-int RunT35(const std::filesystem::path& out, bool quiet, const T35Options& options);
 
 }  // namespace mrh::experiments::internal

@@ -219,6 +219,30 @@ std::string CheckName(const std::string& method) {
   return name;
 }
 
+namespace {
+
+// A lift run's row in grasp.csv and grasp.md and its summary["runs"] entry.
+void AddLiftRow(const GraspRun& run, const GraspResult& r, Table* csv, Table* md,
+                nlohmann::json* summary) {
+  const double weight = r.box_mass * 9.81;
+  csv->AddFormatted("{},{},{:.5f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f}", run.method,
+                    run.physics_dt, r.hold_height, r.mean_force[0], r.mean_force[1], r.sd_force[0],
+                    r.sd_force[1], r.mean_lift_force, weight);
+  md->Add({run.method, fmt::format("{} ms", run.physics_dt * 1e3),
+           fmt::format("{:.2f}", r.hold_height * 1e3), fmt::format("{:.3f}", r.mean_force[0]),
+           fmt::format("{:.3f}", r.mean_force[1]), fmt::format("{:.3f}", r.sd_force[0]),
+           fmt::format("{:.3f}", r.sd_force[1]),
+           fmt::format("{:.3f}", r.mean_lift_force / weight)});
+  (*summary)["runs"][run.method] = {{"physics_dt", run.physics_dt},
+                                    {"hold_height_m", r.hold_height},
+                                    {"mean_force_N", {r.mean_force[0], r.mean_force[1]}},
+                                    {"sd_force_N", {r.sd_force[0], r.sd_force[1]}},
+                                    {"carried_N", r.mean_lift_force},
+                                    {"weight_N", weight}};
+}
+
+}  // namespace
+
 int RunGrasp(const std::filesystem::path& out, bool quiet) {
   const std::vector<GraspRun> runs = GraspRuns();
   Table csv({"method", "physics_dt_s", "hold_height_m", "thumb_mean_N", "index_mean_N",
@@ -231,21 +255,7 @@ int RunGrasp(const std::filesystem::path& out, bool quiet) {
     if (!quiet) std::cout << "grasp lift: " << run.method << "...\n";
     const GraspResult r = RunGraspCase(out, run);
     results.push_back(r);
-    const double weight = r.box_mass * 9.81;
-    csv.AddFormatted("{},{},{:.5f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f}", run.method,
-                     run.physics_dt, r.hold_height, r.mean_force[0], r.mean_force[1], r.sd_force[0],
-                     r.sd_force[1], r.mean_lift_force, weight);
-    md.Add({run.method, fmt::format("{} ms", run.physics_dt * 1e3),
-            fmt::format("{:.2f}", r.hold_height * 1e3), fmt::format("{:.3f}", r.mean_force[0]),
-            fmt::format("{:.3f}", r.mean_force[1]), fmt::format("{:.3f}", r.sd_force[0]),
-            fmt::format("{:.3f}", r.sd_force[1]),
-            fmt::format("{:.3f}", r.mean_lift_force / weight)});
-    summary["runs"][run.method] = {{"physics_dt", run.physics_dt},
-                                   {"hold_height_m", r.hold_height},
-                                   {"mean_force_N", {r.mean_force[0], r.mean_force[1]}},
-                                   {"sd_force_N", {r.sd_force[0], r.sd_force[1]}},
-                                   {"carried_N", r.mean_lift_force},
-                                   {"weight_N", weight}};
+    AddLiftRow(run, r, &csv, &md, &summary);
   }
   const GraspResult& ref = results[0];
   Checks checks;

@@ -144,6 +144,26 @@ std::string SlideScript(const std::vector<GraspRun>& runs) {
   return gp + "\nunset multiplot\n";
 }
 
+// A slide run's row in grasp_slide.csv and the slide table and its summary["slide"] entry.
+void AddSlideRow(const GraspRun& run, const SlideResult& r, Table* csv, Table* table,
+                 nlohmann::json* summary) {
+  csv->AddFormatted("{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.5f}", run.method,
+                    run.physics_dt, r.mean_force[0], r.mean_force[1], r.sd_force[0], r.sd_force[1],
+                    r.push_force, r.coulomb, r.carried, r.box_travel);
+  table->Add({run.method, fmt::format("{} ms", run.physics_dt * 1e3),
+              fmt::format("{:.3f}", r.mean_force[0]), fmt::format("{:.3f}", r.mean_force[1]),
+              fmt::format("{:.3f}", r.sd_force[0]), fmt::format("{:.3f}", r.sd_force[1]),
+              fmt::format("{:.3f}", r.push_force), fmt::format("{:.3f}", r.coulomb),
+              fmt::format("{:.1f}", r.box_travel * 1e3)});
+  (*summary)["slide"][run.method] = {{"physics_dt", run.physics_dt},
+                                     {"mean_force_N", {r.mean_force[0], r.mean_force[1]}},
+                                     {"sd_force_N", {r.sd_force[0], r.sd_force[1]}},
+                                     {"push_N", r.push_force},
+                                     {"coulomb_N", r.coulomb},
+                                     {"carried_N", r.carried},
+                                     {"box_travel_m", r.box_travel}};
+}
+
 }  // namespace
 
 // The reference must drag the box with Coulomb's sliding force and carry it the fingers' travel;
@@ -162,21 +182,7 @@ void RunGraspSlide(const std::filesystem::path& out, bool quiet, std::string* md
     if (!quiet) std::cout << "grasp slide: " << run.method << "...\n";
     const SlideResult r = RunSlideCase(out, run);
     results.push_back(r);
-    csv.AddFormatted("{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.5f}", run.method,
-                     run.physics_dt, r.mean_force[0], r.mean_force[1], r.sd_force[0], r.sd_force[1],
-                     r.push_force, r.coulomb, r.carried, r.box_travel);
-    table.Add({run.method, fmt::format("{} ms", run.physics_dt * 1e3),
-               fmt::format("{:.3f}", r.mean_force[0]), fmt::format("{:.3f}", r.mean_force[1]),
-               fmt::format("{:.3f}", r.sd_force[0]), fmt::format("{:.3f}", r.sd_force[1]),
-               fmt::format("{:.3f}", r.push_force), fmt::format("{:.3f}", r.coulomb),
-               fmt::format("{:.1f}", r.box_travel * 1e3)});
-    (*summary)["slide"][run.method] = {{"physics_dt", run.physics_dt},
-                                       {"mean_force_N", {r.mean_force[0], r.mean_force[1]}},
-                                       {"sd_force_N", {r.sd_force[0], r.sd_force[1]}},
-                                       {"push_N", r.push_force},
-                                       {"coulomb_N", r.coulomb},
-                                       {"carried_N", r.carried},
-                                       {"box_travel_m", r.box_travel}};
+    AddSlideRow(run, r, &csv, &table, summary);
   }
   const SlideResult& ref = results[0];
   const double push_error = ref.push_force / ref.coulomb - 1.0;

@@ -113,6 +113,26 @@ nlohmann::json Compare(const Case& c, const Variant& v, const T36Result& r, cons
             {"not_thrown", r.peak_speed <= kThrowBar * std::max(kSpeed, ref.peak_speed)}}}};
 }
 
+// How far a nudged trio (a run and its two nudged twins) spreads: |f| and |τ| ranges (N, N·m),
+// the largest position difference between two of them and the largest side offset (m).
+struct Spread {
+  double f_lo, f_hi, t_lo, t_hi, pose, side;
+};
+
+Spread SpreadOf(const Case& c, const T36Result* const member[3]) {
+  double f_lo = member[0]->mean_f, f_hi = f_lo, t_lo = member[0]->mean_tau, t_hi = t_lo;
+  double pose = 0.0, side = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    f_lo = std::min(f_lo, member[i]->mean_f);
+    f_hi = std::max(f_hi, member[i]->mean_f);
+    t_lo = std::min(t_lo, member[i]->mean_tau);
+    t_hi = std::max(t_hi, member[i]->mean_tau);
+    for (int j = 0; j < i; ++j) pose = std::max(pose, PoseError(*member[i], *member[j]));
+    for (const Vec3& p : member[i]->pose_at) side = std::max(side, std::abs(p.y() - c.y));
+  }
+  return {f_lo, f_hi, t_lo, t_hi, pose, side};
+}
+
 // The reference check of one case: how much the reference and local-dynamics-6dof move when the
 // pointer is nudged 10 µm sideways, in units of the acceptance bars (5 % of the reference's |f|,
 // 10 % of its |τ|, 2 cm), and, where the case is mirror-symmetric (y -> -y), the share of the
@@ -124,16 +144,9 @@ nlohmann::json CheckReference(const Case& c, const std::vector<T36Result>& runs,
   for (int m = 0; m < 2; ++m) {
     const T36Result* member[3] = {&runs[kNudgedBase[m]], &runs[kNudged[m][0]],
                                   &runs[kNudged[m][1]]};
-    double f_lo = member[0]->mean_f, f_hi = f_lo, t_lo = member[0]->mean_tau, t_hi = t_lo;
-    double pose = 0.0, side = 0.0;
-    for (int i = 0; i < 3; ++i) {
-      f_lo = std::min(f_lo, member[i]->mean_f);
-      f_hi = std::max(f_hi, member[i]->mean_f);
-      t_lo = std::min(t_lo, member[i]->mean_tau);
-      t_hi = std::max(t_hi, member[i]->mean_tau);
-      for (int j = 0; j < i; ++j) pose = std::max(pose, PoseError(*member[i], *member[j]));
-      for (const Vec3& p : member[i]->pose_at) side = std::max(side, std::abs(p.y() - c.y));
-    }
+    const Spread spread = SpreadOf(c, member);
+    const double f_lo = spread.f_lo, f_hi = spread.f_hi, t_lo = spread.t_lo, t_hi = spread.t_hi;
+    const double pose = spread.pose, side = spread.side;
     const double f_bars = (f_hi - f_lo) / (0.05 * ref.mean_f);
     const double t_bars = ref.mean_tau > 0.0 ? (t_hi - t_lo) / (0.10 * ref.mean_tau) : 0.0;
     const double pose_bars = pose / 0.02;

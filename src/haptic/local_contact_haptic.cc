@@ -80,6 +80,31 @@ void LocalContactHaptic::HapticTick(const TickInput& in, TickOutput* out) noexce
   ++counters_.ticks;
 }
 
+// Contact i's plane this tick (normal n_W through p_WO, moving at v_WO) and its body's COM
+// p_WCm: from the island's state for an island body, else blended over the period.
+void LocalContactHaptic::ContactPlane(std::size_t i, const TickInput& in, double alpha, Vec3* n_W,
+                                      Vec3* p_WO, Vec3* v_WO, Vec3* p_WCm) noexcept {
+  const ir::PointContact& c = snapshot_.contacts[i];
+  const auto motion = static_cast<std::size_t>(c.motion);
+  const int local = local_of_motion_[motion];
+  if (local >= 0) {
+    render::LocalContactSolver& solver = island();
+    const auto l = static_cast<std::size_t>(local);
+    const Pose X_WB = solver.X_WB(l);
+    *n_W = X_WB.q * n_B_[i];
+    *p_WO = X_WB * c.p_BC;
+    if (c.r > 0.0) RoundPlane(X_WB, c, in.X_WP.p, n_W, p_WO);
+    *v_WO = solver.PointVelocity(l, *p_WO);
+    *p_WCm = solver.p_WCm(l);
+  } else {
+    *n_W = render::BlendNormal(previous_n_[i], c.n_W, alpha);
+    const render::BlendedPoint o = render::BlendBodyPoint(snapshot_.bodies[motion], c.p_BC, alpha);
+    *p_WO = o.p_WO;
+    *v_WO = o.v_WO;
+    *p_WCm = o.p_WCm;
+  }
+}
+
 // Corrected eq. 4.11 against every contact's plane; the reaction (eq. 4.12) goes to the island
 // body in this tick, or, for a body outside the island, into the period's impulse.
 void LocalContactHaptic::RenderContacts(const TickInput& in, double alpha,
@@ -93,21 +118,7 @@ void LocalContactHaptic::RenderContacts(const TickInput& in, double alpha,
     const int local = local_of_motion_[motion];
     Vec3 n_W, p_WO, v_WO, p_WCm;
     render::LocalContactSolver& solver = island();
-    if (local >= 0) {
-      const auto l = static_cast<std::size_t>(local);
-      const Pose X_WB = solver.X_WB(l);
-      n_W = X_WB.q * n_B_[i];
-      p_WO = X_WB * c.p_BC;
-      if (c.r > 0.0) RoundPlane(X_WB, c, in.X_WP.p, &n_W, &p_WO);
-      v_WO = solver.PointVelocity(l, p_WO);
-      p_WCm = solver.p_WCm(l);
-    } else {
-      n_W = render::BlendNormal(previous_n_[i], c.n_W, alpha);
-      const render::BlendedPoint o = render::BlendBodyPoint(body, c.p_BC, alpha);
-      p_WO = o.p_WO;
-      v_WO = o.v_WO;
-      p_WCm = o.p_WCm;
-    }
+    ContactPlane(i, in, alpha, &n_W, &p_WO, &v_WO, &p_WCm);
     rendered_n_[i] = n_W;
     const render::SphereContact contact = render::TouchSpherePlane(
         p_WO, v_WO, n_W, in.X_WP.p, in.V_WP, radius_, g.stiffness, g.damping);

@@ -63,6 +63,8 @@ class LocalContactHaptic final : public MethodHaptic {
 
  private:
   void RenderContacts(const TickInput& in, double alpha, TickOutput* out) noexcept;
+  void ContactPlane(std::size_t i, const TickInput& in, double alpha, Vec3* n_W, Vec3* p_WO,
+                    Vec3* v_WO, Vec3* p_WCm) noexcept;
 
   render::LocalContactSolver& island() noexcept { return owner_ ? owner_->solver_ : solver_; }
 

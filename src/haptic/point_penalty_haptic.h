@@ -29,6 +29,8 @@ class PointPenaltyHaptic final : public MethodHaptic {
   void EndPeriod(ir::HapticReport* report) noexcept override;
 
  private:
+  void RenderContact(std::size_t i, const TickInput& in, double alpha, TickOutput* out) noexcept;
+
   double radius_;
   double stiffness_;
   double damping_;

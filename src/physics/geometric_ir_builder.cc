@@ -33,6 +33,18 @@ bool BodyMoves(const world::BodyInfo& body) {
   return body.is_mocap || !body.is_static;
 }
 
+// The region's points into out->points in the pointer frame (status kStatusPointsFull when
+// they do not fit).
+void PushPoints(const geometry::ContactRegion& region, const Pose& X_WP, ir::PhysicsSnapshot* out) {
+  const Pose X_PW = X_WP.Inverse();
+  for (std::size_t k = 0; k < region.points_W.size(); ++k) {
+    if (!out->points.PushBack(ir::PairPoint{X_PW * region.points_W[k], region.depths[k]})) {
+      out->status |= ir::kStatusPointsFull;
+      break;
+    }
+  }
+}
+
 }  // namespace
 
 GeometricIrBuilder::GeometricIrBuilder(const world::World& world, int pointer_body,
@@ -44,22 +56,7 @@ GeometricIrBuilder::GeometricIrBuilder(const world::World& world, int pointer_bo
       inflation_(std::max(rendering.neighbor_margin, rendering.neighbor_distance)),
       motions_(world),
       materials_(world, rendering) {
-  const world::BodyInfo& pointer = world.body(pointer_body);
-  for (const int g : pointer.geoms) {
-    if (world.geom(g).shape.type == geometry::ShapeType::kPlane) {
-      throw SceneError(fmt::format(
-          "pointer {} is a plane; expected bounded convex geoms (box, mesh, sphere, capsule, "
-          "cylinder, ellipsoid): replace it",
-          GeomLabel(world, g)));
-    }
-    pointer_.push_back(MakePiece(world, g));
-  }
-  if (pointer_.empty()) {
-    throw SceneError(fmt::format(
-        "pointer body '{}' has no geom; expected at least one convex geom (box, mesh, sphere, "
-        "capsule, cylinder, ellipsoid) for 6-DOF rendering: add one to the body",
-        pointer.name));
-  }
+  AddPointerPieces(world);
   for (int g = 0; g < world.num_geoms(); ++g) {
     const world::GeomInfo& info = world.geom(g);
     if (info.body == pointer_body_ || !info.collides) continue;
@@ -75,6 +72,26 @@ GeometricIrBuilder::GeometricIrBuilder(const world::World& world, int pointer_bo
   for (Piece& p : pointer_) {
     p.handle = sap_.Add(geometry::Aabb{});
     object_of_handle_.push_back(-1);
+  }
+}
+
+// The pointer body's geoms as pieces; throws SceneError for a plane or no geom.
+void GeometricIrBuilder::AddPointerPieces(const world::World& world) {
+  const world::BodyInfo& pointer = world.body(pointer_body_);
+  for (const int g : pointer.geoms) {
+    if (world.geom(g).shape.type == geometry::ShapeType::kPlane) {
+      throw SceneError(fmt::format(
+          "pointer {} is a plane; expected bounded convex geoms (box, mesh, sphere, capsule, "
+          "cylinder, ellipsoid): replace it",
+          GeomLabel(world, g)));
+    }
+    pointer_.push_back(MakePiece(world, g));
+  }
+  if (pointer_.empty()) {
+    throw SceneError(fmt::format(
+        "pointer body '{}' has no geom; expected at least one convex geom (box, mesh, sphere, "
+        "capsule, cylinder, ellipsoid) for 6-DOF rendering: add one to the body",
+        pointer.name));
   }
 }
 
@@ -218,13 +235,7 @@ void GeometricIrBuilder::FillPair(const Neighbor& n, const Pose& X_WP, int motio
           ? Vec3(X_WP.q.conjugate() * owner.n_W)
           : Vec3(out->bodies[static_cast<std::size_t>(motion)].X_WB.q.conjugate() * owner.n_W);
   if (pair.penetrating) ++stats_.penetrating;
-  const Pose X_PW = X_WP.Inverse();
-  for (std::size_t k = 0; k < region.points_W.size(); ++k) {
-    if (!out->points.PushBack(ir::PairPoint{X_PW * region.points_W[k], region.depths[k]})) {
-      out->status |= ir::kStatusPointsFull;
-      break;
-    }
-  }
+  PushPoints(region, X_WP, out);
   pair.num_points = static_cast<int>(out->points.size()) - pair.first_point;
   (void)out->pairs.PushBack(pair);
 }

@@ -100,6 +100,7 @@ class GeometricIrBuilder {
   void FindNeighbors();
   void FillPairs(const world::World& world, const Pose& X_WP, ir::PhysicsSnapshot* out);
   void FillPair(const Neighbor& n, const Pose& X_WP, int motion, ir::PhysicsSnapshot* out);
+  void AddPointerPieces(const world::World& world);
 
   int pointer_body_;
   settings::RenderingSettings rendering_;

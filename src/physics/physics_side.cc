@@ -105,9 +105,14 @@ void PhysicsSide::Step(std::int64_t k) {
   ir_status_ |= out.status;
   if (recorder_ != nullptr) recorder_->OnSnapshot(out);
 
+  NoteStep(k, out, std::chrono::duration<double, std::milli>(t1 - t0).count());
+}
+
+// Step k's record (last_step_) and its share of the run's totals.
+void PhysicsSide::NoteStep(std::int64_t k, const ir::PhysicsSnapshot& out, double compute_ms) {
   last_step_.step = k;
   last_step_.t = world_->time();
-  last_step_.compute_ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
+  last_step_.compute_ms = compute_ms;
   last_step_.sim_contacts = world_->num_contacts();
   last_step_.neighbors = static_cast<int>(out.bodies.size());
   last_step_.point_contacts = static_cast<int>(out.contacts.size());

@@ -127,6 +127,19 @@ void ProxyLocalReaction::PoseIr(PointerRun& run, const Pose& X_WP) {
   }
 }
 
+// Every pointer's reaction on world body `body` this substep, about its current COM.
+Wrench ProxyLocalReaction::ReactionOn(int body) const noexcept {
+  Wrench w;
+  for (const std::unique_ptr<PointerRun>& run : pointers_) {
+    for (const render::ProxyPairReaction& r : run->output.reactions) {
+      if (r.is_static || r.body != body) continue;
+      w.f += r.w_W.f;
+      w.tau += r.w_W.tau;
+    }
+  }
+  return w;
+}
+
 // One renderer tick of length h per pointer (pointer i at its report's pose moved on to time t
 // of the step), then each touched body moves under all its reactions and the rest of the
 // world's wrench (semi-implicit Euler, as MuJoCo's).
@@ -141,14 +154,7 @@ void ProxyLocalReaction::Substep(double h, std::span<const ir::HapticReport* con
     run.impulse.tau += (run.output.w_W.tau + (X_WP.p - run.origin).cross(run.output.w_W.f)) * h;
   }
   for (LocalBody& b : bodies_) {
-    Wrench w;  // on the body, about its current COM
-    for (const std::unique_ptr<PointerRun>& run : pointers_) {
-      for (const render::ProxyPairReaction& r : run->output.reactions) {
-        if (r.is_static || r.body != b.body) continue;
-        w.f += r.w_W.f;
-        w.tau += r.w_W.tau;
-      }
-    }
+    const Wrench w = ReactionOn(b.body);  // on the body, about its current COM
     b.last_force = w.f;
     b.impulse.f += w.f * h;
     b.impulse.tau += (w.tau + (b.com - b.com0).cross(w.f)) * h;

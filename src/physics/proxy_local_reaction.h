@@ -156,6 +156,7 @@ class ProxyLocalReaction {
   void EstimateOtherWrench(LocalBody* body) const;
   void PoseIr(PointerRun& run, const Pose& X_WP);
   void Substep(double h, std::span<const ir::HapticReport* const> reports, double t);
+  Wrench ReactionOn(int body) const noexcept;
   Wrench DisplacementImpulse(const LocalBody& b) const;
   void Finish(world::World& world);
   LocalBody* Find(int body);

@@ -162,10 +162,9 @@ class PythonEngine {
   py::object stats_ = py::none();
 };
 
-}  // namespace
+using EngineClass = py::class_<PythonEngine>;
 
-void BindEngine(py::module_& m) {
-  py::class_<PythonEngine>(m, "Engine", R"(The engine inside your own servo loop.
+constexpr const char* kEngineDoc = R"(The engine inside your own servo loop.
 
 For a session whose device.type is "external": your loop reads the device and calls tick()
 with its pose; the engine renders and returns the wrench to display. In lockstep mode each
@@ -177,13 +176,9 @@ physics thread runs beside your loop. Drive one Engine from one thread.
             wrench = engine.tick([0, 0, 0.019, 1, 0, 0, 0])
     stats = engine.stats
 
-Raises ValueError if the session's device is not external.)")
-      .def(py::init<const PythonSession&>(), py::arg("session"))
-      .def("start", &PythonEngine::Start,
-           "Starts the run (t = 0). Raises RuntimeError if started "
-           "before.")
-      .def("tick", &PythonEngine::Tick, py::arg("pose"), py::arg("t") = py::none(),
-           py::arg("velocity") = py::none(), R"(One haptic tick; returns the wrench to display.
+Raises ValueError if the session's device is not external.)";
+
+constexpr const char* kTickDoc = R"(One haptic tick; returns the wrench to display.
 
 pose: x, y, z (m), qw, qx, qy, qz, the tool pose in the device frame (any sequence or array
 of 7 numbers; the quaternion must be unit to 1e-3 and is normalized).
@@ -194,23 +189,39 @@ when omitted.
 Returns numpy float64 (6,): fx, fy, fz (N), tx, ty, tz (N m), device frame, after the safety
 layer (ramp, limits). Raises ValueError for a non-finite or wrongly shaped pose, velocity or t
 (nothing reaches the device then), RuntimeError before start() or after stop(). The GIL is
-released while the engine ticks.)")
-      .def("stop", &PythonEngine::Stop,
-           "Ends the run (zero output, physics thread joined) and returns its statistics as "
-           "summary.json's dict.")
-      .def_property_readonly("running", &PythonEngine::running, "Between start() and stop().")
+released while the engine ticks.)";
+
+// The run's state, read-only.
+void DefProperties(EngineClass& c) {
+  c.def_property_readonly("running", &PythonEngine::running, "Between start() and stop().")
       .def_property_readonly("stats", &PythonEngine::stats,
                              "What stop() returned (also after a `with` block), or None.")
       .def_property_readonly("haptic_dt", &PythonEngine::haptic_dt, "Haptic period (s).")
       .def_property_readonly("last_t", &PythonEngine::last_t,
-                             "The last tick's t (s), or None before the first tick.")
-      .def(
-          "__enter__",
-          [](PythonEngine& e) -> PythonEngine& {
-            e.Start();
-            return e;
-          },
-          py::return_value_policy::reference_internal)
+                             "The last tick's t (s), or None before the first tick.");
+}
+
+}  // namespace
+
+void BindEngine(py::module_& m) {
+  EngineClass c(m, "Engine", kEngineDoc);
+  c.def(py::init<const PythonSession&>(), py::arg("session"))
+      .def("start", &PythonEngine::Start,
+           "Starts the run (t = 0). Raises RuntimeError if started "
+           "before.")
+      .def("tick", &PythonEngine::Tick, py::arg("pose"), py::arg("t") = py::none(),
+           py::arg("velocity") = py::none(), kTickDoc)
+      .def("stop", &PythonEngine::Stop,
+           "Ends the run (zero output, physics thread joined) and returns its statistics as "
+           "summary.json's dict.");
+  DefProperties(c);
+  c.def(
+       "__enter__",
+       [](PythonEngine& e) -> PythonEngine& {
+         e.Start();
+         return e;
+       },
+       py::return_value_policy::reference_internal)
       .def("__exit__", [](PythonEngine& e, const py::args&) {
         if (e.running()) (void)e.Stop();
         return false;

@@ -91,6 +91,19 @@ void CheckDevice(const session::Session& s, const device::Device& device) {
   }
 }
 
+// Closes a run's output folder `out`: its CSV files, summary.json and report.png (a Python
+// warning says why when there is no plot).
+void CloseFiles(report::CsvRecorder* csv, const fs::path& out, const engine::RunStats& stats,
+                const session::Session& s) {
+  const fs::path dir = fs::absolute(out).lexically_normal();
+  csv->Close();
+  report::WriteSummary(dir, stats, s.file.string(), s.scene.string());
+  std::string why;
+  if (!report::PlotRunReport(dir, s.file, stats, &why)) {
+    PyErr_WarnEx(PyExc_RuntimeWarning, ("no report.png: " + why).c_str(), 1);
+  }
+}
+
 // Runs with the GIL released. Every progress call (at most every 0.1 s, on this thread) takes
 // the GIL back briefly to run Python's signal handlers: a KeyboardInterrupt there asks the
 // engine to stop, and is raised once the run has ended and its files are closed.
@@ -122,15 +135,7 @@ Result Run(const PythonSession& ps, const std::string& mode, const std::optional
     stats = engine->Run(&tee, progress);
   }
   const std::string summary = report::SummaryJson(stats, s.file.string(), s.scene.string());
-  if (csv) {
-    const fs::path dir = fs::absolute(*out).lexically_normal();
-    csv->Close();
-    report::WriteSummary(dir, stats, s.file.string(), s.scene.string());
-    std::string why;
-    if (!report::PlotRunReport(dir, s.file, stats, &why)) {
-      PyErr_WarnEx(PyExc_RuntimeWarning, ("no report.png: " + why).c_str(), 1);
-    }
-  }
+  if (csv) CloseFiles(&*csv, *out, stats, s);
   if (interrupt) throw *interrupt;
   return Result{ToDict(columns.ticks()), BodiesToDict(columns), ToDict(columns.steps()),
                 JsonToPython(summary)};

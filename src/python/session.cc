@@ -22,18 +22,16 @@ std::string Repr(const PythonSession& s) {
          settings::ModeName(s.session.engine.mode) + ", device " + s.session.device.type + ">";
 }
 
-}  // namespace
+using SessionClass = py::class_<PythonSession>;
 
-void BindSession(py::module_& m) {
-  py::class_<PythonSession>(m, "Session",
-                            "A validated session (scene, method, rates, gains, device).\n\n"
-                            "Made by load_session(); read-only. run() and Engine use it.")
-      .def_property_readonly(
-          "path",
-          [](const PythonSession& s) {
-            return s.path;
-          },
-          "The session file, as given.")
+// Where the session came from: its file, overrides and scene.
+void DefSourceProperties(SessionClass& c) {
+  c.def_property_readonly(
+       "path",
+       [](const PythonSession& s) {
+         return s.path;
+       },
+       "The session file, as given.")
       .def_property_readonly(
           "overrides",
           [](const PythonSession& s) {
@@ -45,13 +43,17 @@ void BindSession(py::module_& m) {
           [](const PythonSession& s) {
             return s.session.scene;
           },
-          "The scene (MJCF) file, resolved against the session's folder.")
-      .def_property_readonly(
-          "method",
-          [](const PythonSession& s) {
-            return s.session.engine.method;
-          },
-          "The rendering method (one of methods()).")
+          "The scene (MJCF) file, resolved against the session's folder.");
+}
+
+// How it runs: method, mode, duration and rates.
+void DefRunProperties(SessionClass& c) {
+  c.def_property_readonly(
+       "method",
+       [](const PythonSession& s) {
+         return s.session.engine.method;
+       },
+       "The rendering method (one of methods()).")
       .def_property_readonly(
           "mode",
           [](const PythonSession& s) {
@@ -75,13 +77,23 @@ void BindSession(py::module_& m) {
           [](const PythonSession& s) {
             return s.session.engine.physics_dt;
           },
-          "Physics step as configured (s); single-rate methods step at haptic_dt instead.")
-      .def_property_readonly(
-          "device_type",
-          [](const PythonSession& s) {
-            return s.session.device.type;
-          },
-          "device.type: fixed, scripted, hand, replay, external, ...")
+          "Physics step as configured (s); single-rate methods step at haptic_dt instead.");
+}
+
+}  // namespace
+
+void BindSession(py::module_& m) {
+  SessionClass c(m, "Session",
+                 "A validated session (scene, method, rates, gains, device).\n\n"
+                 "Made by load_session(); read-only. run() and Engine use it.");
+  DefSourceProperties(c);
+  DefRunProperties(c);
+  c.def_property_readonly(
+       "device_type",
+       [](const PythonSession& s) {
+         return s.session.device.type;
+       },
+       "device.type: fixed, scripted, hand, replay, external, ...")
       .def("__repr__", &Repr);
 
   m.def("_load_session", &LoadSession, py::arg("path"), py::arg("overrides"),

@@ -63,6 +63,34 @@ double PenaltySumRenderer::DepthRate(std::uint64_t id, std::size_t index, double
   return 0.0;
 }
 
+// One pair's penalty forces into out->w_W, its penetrating points into ids_ and depths_ from
+// *count on (*count advanced), its reaction into out->reactions.
+void PenaltySumRenderer::AddPair(const TickIr& ir, const TickPair& pair, const Pose& X_WP,
+                                 double dt, std::size_t* count, PenaltySumOutput* out) noexcept {
+  // The object geom's material, or the renderer's k and d.
+  const ir::ContactGains g = ir::GainsOf(pair.material, {settings_.k, settings_.d, 0.0});
+  Vec3 f_pair = Vec3::Zero();
+  Vec3 tau_pair = Vec3::Zero();  // reaction moment about the object's COM
+  for (int i = 0; i < pair.count; ++i) {
+    const TickPoint& point = ir.points[static_cast<std::size_t>(pair.first + i)];
+    if (!(point.depth > 0.0)) continue;
+    const std::uint64_t id = PointId(pair.key, i);
+    const double rate = DepthRate(id, *count, point.depth, dt);
+    ids_[*count] = id;
+    depths_[*count] = point.depth;
+    ++*count;
+    const double magnitude = std::max(0.0, g.stiffness * point.depth + g.damping * rate);
+    const Vec3 f = magnitude * pair.n_W;
+    out->w_W.f += f;
+    out->w_W.tau += (point.v_W - X_WP.p).cross(f);
+    f_pair += f;
+    tau_pair += (point.v_W - pair.p_WCm).cross(-f);
+  }
+  Wrench reaction;
+  if (!pair.is_static) reaction = Wrench{-f_pair, tau_pair};
+  (void)out->reactions.PushBack(ProxyPairReaction{pair.key, pair.body, pair.is_static, reaction});
+}
+
 void PenaltySumRenderer::Tick(const TickIr& ir, const Pose& X_WP, double dt,
                               PenaltySumOutput* out) noexcept {
   out->w_W = Wrench{};
@@ -75,30 +103,7 @@ void PenaltySumRenderer::Tick(const TickIr& ir, const Pose& X_WP, double dt,
     return;
   }
   std::size_t count = 0;
-  for (const TickPair& pair : ir.pairs) {
-    // The object geom's material, or the renderer's k and d.
-    const ir::ContactGains g = ir::GainsOf(pair.material, {settings_.k, settings_.d, 0.0});
-    Vec3 f_pair = Vec3::Zero();
-    Vec3 tau_pair = Vec3::Zero();  // reaction moment about the object's COM
-    for (int i = 0; i < pair.count; ++i) {
-      const TickPoint& point = ir.points[static_cast<std::size_t>(pair.first + i)];
-      if (!(point.depth > 0.0)) continue;
-      const std::uint64_t id = PointId(pair.key, i);
-      const double rate = DepthRate(id, count, point.depth, dt);
-      ids_[count] = id;
-      depths_[count] = point.depth;
-      ++count;
-      const double magnitude = std::max(0.0, g.stiffness * point.depth + g.damping * rate);
-      const Vec3 f = magnitude * pair.n_W;
-      out->w_W.f += f;
-      out->w_W.tau += (point.v_W - X_WP.p).cross(f);
-      f_pair += f;
-      tau_pair += (point.v_W - pair.p_WCm).cross(-f);
-    }
-    Wrench reaction;
-    if (!pair.is_static) reaction = Wrench{-f_pair, tau_pair};
-    (void)out->reactions.PushBack(ProxyPairReaction{pair.key, pair.body, pair.is_static, reaction});
-  }
+  for (const TickPair& pair : ir.pairs) AddPair(ir, pair, X_WP, dt, &count, out);
   out->contacts = static_cast<int>(count);
   std::copy_n(ids_.begin(), count, previous_ids_.begin());
   std::copy_n(depths_.begin(), count, previous_depths_.begin());

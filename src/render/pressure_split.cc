@@ -220,94 +220,119 @@ Vec6 PressureSplit::Minimizer(const Sym6& h) const noexcept {
   return {y[0], y[1], y[2], y[3], y[4], y[5]};
 }
 
-PressureSplit::Result PressureSplit::Solve(const Vec3& F, const Vec3& tau, int max_steps) noexcept {
-  Result result;
-  target_ = {F.x(), F.y(), F.z(), tau.x(), tau.y(), tau.z()};
-  // The planes' part of H is the same on every piece.
+// The planes' part of H, the same on every piece; sets the ridge from the rows' and planes'
+// traces.
+PressureSplit::Sym6 PressureSplit::BuildBase() noexcept {
   Sym6 base{};
   for (std::size_t p = 0; p < plane_count_; ++p) {
     BuildPlane(&planes_[p], &ridge_);
     for (std::size_t e = 0; e < base.size(); ++e) base[e] += planes_[p].h[e];
   }
-  {
-    const double force_trace = std::max(ridge_[0], 1e-300);
-    const double torque_trace = std::max(ridge_[3], kMinLever2 * force_trace);
-    for (std::size_t i = 0; i < 3; ++i) {
-      ridge_[i] = kRidge * force_trace;
-      ridge_[i + 3] = kRidge * torque_trace;
-    }
+  const double force_trace = std::max(ridge_[0], 1e-300);
+  const double torque_trace = std::max(ridge_[3], kMinLever2 * force_trace);
+  for (std::size_t i = 0; i < 3; ++i) {
+    ridge_[i] = kRidge * force_trace;
+    ridge_[i + 3] = kRidge * torque_trace;
   }
-  // The current piece's H is Assembled(h, moments_).
-  Sym6 h = base;
-  const auto clear_moments = [&](std::vector<Moments>* m) noexcept {
-    std::fill(m->begin(), m->begin() + static_cast<std::ptrdiff_t>(group_count_), Moments{});
-  };
-  clear_moments(&moments_);
-  const auto start_cold = [&]() noexcept {
-    h = base;
-    clear_moments(&moments_);
-    for (std::size_t k = 0; k < count_; ++k) {
-      AddRowTo(k, 1.0, &h, moments_.data());
-      active_[k] = 1;
-    }
-    y_ = Minimizer(Assembled(h, moments_.data()));
-  };
-  // The current piece: y's signs and their H.
+  return base;
+}
+
+void PressureSplit::ClearMoments() noexcept {
+  std::fill(moments_.begin(), moments_.begin() + static_cast<std::ptrdiff_t>(group_count_),
+            Moments{});
+}
+
+// Every row active, y their minimizer.
+void PressureSplit::StartCold(const Sym6& base, Sym6* h) noexcept {
+  *h = base;
+  ClearMoments();
+  for (std::size_t k = 0; k < count_; ++k) {
+    AddRowTo(k, 1.0, h, moments_.data());
+    active_[k] = 1;
+  }
+  y_ = Minimizer(Assembled(*h, moments_.data()));
+}
+
+// y's signs become the current piece's, H (h, moments_) with them.
+void PressureSplit::TakeSigns(Sym6* h, Result* result) noexcept {
+  (void)Pass(y_, h, moments_.data());
+  std::swap(active_, trial_active_);
+  ++result->passes;
+}
+
+// The first piece: the old y's signs, or a cold start's when there is no old y or it presses
+// no row.
+void PressureSplit::EnterPiece(const Sym6& base, Sym6* h, Result* result) noexcept {
   if (has_y_) {
     std::fill(active_.begin(), active_.begin() + static_cast<std::ptrdiff_t>(count_), 0);
   } else {
-    start_cold();
+    StartCold(base, h);
   }
-  (void)Pass(y_, &h, moments_.data());
-  std::swap(active_, trial_active_);
-  ++result.passes;
+  TakeSigns(h, result);
   if (has_y_ && std::find(active_.begin(), active_.begin() + static_cast<std::ptrdiff_t>(count_),
                           1) == active_.begin() + static_cast<std::ptrdiff_t>(count_)) {
-    start_cold();  // the old y presses no row: start afresh
-    (void)Pass(y_, &h, moments_.data());
-    std::swap(active_, trial_active_);
-    ++result.passes;
+    StartCold(base, h);
+    TakeSigns(h, result);
   }
+}
 
-  while (result.steps < max_steps) {
-    const Sym6 full = Assembled(h, moments_.data());
-    const Vec6 y_next = Minimizer(full);
-    Vec6 dy, gradient = Times(full, ridge_, y_);
-    for (std::size_t i = 0; i < 6; ++i) {
-      dy[i] = y_next[i] - y_[i];
-      gradient[i] -= target_[i];
-    }
-    const double slope = Dot(gradient, dy);  // −gᵀ(h + D)⁻¹g <= 0
-    if (!(slope < 0.0)) {  // y already minimizes its piece, which no sign change left
-      result.converged = std::isfinite(slope);
+// Halves t from 1 until Armijo's condition holds at y + t dy (or after kMaxHalvings); the
+// trial's signs are in trial_active_, its H in (trial.h, trial_moments_).
+PressureSplit::Trial PressureSplit::LineSearch(const Sym6& h, const Vec6& dy, double phi,
+                                               double slope, Result* result) noexcept {
+  Trial trial;
+  for (int halving = 0;; ++halving) {
+    for (std::size_t i = 0; i < 6; ++i) trial.y[i] = y_[i] + trial.t * dy[i];
+    trial.h = h;
+    std::copy_n(moments_.begin(), group_count_, trial_moments_.begin());
+    trial.changes = Pass(trial.y, &trial.h, trial_moments_.data());
+    ++result->passes;
+    if (Objective(Assembled(trial.h, trial_moments_.data()), trial.y) <=
+            phi + kArmijo * trial.t * slope ||
+        halving == kMaxHalvings)
       break;
-    }
-    const double phi = Objective(full, y_);
-    double t = 1.0;
-    Vec6 trial;
-    Sym6 trial_h;
-    std::size_t changes = 0;
-    for (int halving = 0;; ++halving) {
-      for (std::size_t i = 0; i < 6; ++i) trial[i] = y_[i] + t * dy[i];
-      trial_h = h;
-      std::copy_n(moments_.begin(), group_count_, trial_moments_.begin());
-      changes = Pass(trial, &trial_h, trial_moments_.data());
-      ++result.passes;
-      if (Objective(Assembled(trial_h, trial_moments_.data()), trial) <=
-              phi + kArmijo * t * slope ||
-          halving == kMaxHalvings)
-        break;
-      t *= 0.5;
-    }
-    y_ = trial;
-    h = trial_h;
-    std::swap(moments_, trial_moments_);
-    std::swap(active_, trial_active_);
-    ++result.steps;
-    if (changes == 0 && t == 1.0) {  // the piece's minimizer, and still its piece
-      result.converged = true;
-      break;
-    }
+    trial.t *= 0.5;
+  }
+  return trial;
+}
+
+// One damped Newton step toward the current piece's minimizer. Returns false when the solve
+// is over (result->converged set): no descent left, or a full step that changed no sign.
+bool PressureSplit::Step(Sym6* h, Result* result) noexcept {
+  const Sym6 full = Assembled(*h, moments_.data());
+  const Vec6 y_next = Minimizer(full);
+  Vec6 dy, gradient = Times(full, ridge_, y_);
+  for (std::size_t i = 0; i < 6; ++i) {
+    dy[i] = y_next[i] - y_[i];
+    gradient[i] -= target_[i];
+  }
+  const double slope = Dot(gradient, dy);  // −gᵀ(h + D)⁻¹g <= 0
+  if (!(slope < 0.0)) {  // y already minimizes its piece, which no sign change left
+    result->converged = std::isfinite(slope);
+    return false;
+  }
+  const Trial trial = LineSearch(*h, dy, Objective(full, y_), slope, result);
+  y_ = trial.y;
+  *h = trial.h;
+  std::swap(moments_, trial_moments_);
+  std::swap(active_, trial_active_);
+  ++result->steps;
+  if (trial.changes == 0 && trial.t == 1.0) {  // the piece's minimizer, and still its piece
+    result->converged = true;
+    return false;
+  }
+  return true;
+}
+
+PressureSplit::Result PressureSplit::Solve(const Vec3& F, const Vec3& tau, int max_steps) noexcept {
+  Result result;
+  target_ = {F.x(), F.y(), F.z(), tau.x(), tau.y(), tau.z()};
+  const Sym6 base = BuildBase();
+  // The current piece's H is Assembled(h, moments_).
+  Sym6 h = base;
+  ClearMoments();
+  EnterPiece(base, &h, &result);
+  while (result.steps < max_steps && Step(&h, &result)) {
   }
   has_y_ = true;
   for (const double v : y_) has_y_ = has_y_ && std::isfinite(v);

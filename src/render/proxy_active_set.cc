@@ -43,6 +43,19 @@ ProxyActiveSetSolver::ProxyActiveSetSolver(std::size_t capacity) {
   capacity_ = capacity;
 }
 
+// Adds the most violated row until none is (returns true) or the steps run out (false); *steps
+// counts them, *violation is the last scan's.
+bool ProxyActiveSetSolver::AddRowsUntilFeasible(const ProxySolverSettings& settings, int* steps,
+                                                double* violation) noexcept {
+  for (;;) {
+    const int p = MostViolated(settings.tolerance, violation);
+    if (p < 0) return true;
+    if (*steps >= settings.max_iterations || !AddRow(p, steps, settings.max_iterations)) {
+      return false;
+    }
+  }
+}
+
 ProxySolveResult ProxyActiveSetSolver::Solve(std::span<const ProxyRow> rows,
                                              const Mat3& rotation_weight_inverse,
                                              const ProxySolverSettings& settings,
@@ -59,14 +72,7 @@ ProxySolveResult ProxyActiveSetSolver::Solve(std::span<const ProxyRow> rows,
   ProxySolveResult result;
   int steps = 0;
   double violation = 0.0;
-  for (;;) {
-    const int p = MostViolated(settings.tolerance, &violation);
-    if (p < 0) {
-      result.converged = true;
-      break;
-    }
-    if (steps >= settings.max_iterations || !AddRow(p, &steps, settings.max_iterations)) break;
-  }
+  result.converged = AddRowsUntilFeasible(settings, &steps, &violation);
   // The multipliers were updated step by step; with large ones (R_w ≫ |r|² makes rotation
   // cheap in f) that drifts from y by rounding. At the solution the active rows hold with
   // equality, so solving for them afresh gives consistent λ and y. Without steps, λ and y

@@ -57,6 +57,13 @@ void ProxyRenderer::ComputeContactForces(const TickIr& ir, const Pose& X_WP, dou
     torque_pair_[i] = scale * (torque_pair_[i] + cone * friction_torque_[i]);
     largest = std::max(largest, force_pair_[i].norm());
   }
+  out->w_W = LimitedTotal(ir, largest, out);
+  PushReactions(ir, X_WP, out);
+}
+
+// Every pair's force scaled by one factor so that the largest (`largest`) is at most
+// max_pair_force (flagged in out's status); returns their sum.
+Wrench ProxyRenderer::LimitedTotal(const TickIr& ir, double largest, ProxyOutput* out) noexcept {
   const double limit =
       largest > settings_.max_pair_force ? settings_.max_pair_force / largest : 1.0;
   if (limit < 1.0) out->diagnostics.status |= kProxyStatusPairForceLimited;
@@ -67,8 +74,7 @@ void ProxyRenderer::ComputeContactForces(const TickIr& ir, const Pose& X_WP, dou
     total.f += force_pair_[i];
     total.tau += torque_pair_[i];
   }
-  out->w_W = total;
-  PushReactions(ir, X_WP, out);
+  return total;
 }
 
 // Each row's spring force k_i f_k a_k (k_i the pair's stiffness: k_t without a material) and its moment about the pointer origin, summed per pair:

@@ -32,12 +32,21 @@ constexpr int kMaxNewtonSteps = 20;
 // force. Σ over the pairs is (F, τ) exactly, so action = reaction holds in force and moment.
 void ProxyRenderer::SplitAcrossPairs(const TickIr& ir, std::size_t touched,
                                      const ProxyOutput* out) noexcept {
+  PairPlanes plane;
+  LoadSplit(ir, &plane);
+  (void)split_.Solve(out->w_W.f, out->w_W.tau, kMaxNewtonSteps);
+  CollectPairWrenches(ir, plane);
+  SpreadRemainder(ir, touched, out);
+}
+
+// The split's rows, one per penetrating point; *plane gets each pair's tangent plane (or -1).
+void ProxyRenderer::LoadSplit(const TickIr& ir, PairPlanes* plane) noexcept {
   // Normal rows push (λ >= 0). A point with a friction row may take a tangential force either
   // way in its pair's plane (its cone is the solver's business, not the split's): a two-sided
   // tangent plane per pair in place of a one-sided row along the slip, whose clipping otherwise
   // flips with the rubbing direction and leaves the split many Newton steps.
-  std::array<int, ir::kMaxGeometricPairs> plane{}, group{};
-  plane.fill(-1);
+  PairPlanes group{};
+  plane->fill(-1);
   group.fill(-1);
   split_.Begin();
   for (std::size_t k = 0; k < row_count_; ++k) {
@@ -52,11 +61,14 @@ void ProxyRenderer::SplitAcrossPairs(const TickIr& ir, std::size_t touched,
       }
       continue;
     }
-    if (plane[i] < 0) plane[i] = split_.AddPlane(ir.pairs[i].n_W);
-    split_.AddTangentPoint(plane[i], rows_[k].r, depth);
+    if ((*plane)[i] < 0) (*plane)[i] = split_.AddPlane(ir.pairs[i].n_W);
+    split_.AddTangentPoint((*plane)[i], rows_[k].r, depth);
   }
-  (void)split_.Solve(out->w_W.f, out->w_W.tau, kMaxNewtonSteps);
-  // Each pair's forces at its points: F_i and its moment M_i about the pointer origin.
+}
+
+// Each pair's forces at its points after the split's solve: F_i and its moment M_i about the
+// pointer origin.
+void ProxyRenderer::CollectPairWrenches(const TickIr& ir, const PairPlanes& plane) noexcept {
   for (std::size_t i = 0; i < ir.pairs.size(); ++i) {
     split_.PlaneWrench(plane[i], &force_pair_[i], &torque_pair_[i]);
   }
@@ -69,6 +81,12 @@ void ProxyRenderer::SplitAcrossPairs(const TickIr& ir, std::size_t touched,
     force_pair_[i] += f;
     torque_pair_[i] += rows_[k].r.cross(f);
   }
+}
+
+// What the points could not carry goes to the pairs in proportion to their force (evenly over
+// the touched pairs when none carries any).
+void ProxyRenderer::SpreadRemainder(const TickIr& ir, std::size_t touched,
+                                    const ProxyOutput* out) noexcept {
   Vec3 left_f = out->w_W.f, left_tau = out->w_W.tau;
   double load = 0.0;
   for (std::size_t i = 0; i < ir.pairs.size(); ++i) {

@@ -231,6 +231,23 @@ std::vector<BodyTrace> BodiesToDraw(const BodyScan& scan, const ReportOptions& o
   return order;
 }
 
+namespace {
+
+// The report's panels, top to bottom, and the end of the multiplot.
+std::string Panels(const ReportOptions& options, const TickScan& ticks, const BodyScan& bodies) {
+  std::string out;
+  const bool several = options.pointers.size() >= 2;
+  out += several ? PointerForcePanel(ticks, options.pointers) : ForcePanel(ticks);
+  if (options.six_dof) out += TorquePanel();
+  out += several ? PointerPositionPanel(options.pointers) : PositionPanel();
+  if (options.six_dof) out += OrientationPanel();
+  if (!bodies.bodies.empty()) out += ObjectsPanel(bodies, BodiesToDraw(bodies, options));
+  out += "unset multiplot\n";
+  return out;
+}
+
+}  // namespace
+
 std::string ReportScript(const std::string& title, const ReportOptions& options,
                          const TickScan& ticks, const BodyScan& bodies) {
   const bool objects = !bodies.bodies.empty();
@@ -260,13 +277,7 @@ set multiplot layout {},1 title {}
 )",
       kWidthPx, kPanelHeightPx * panels + 40, t_begin, t_end > t_begin ? t_end : t_begin + 1.0,
       panels, Quote(title));
-  const bool several = options.pointers.size() >= 2;
-  out += several ? PointerForcePanel(ticks, options.pointers) : ForcePanel(ticks);
-  if (options.six_dof) out += TorquePanel();
-  out += several ? PointerPositionPanel(options.pointers) : PositionPanel();
-  if (options.six_dof) out += OrientationPanel();
-  if (objects) out += ObjectsPanel(bodies, BodiesToDraw(bodies, options));
-  out += "unset multiplot\n";
+  out += Panels(options, ticks, bodies);
   // The time label goes on the bottom panel only: insert it before that panel's plot command.
   const std::size_t last_plot = out.rfind("\nplot ");
   out.insert(last_plot + 1, "set xlabel 't (s)'\n");

@@ -26,6 +26,31 @@ Node NamingKey(const Node& element, const char* key, const char* expected) {
   return element.Require("device", "").Require(key, expected);
 }
 
+// Pointer element `element`'s device d against pointers[j]'s device e: two of a type must
+// name distinct hardware (device index, device name, UDP port).
+void CheckPairDistinct(const Node& element, const DeviceConfig& d, const DeviceConfig& e,
+                       std::size_t j) {
+  if (d.type != e.type) return;
+  if (d.type == "forcedimension" && d.forcedimension.id == e.forcedimension.id) {
+    NamingKey(element, "id", "")
+        .Fail(fmt::format("{} is also pointers[{}].device.id", d.forcedimension.id, j),
+              "a distinct device index per pointer");
+  }
+  if (d.type == "openhaptics" && d.openhaptics.name == e.openhaptics.name) {
+    NamingKey(element, "name", "")
+        .Fail(fmt::format("\"{}\" is also pointers[{}].device.name", d.openhaptics.name, j),
+              "a distinct device name per pointer");
+  }
+  if (d.type == "udp" && UdpPort(d.udp.bind) != 0 && UdpPort(d.udp.bind) == UdpPort(e.udp.bind)) {
+    const Node device = element.Require("device", "");
+    const std::string what = fmt::format("port {} is also pointers[{}].device.bind's (\"{}\")",
+                                         UdpPort(d.udp.bind), j, e.udp.bind);
+    const std::string expected = "a distinct port per pointer, e.g. \"127.0.0.1:47801\"";
+    if (const auto bind = device.Find("bind")) bind->Fail(what, expected);
+    device.Fail(what + " (the default bind)", expected);
+  }
+}
+
 }  // namespace
 
 void CheckDistinctDevices(const std::vector<Node>& elements,
@@ -47,29 +72,7 @@ void CheckDistinctDevices(const std::vector<Node>& elements,
         name.Fail("an empty name (the default device)", "the device's name from Touch Setup");
       }
     }
-    for (std::size_t j = 0; j < i; ++j) {
-      const DeviceConfig& e = devices[j];
-      if (d.type != e.type) continue;
-      if (d.type == "forcedimension" && d.forcedimension.id == e.forcedimension.id) {
-        NamingKey(elements[i], "id", "")
-            .Fail(fmt::format("{} is also pointers[{}].device.id", d.forcedimension.id, j),
-                  "a distinct device index per pointer");
-      }
-      if (d.type == "openhaptics" && d.openhaptics.name == e.openhaptics.name) {
-        NamingKey(elements[i], "name", "")
-            .Fail(fmt::format("\"{}\" is also pointers[{}].device.name", d.openhaptics.name, j),
-                  "a distinct device name per pointer");
-      }
-      if (d.type == "udp" && UdpPort(d.udp.bind) != 0 &&
-          UdpPort(d.udp.bind) == UdpPort(e.udp.bind)) {
-        const Node device = elements[i].Require("device", "");
-        const std::string what = fmt::format("port {} is also pointers[{}].device.bind's (\"{}\")",
-                                             UdpPort(d.udp.bind), j, e.udp.bind);
-        const std::string expected = "a distinct port per pointer, e.g. \"127.0.0.1:47801\"";
-        if (const auto bind = device.Find("bind")) bind->Fail(what, expected);
-        device.Fail(what + " (the default bind)", expected);
-      }
-    }
+    for (std::size_t j = 0; j < i; ++j) CheckPairDistinct(elements[i], d, devices[j], j);
   }
 }
 

@@ -183,6 +183,29 @@ void ReadPointers(const Node& root, const Node& pointers, Session* session) {
   session->pointer_devices = std::move(devices);
 }
 
+// "gravity": three components within kMaxGravity.
+void ReadGravity(const Node& root, Session* session) {
+  if (const auto gravity = root.Find("gravity")) {
+    const std::vector<double> g = gravity->Numbers(3, "[gx, gy, gz] (m/s^2)");
+    session->gravity = Vec3(g[0], g[1], g[2]);
+    if (!(session->gravity->cwiseAbs().maxCoeff() <= kMaxGravity)) {
+      gravity->Fail(FormatNumbers(g.data(), 3) + " m/s^2",
+                    "components in [-1000, 1000] m/s^2 (100 g)");
+    }
+  }
+}
+
+// Every pointer's device (or the one device) that is real hardware requires real-time mode.
+void RequireRealtimeForRealDevices(const Node& root, Session* session) {
+  if (session->pointer_devices.empty()) {
+    RequireRealtimeForRealDevice(root, session->device.type, &session->engine);
+  } else {
+    for (const DeviceConfig& device : session->pointer_devices) {
+      RequireRealtimeForRealDevice(root, device.type, &session->engine);
+    }
+  }
+}
+
 // Keys that fill Session itself or the engine settings, then the blocks.
 Session ParseDocument(const nlohmann::json& document, const Context& context) {
   const Node root(context, document, "");
@@ -199,14 +222,7 @@ Session ParseDocument(const nlohmann::json& document, const Context& context) {
   if (const auto method = root.Find("method")) CheckMethod(*method);
   if (const auto mode = root.Find("mode")) session.engine.mode = ParseMode(*mode);
   if (const auto keyframe = root.Find("keyframe")) session.keyframe = keyframe->String();
-  if (const auto gravity = root.Find("gravity")) {
-    const std::vector<double> g = gravity->Numbers(3, "[gx, gy, gz] (m/s^2)");
-    session.gravity = Vec3(g[0], g[1], g[2]);
-    if (!(session.gravity->cwiseAbs().maxCoeff() <= kMaxGravity)) {
-      gravity->Fail(FormatNumbers(g.data(), 3) + " m/s^2",
-                    "components in [-1000, 1000] m/s^2 (100 g)");
-    }
-  }
+  ReadGravity(root, &session);
   ReadRendering(root, &session.engine.rendering);
   ReadMaterials(root, &session.engine.rendering);
   internal::ReadBlock(root, "safety", internal::kSafetyFields, &session.engine.safety);
@@ -218,13 +234,7 @@ Session ParseDocument(const nlohmann::json& document, const Context& context) {
         root.Require("device", "an object with at least \"type\" (see docs/session-format.md)"));
     internal::CheckStiffnessLimit(root, session.device, session.engine.rendering.stiffness);
   }
-  if (session.pointer_devices.empty()) {
-    RequireRealtimeForRealDevice(root, session.device.type, &session.engine);
-  } else {
-    for (const DeviceConfig& device : session.pointer_devices) {
-      RequireRealtimeForRealDevice(root, device.type, &session.engine);
-    }
-  }
+  RequireRealtimeForRealDevices(root, &session);
   return session;
 }
 

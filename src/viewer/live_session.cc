@@ -38,6 +38,25 @@ class WorldPoseSource final : public device::Device {
   device::Calibration calibration_;
 };
 
+// The engine of a launch, with `external` as pointer `driven`'s device.
+std::unique_ptr<engine::Engine> MakeEngine(const session::Session& session, int driven,
+                                           world::World world,
+                                           std::unique_ptr<device::Device> external,
+                                           const settings::EngineSettings& s) {
+  if (s.pointers.empty()) {
+    return std::make_unique<engine::Engine>(std::move(world), std::move(external),
+                                            session.device.calibration, s);
+  }
+  // The input drives the chosen pointer; every other pointer keeps its session device.
+  std::vector<std::unique_ptr<device::Device>> devices;
+  std::vector<device::Calibration> calibrations;
+  for (int i = 0; i < static_cast<int>(s.pointers.size()); ++i) {
+    devices.push_back(i == driven ? std::move(external) : session::MakePointerDevice(session, i));
+    calibrations.push_back(PointerDevice(session, i).calibration);
+  }
+  return std::make_unique<engine::Engine>(std::move(world), std::move(devices), calibrations, s);
+}
+
 }  // namespace
 
 const char* InputSourceName(InputSource source) noexcept {
@@ -122,22 +141,8 @@ void LiveSession::Launch(const settings::EngineSettings& settings, InputSource s
   // Engine::Start reads the external device for the initial snapshot: give it the input's
   // first reading, or the first IR would be built around the device origin.
   external->Feed(input->Read(0.0));
-  std::unique_ptr<engine::Engine> engine;
-  if (s.pointers.empty()) {
-    engine = std::make_unique<engine::Engine>(std::move(world), std::move(external),
-                                              session_.device.calibration, s);
-  } else {
-    // The input drives the chosen pointer; every other pointer keeps its session device.
-    std::vector<std::unique_ptr<device::Device>> devices;
-    std::vector<device::Calibration> calibrations;
-    for (int i = 0; i < static_cast<int>(s.pointers.size()); ++i) {
-      devices.push_back(i == driven_ ? std::move(external)
-                                     : session::MakePointerDevice(session_, i));
-      calibrations.push_back(PointerDevice(session_, i).calibration);
-    }
-    engine =
-        std::make_unique<engine::Engine>(std::move(world), std::move(devices), calibrations, s);
-  }
+  std::unique_ptr<engine::Engine> engine =
+      MakeEngine(session_, driven_, std::move(world), std::move(external), s);
   feed_->set_time_offset(time_offset_);
   feed_->PublishWorld(engine->world());
   engine->Start(feed_);

@@ -135,6 +135,46 @@ void DrawHelp() {
       "Space pause, S step, Backspace reset, H panel, Home camera.");
 }
 
+// The session, method, rates and the latest tick's contacts and displayed wrench (torque only
+// for 6-DOF methods).
+void DrawStatus(const PanelInfo& info, bool torque) {
+  Text("{}", info.session->file.filename().string());
+  const settings::EngineSettings& running = *info.settings;
+  Text("{}  physics {} ms / haptic {} ms", running.method, running.physics_dt * 1e3,
+       running.haptic_dt * 1e3);
+  if (torque) {
+    Text("t {:.3f} s  contacts {}  |f| {:.2f} N  |tau| {:.3f} N m", info.t, info.contacts,
+         info.displayed_W.f.norm(), info.displayed_W.tau.norm());
+  } else {
+    Text("t {:.3f} s  contacts {}  |f| {:.2f} N", info.t, info.contacts,
+         info.displayed_W.f.norm());
+  }
+}
+
+void DrawRunButtons(const PanelInfo& info, PanelActions* actions) {
+  actions->toggle_pause = ImGui::Button(info.paused ? "Resume" : "Pause");
+  ImGui::SameLine();
+  ImGui::BeginDisabled(!info.paused);
+  actions->step = ImGui::Button("Step");
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  actions->reset = ImGui::Button("Reset");
+}
+
+// The displayed force (and, for 6-DOF methods, torque) over the last plot_seconds.
+void DrawPlots(const PlotHistory& history, const DisplayOptions& display, float scale,
+               bool torque) {
+  const float plot_width = kPanelWidth * scale - 2.0f * ImGui::GetStyle().WindowPadding.x;
+  ImGui::TextUnformatted("displayed force");
+  DrawPlot("##force", history, PlotQuantity::kForce, display.plot_seconds, plot_width,
+           kPlotHeight * scale);
+  if (torque) {
+    ImGui::TextUnformatted("displayed torque");
+    DrawPlot("##torque", history, PlotQuantity::kTorque, display.plot_seconds, plot_width,
+             kPlotHeight * scale);
+  }
+}
+
 }  // namespace
 
 PanelActions DrawPanel(const PanelInfo& info, PanelState* state, DisplayOptions* display,
@@ -143,26 +183,10 @@ PanelActions DrawPanel(const PanelInfo& info, PanelState* state, DisplayOptions*
   ImGui::SetNextWindowPos(ImVec2(0, 0), ImGuiCond_Once);
   ImGui::SetNextWindowSize(ImVec2(kPanelWidth * scale, 0), ImGuiCond_Once);
   ImGui::Begin("mrh view", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
-  Text("{}", info.session->file.filename().string());
-  const settings::EngineSettings& running = *info.settings;
-  Text("{}  physics {} ms / haptic {} ms", running.method, running.physics_dt * 1e3,
-       running.haptic_dt * 1e3);
-  const bool torque = FieldsFor(running.method).torque;
-  if (torque) {
-    Text("t {:.3f} s  contacts {}  |f| {:.2f} N  |tau| {:.3f} N m", info.t, info.contacts,
-         info.displayed_W.f.norm(), info.displayed_W.tau.norm());
-  } else {
-    Text("t {:.3f} s  contacts {}  |f| {:.2f} N", info.t, info.contacts,
-         info.displayed_W.f.norm());
-  }
+  const bool torque = FieldsFor(info.settings->method).torque;
+  DrawStatus(info, torque);
   if (ImGui::CollapsingHeader("Rates")) DrawRates(info);
-  actions.toggle_pause = ImGui::Button(info.paused ? "Resume" : "Pause");
-  ImGui::SameLine();
-  ImGui::BeginDisabled(!info.paused);
-  actions.step = ImGui::Button("Step");
-  ImGui::EndDisabled();
-  ImGui::SameLine();
-  actions.reset = ImGui::Button("Reset");
+  DrawRunButtons(info, &actions);
   if (ImGui::CollapsingHeader("Method and gains", ImGuiTreeNodeFlags_DefaultOpen)) {
     actions.apply = DrawGains(&state->edit);
   }
@@ -170,15 +194,7 @@ PanelActions DrawPanel(const PanelInfo& info, PanelState* state, DisplayOptions*
     DrawInput(info, state, &actions);
   }
   if (ImGui::CollapsingHeader("Show")) DrawDisplay(display);
-  const float plot_width = kPanelWidth * scale - 2.0f * ImGui::GetStyle().WindowPadding.x;
-  ImGui::TextUnformatted("displayed force");
-  DrawPlot("##force", history, PlotQuantity::kForce, display->plot_seconds, plot_width,
-           kPlotHeight * scale);
-  if (torque) {
-    ImGui::TextUnformatted("displayed torque");
-    DrawPlot("##torque", history, PlotQuantity::kTorque, display->plot_seconds, plot_width,
-             kPlotHeight * scale);
-  }
+  DrawPlots(history, *display, scale, torque);
   if (ImGui::CollapsingHeader("Help")) DrawHelp();
   if (!state->message.empty()) {
     ImGui::PushTextWrapPos(kPanelWidth * scale);

@@ -53,6 +53,26 @@ void PlotHistory::Push(const TickSample& s) {
   size_ = std::min(size_ + 1, points_.size());
 }
 
+namespace {
+
+// The plot's range label (top left) and its legend (top right, in the line colours).
+void DrawLabels(ImDrawList* draw, const ImVec2& origin, const ImVec2& size, PlotQuantity q,
+                float range) {
+  const char* unit = q == PlotQuantity::kForce ? "N" : "N m";
+  const std::string label = fmt::format("+/-{:.3g} {}", range, unit);
+  draw->AddText(ImVec2(origin.x + 4, origin.y + 2), IM_COL32(180, 180, 180, 255), label.c_str());
+  // Legend, right-aligned, in the line colours.
+  static constexpr const char* kNames[4] = {"|v|", "x", "y", "z"};
+  float x = origin.x + size.x - 4;
+  for (int c = 3; c >= 0; --c) {
+    x -= ImGui::CalcTextSize(kNames[c]).x;
+    draw->AddText(ImVec2(x, origin.y + 2), kColors[c], kNames[c]);
+    x -= ImGui::CalcTextSize(" ").x;
+  }
+}
+
+}  // namespace
+
 void DrawPlot(const char* id, const PlotHistory& h, PlotQuantity q, float seconds, float width,
               float height) {
   const ImVec2 origin = ImGui::GetCursorScreenPos();
@@ -84,17 +104,7 @@ void DrawPlot(const char* id, const PlotHistory& h, PlotQuantity q, float second
     }
     draw->AddPolyline(line.data(), static_cast<int>(line.size()), kColors[c], 0, 1.5f);
   }
-  const char* unit = q == PlotQuantity::kForce ? "N" : "N m";
-  const std::string label = fmt::format("+/-{:.3g} {}", range, unit);
-  draw->AddText(ImVec2(origin.x + 4, origin.y + 2), IM_COL32(180, 180, 180, 255), label.c_str());
-  // Legend, right-aligned, in the line colours.
-  static constexpr const char* kNames[4] = {"|v|", "x", "y", "z"};
-  float x = origin.x + size.x - 4;
-  for (int c = 3; c >= 0; --c) {
-    x -= ImGui::CalcTextSize(kNames[c]).x;
-    draw->AddText(ImVec2(x, origin.y + 2), kColors[c], kNames[c]);
-    x -= ImGui::CalcTextSize(" ").x;
-  }
+  DrawLabels(draw, origin, size, q, range);
 }
 
 }  // namespace mrh::viewer::internal

@@ -33,6 +33,33 @@ std::string At(const mjData& d) {
   return " at t = " + Rounded(d.time, 6) + " s";
 }
 
+// Joint j's positions and velocities are finite.
+bool JointFinite(const mjModel& m, const mjData& d, int j) {
+  const int qadr = m.jnt_qposadr[j];
+  const int vadr = m.jnt_dofadr[j];
+  const int nq = m.jnt_type[j] == mjJNT_FREE ? 7 : m.jnt_type[j] == mjJNT_BALL ? 4 : 1;
+  const int nv = m.jnt_type[j] == mjJNT_FREE ? 6 : m.jnt_type[j] == mjJNT_BALL ? 3 : 1;
+  bool finite = true;
+  for (int k = 0; k < nq; ++k) finite = finite && std::isfinite(d.qpos[qadr + k]);
+  for (int k = 0; k < nv; ++k) finite = finite && std::isfinite(d.qvel[vadr + k]);
+  return finite;
+}
+
+// The COM speed (m/s) of the body of free joint j.
+double FreeBodySpeed(const mjModel& m, const mjData& d, int j) {
+  const int body = m.jnt_bodyid[j];
+  // A free joint's qvel is the body origin's world velocity and the angular velocity in body
+  // axes: v_Cm = v + R (ω_B × p_BCm).
+  const mjtNum* v = d.qvel + m.jnt_dofadr[j];
+  mjtNum lever_B[3], v_Cm[3], quat[4];
+  mju_cross(lever_B, v + 3, m.body_ipos + 3 * body);
+  mju_copy4(quat, d.qpos + m.jnt_qposadr[j] + 3);
+  mju_normalize4(quat);
+  mju_rotVecQuat(v_Cm, lever_B, quat);
+  mju_addTo3(v_Cm, v);
+  return mju_norm3(v_Cm);
+}
+
 }  // namespace
 
 std::string World::FindDivergence(double max_body_speed) {
@@ -55,28 +82,12 @@ std::string World::FindDivergence(double max_body_speed) {
   }
   for (int j = 0; j < m.njnt; ++j) {
     const int body = m.jnt_bodyid[j];
-    const int qadr = m.jnt_qposadr[j];
-    const int vadr = m.jnt_dofadr[j];
-    const int nq = m.jnt_type[j] == mjJNT_FREE ? 7 : m.jnt_type[j] == mjJNT_BALL ? 4 : 1;
-    const int nv = m.jnt_type[j] == mjJNT_FREE ? 6 : m.jnt_type[j] == mjJNT_BALL ? 3 : 1;
-    bool finite = true;
-    for (int k = 0; k < nq; ++k) finite = finite && std::isfinite(d.qpos[qadr + k]);
-    for (int k = 0; k < nv; ++k) finite = finite && std::isfinite(d.qvel[vadr + k]);
-    if (!finite) {
+    if (!JointFinite(m, d, j)) {
       return impl_->origin + ": the simulation diverged" + At(d) + ": " + BodyName(m, body) +
              " has a non-finite position or velocity; " + kLikelyCauses;
     }
     if (max_body_speed <= 0.0 || m.jnt_type[j] != mjJNT_FREE) continue;
-    // A free joint's qvel is the body origin's world velocity and the angular velocity in body
-    // axes: v_Cm = v + R (ω_B × p_BCm).
-    const mjtNum* v = d.qvel + vadr;
-    mjtNum lever_B[3], v_Cm[3], quat[4];
-    mju_cross(lever_B, v + 3, m.body_ipos + 3 * body);
-    mju_copy4(quat, d.qpos + qadr + 3);
-    mju_normalize4(quat);
-    mju_rotVecQuat(v_Cm, lever_B, quat);
-    mju_addTo3(v_Cm, v);
-    const double speed = mju_norm3(v_Cm);
+    const double speed = FreeBodySpeed(m, d, j);
     if (speed > max_body_speed) {
       return impl_->origin + ": the simulation diverged" + At(d) + ": " + BodyName(m, body) +
              " moves at " + Rounded(speed, 4) + " m/s, over safety.max_body_speed = " +

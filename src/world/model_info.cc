@@ -63,41 +63,49 @@ std::shared_ptr<const geometry::ConvexMesh> ConvexHullOf(const mjModel& m, int m
   return out;
 }
 
+// The shape type of a primitive MuJoCo geom type; false for meshes and height fields.
+bool PrimitiveType(int type, geometry::ShapeType* out) {
+  switch (type) {
+    case mjGEOM_PLANE:
+      *out = geometry::ShapeType::kPlane;
+      return true;
+    case mjGEOM_SPHERE:
+      *out = geometry::ShapeType::kSphere;
+      return true;
+    case mjGEOM_CAPSULE:
+      *out = geometry::ShapeType::kCapsule;
+      return true;
+    case mjGEOM_ELLIPSOID:
+      *out = geometry::ShapeType::kEllipsoid;
+      return true;
+    case mjGEOM_CYLINDER:
+      *out = geometry::ShapeType::kCylinder;
+      return true;
+    case mjGEOM_BOX:
+      *out = geometry::ShapeType::kBox;
+      return true;
+    default:
+      return false;
+  }
+}
+
+[[noreturn]] void ThrowHeightField(const mjModel& m, int g, const std::string& origin) {
+  throw SceneError(origin + ": geom " + Describe(m, mjOBJ_GEOM, g) + " of body " +
+                   Describe(m, mjOBJ_BODY, m.geom_bodyid[g]) +
+                   " is a height field; expected plane, sphere, capsule, ellipsoid, "
+                   "cylinder, box or mesh geoms: replace it, e.g. by boxes or a plane");
+}
+
 geometry::Shape ShapeOf(const mjModel& m, int g, const std::string& origin,
                         std::vector<std::shared_ptr<const geometry::ConvexMesh>>* meshes) {
   geometry::Shape shape;
   shape.size = ToVec3(m.geom_size + 3 * g);
-  switch (m.geom_type[g]) {
-    case mjGEOM_PLANE:
-      shape.type = geometry::ShapeType::kPlane;
-      break;
-    case mjGEOM_SPHERE:
-      shape.type = geometry::ShapeType::kSphere;
-      break;
-    case mjGEOM_CAPSULE:
-      shape.type = geometry::ShapeType::kCapsule;
-      break;
-    case mjGEOM_ELLIPSOID:
-      shape.type = geometry::ShapeType::kEllipsoid;
-      break;
-    case mjGEOM_CYLINDER:
-      shape.type = geometry::ShapeType::kCylinder;
-      break;
-    case mjGEOM_BOX:
-      shape.type = geometry::ShapeType::kBox;
-      break;
-    case mjGEOM_MESH: {
-      shape.type = geometry::ShapeType::kMesh;
-      const auto mesh = static_cast<std::size_t>(m.geom_dataid[g]);
-      if (!(*meshes)[mesh]) (*meshes)[mesh] = ConvexHullOf(m, m.geom_dataid[g]);
-      shape.mesh = (*meshes)[mesh];
-      break;
-    }
-    default:
-      throw SceneError(origin + ": geom " + Describe(m, mjOBJ_GEOM, g) + " of body " +
-                       Describe(m, mjOBJ_BODY, m.geom_bodyid[g]) +
-                       " is a height field; expected plane, sphere, capsule, ellipsoid, "
-                       "cylinder, box or mesh geoms: replace it, e.g. by boxes or a plane");
+  if (!PrimitiveType(m.geom_type[g], &shape.type)) {
+    if (m.geom_type[g] != mjGEOM_MESH) ThrowHeightField(m, g, origin);
+    shape.type = geometry::ShapeType::kMesh;
+    const auto mesh = static_cast<std::size_t>(m.geom_dataid[g]);
+    if (!(*meshes)[mesh]) (*meshes)[mesh] = ConvexHullOf(m, m.geom_dataid[g]);
+    shape.mesh = (*meshes)[mesh];
   }
   // Sizes mean nothing for planes (infinite) and meshes (their vertices carry the size).
   if (shape.type == geometry::ShapeType::kPlane || shape.type == geometry::ShapeType::kMesh) {

@@ -19,6 +19,24 @@ using internal::ToVec3;
 // The body's own degrees of freedom (a free joint has 6).
 constexpr int kMaxOwnDofs = 6;
 using OwnVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxOwnDofs, 1>;
+using OwnMatrix =
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxOwnDofs, kMaxOwnDofs>;
+
+// M_B: the own block (dofs first .. first + count − 1) of the joint-space mass matrix (a body's
+// dofs form one chain; a row of MuJoCo's sparse lower-triangular M lists the dof's ancestors in
+// increasing order).
+OwnMatrix OwnMass(const mjModel& m, const mjData& d, int first, int count) {
+  OwnMatrix M(count, count);
+  M.setZero();
+  for (int i = 0; i < count; ++i) {
+    const int row = first + i;
+    for (int k = m.M_rowadr[row]; k < m.M_rowadr[row] + m.M_rownnz[row]; ++k) {
+      const int j = m.M_colind[k];
+      if (j >= first) M(i, j - first) = M(j - first, i) = d.M[k];
+    }
+  }
+  return M;
+}
 
 // Adds J_Bᵀ (f; τ) of contact `i` to `out`, over the body's own dofs. MuJoCo's contact frame has
 // its normal from geom1 to geom2, and the force acts on geom2 (sign +1; −1 for geom1).
@@ -89,18 +107,7 @@ Twist Perturber::NewContactVelocityChange(int body, std::span<const std::uint64_
     any = true;
   }
   if (!any) return Twist{};
-  // M_B: the body's own block of the joint-space mass matrix (its dofs form one chain; a row of
-  // MuJoCo's sparse lower-triangular M lists the dof's ancestors in increasing order).
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxOwnDofs, kMaxOwnDofs> M(count,
-                                                                                       count);
-  M.setZero();
-  for (int i = 0; i < count; ++i) {
-    const int row = first + i;
-    for (int k = m.M_rowadr[row]; k < m.M_rowadr[row] + m.M_rownnz[row]; ++k) {
-      const int j = m.M_colind[k];
-      if (j >= first) M(i, j - first) = M(j - first, i) = d.M[k];
-    }
-  }
+  const OwnMatrix M = OwnMass(m, d, first, count);
   const auto dq = (M.llt().solve(generalized) * m.opt.timestep).eval();
   mj_jacBodyCom(&m, &d, jacp_.data(), jacr_.data(), body);
   Twist dV;

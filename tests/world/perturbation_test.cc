@@ -10,12 +10,16 @@
 #include <string>
 #include <vector>
 
+#include "perturbation_test_util.h"
 #include "world_test_util.h"
 
 namespace mrh::world {
 namespace {
 
+using testing::Bodies;
+using testing::kBusy;
 using testing::kNoPointer;
+using testing::kSkipTol;
 
 // A free 2 kg box (distinct half sizes, so its world inertia is not diagonal), turned and off
 // the origin, in zero gravity with nothing to touch.
@@ -28,40 +32,8 @@ constexpr char kFreeBox[] = R"(
   </worldbody>
 </mujoco>)";
 
-// Contacts, friction, gravity, a tumbling body whose COM is off its origin, a slide-jointed cube
-// and a row of touching boxes: everything that makes the constraint solve non-trivial.
-constexpr char kBusy[] = R"(
-<mujoco>
-  <option timestep="0.02"/>
-  <worldbody>
-    <geom type="plane" size="5 5 0.1" friction="0.6 0.005 0.0001"/>
-    <body name="resting" pos="0 0 0.0999" euler="0 0 10"><freejoint/>
-      <geom type="box" size="0.1 0.1 0.1" mass="1"/></body>
-    <body name="leaning" pos="0.18 0 0.35" euler="15 5 0"><freejoint/>
-      <geom type="box" size="0.1 0.1 0.1" mass="0.7"/></body>
-    <body name="tumbling" pos="-1 0.5 1"><freejoint/>
-      <geom type="capsule" size="0.05 0.1" pos="0.1 0 0" mass="0.3"/>
-      <geom type="sphere" size="0.05" pos="-0.05 0.05 0" mass="0.2"/></body>
-    <body name="slider" pos="1 0 0.1">
-      <joint type="slide" axis="1 0 0"/><joint type="slide" axis="0 1 0"/>
-      <geom type="box" size="0.1 0.1 0.1" mass="3"/></body>
-    <body name="row1" pos="0 1 0.0999"><freejoint/><geom type="box" size="0.1 0.1 0.1"/></body>
-    <body name="row2" pos="0.2 1 0.0999"><freejoint/><geom type="box" size="0.1 0.1 0.1"/></body>
-  </worldbody>
-  <keyframe>
-    <key name="moving"
-         qpos="0 0 0.0999 0.996 0 0 0.087  0.18 0 0.35 0.98 0.13 0.04 0  -1 0.5 1 1 0 0 0
-               0 0  0 1 0.0999 1 0 0 0  0.2 1 0.0999 1 0 0 0"
-         qvel="0.1 0 0 0 0 0.5  0 0 0 0 0 0  0.3 -0.2 0.5 2 -3 5  0.2 0.1
-               0 0 0 0 0 0  0 0 0 0 0 0"/>
-  </keyframe>
-</mujoco>)";
-
 // Relative tolerance of accelerances that hold to floating-point roundoff (the brief's 1e-9).
 constexpr double kAnalyticTol = 1e-9;
-// Forward skipping against full steps: the same solver on the same inputs; only the velocity
-// readout's roundoff differs (≈1e-16 m/s, divided by Δt and by |f| ≈ 1 N).
-constexpr double kSkipTol = 1e-12;
 
 Mat3 Cross(const Vec3& r) {
   Mat3 m;
@@ -100,12 +72,6 @@ std::vector<Measured> MeasureAll(World* world, const std::vector<int>& bodies, c
   }
   perturber.End();
   return out;
-}
-
-std::vector<int> Bodies(const World& world, std::initializer_list<const char*> names) {
-  std::vector<int> ids;
-  for (const char* name : names) ids.push_back(world.FindBody(name));
-  return ids;
 }
 
 std::vector<double> Copy(std::span<const double> values) {
@@ -334,56 +300,6 @@ TEST(PerturberTest, FallsBackToFullStepsWhereSkippingIsNotExact) {
     EXPECT_EQ(perturber.counters().full_step_runs, 4);
     EXPECT_EQ(perturber.counters().forward_skip_runs, 0);
   }
-}
-
-TEST(PerturberTest, NewContactVelocityChangeIsTheLandingImpulseOnly) {
-  // A box dropped flat onto a floor: in its landing step the floor contacts are new, and the
-  // velocity change they cause is all of the step's change except gravity's.
-  World world = World::LoadString(R"(
-<mujoco><option timestep="0.02"/><worldbody>
-  <geom type="plane" size="5 5 0.1"/>
-  <body name="box" pos="0 0 0.11" euler="0 0 30"><freejoint/>
-    <geom type="box" size="0.1 0.1 0.1" mass="2"/></body>
-</worldbody></mujoco>)",
-                                  kNoPointer);
-  const int box = world.FindBody("box");
-  Perturber perturber(&world);
-  const int bodies[] = {box};
-  perturber.Begin(bodies);
-  perturber.ZeroForceRun();
-  const std::span<const std::uint64_t> before = perturber.base_contacts();
-  EXPECT_TRUE(before.empty());  // 1 cm above the floor
-  const std::vector<std::uint64_t> known(before.begin(), before.end());
-  perturber.End();
-  Twist landed;
-  Twist u_before;
-  for (int step = 0; step < 20 && landed.v.isZero(0.0); ++step) {
-    u_before = world.body_state(box).V_WCm;
-    world.Step();
-    landed = perturber.NewContactVelocityChange(box, known);
-  }
-  ASSERT_GT(landed.v.z(), 0.0);  // the floor pushes up
-  const Twist u_after = world.body_state(box).V_WCm;
-  const Vec3 expected = u_after.v - u_before.v - Vec3(0, 0, -9.81 * 0.02);
-  EXPECT_LE((landed.v - expected).norm(), kSkipTol);
-  EXPECT_LE((landed.w - (u_after.w - u_before.w)).norm(), kSkipTol);
-}
-
-TEST(PerturberTest, KnownContactsGiveNoVelocityChange) {
-  World world = World::LoadString(kBusy, kNoPointer);
-  for (int i = 0; i < 5; ++i) world.Step();
-  const std::vector<int> bodies = Bodies(world, {"resting"});
-  Perturber perturber(&world);
-  perturber.Begin(bodies);
-  perturber.ZeroForceRun();
-  const std::span<const std::uint64_t> base = perturber.base_contacts();
-  ASSERT_FALSE(base.empty());
-  const std::vector<std::uint64_t> known(base.begin(), base.end());
-  perturber.End();
-  world.Step();
-  const Twist dV = perturber.NewContactVelocityChange(bodies[0], known);
-  EXPECT_EQ(dV.v, Vec3::Zero());
-  EXPECT_EQ(dV.w, Vec3::Zero());
 }
 
 TEST(PerturberTest, CountsOneZeroForceRunAndThreeRunsPerMeasuredBody) {

@@ -74,6 +74,7 @@ class PhysicsSide {
  private:
   void AddToTotals(const ir::HapticReport& report);
   void GatherLanes();
+  void NoteStep(std::int64_t k, const ir::PhysicsSnapshot& out, double compute_ms);
 
   MethodPhysics* method_;
   world::World* world_;

@@ -155,6 +155,10 @@ class LocalContactSolver {
   void HoldRestingPenetration() noexcept;
   void Integrate(double dt) noexcept;
   void PrepareRows(double dt) noexcept;
+  void PrepareRow(Row& r, double dt) noexcept;
+  void PlaceContact(Row& r, Vec3* pA, Vec3* pB, Vec3* n, Vec3* t) const noexcept;
+  void PlaceB(Row& r, Vec3* pB, Vec3* n, Vec3* t) const noexcept;
+  void SetDirections(Row& r, const Vec3& n, const Vec3& t) const noexcept;
   void SetTargets(Row& r, double gap, double dt) const noexcept;
   double RelativeStartVelocity(const Row& r, const Vec3& dir) const noexcept;
   // The impulse change dl (N·s) along the row's direction j applied to A and, opposite, B.

@@ -63,6 +63,8 @@ class PenaltySumRenderer {
 
  private:
   double DepthRate(std::uint64_t id, std::size_t index, double depth, double dt) const noexcept;
+  void AddPair(const TickIr& ir, const TickPair& pair, const Pose& X_WP, double dt,
+               std::size_t* count, PenaltySumOutput* out) noexcept;
 
   PenaltySumSettings settings_;
   std::array<std::uint64_t, ir::kMaxPairPoints> ids_{};

@@ -153,6 +153,25 @@ class PressureSplit {
   double Objective(const Sym6& h, const std::array<double, 6>& y) const noexcept;
   std::array<double, 6> Minimizer(const Sym6& h) const noexcept;
 
+  // A line search's accepted point: y, its piece's H (h and trial_moments_), the step length
+  // and how many rows changed sign.
+  struct Trial {
+    std::array<double, 6> y{};
+    Sym6 h{};
+    double t = 1.0;
+    std::size_t changes = 0;
+  };
+
+  // Solve's phases (see the .cc).
+  Sym6 BuildBase() noexcept;
+  void ClearMoments() noexcept;
+  void StartCold(const Sym6& base, Sym6* h) noexcept;
+  void TakeSigns(Sym6* h, Result* result) noexcept;
+  void EnterPiece(const Sym6& base, Sym6* h, Result* result) noexcept;
+  Trial LineSearch(const Sym6& h, const std::array<double, 6>& dy, double phi, double slope,
+                   Result* result) noexcept;
+  bool Step(Sym6* h, Result* result) noexcept;
+
   std::vector<Row> rows_;
   std::vector<unsigned char> active_, trial_active_;
   std::vector<Plane> planes_;

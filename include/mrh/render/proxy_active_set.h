@@ -76,6 +76,8 @@ class ProxyActiveSetSolver {
   bool Factorize() noexcept;
   void SolveEqualityActive() noexcept;
   int MostViolated(double tolerance, double* violation) const noexcept;
+  bool AddRowsUntilFeasible(const ProxySolverSettings& settings, int* steps,
+                            double* violation) noexcept;
   bool AddRow(int row, int* steps, int max_steps) noexcept;
   void Project(const Vec6& n_p, std::array<double, kDim>* d, Vec6* z) const noexcept;
   std::array<double, kDim> BackSolve(const std::array<double, kDim>& d) const noexcept;

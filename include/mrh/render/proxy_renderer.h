@@ -258,11 +258,17 @@ class ProxyRenderer {
   void ComputeReactions(const TickIr& ir, const Pose& X_WP, double dt, ProxyOutput* out) noexcept;
   void ComputeContactForces(const TickIr& ir, const Pose& X_WP, double dt,
                             ProxyOutput* out) noexcept;
+  Wrench LimitedTotal(const TickIr& ir, double largest, ProxyOutput* out) noexcept;
   void AddRowForces() noexcept;
   void PushReactions(const TickIr& ir, const Pose& X_WP, ProxyOutput* out) const noexcept;
   void DistributeReactions(const TickIr& ir, const Pose& X_WP, double dt,
                            ProxyOutput* out) noexcept;
   void SplitAcrossPairs(const TickIr& ir, std::size_t touched, const ProxyOutput* out) noexcept;
+  // SplitAcrossPairs' phases (proxy_reaction_split.cc).
+  using PairPlanes = std::array<int, ir::kMaxGeometricPairs>;
+  void LoadSplit(const TickIr& ir, PairPlanes* plane) noexcept;
+  void CollectPairWrenches(const TickIr& ir, const PairPlanes& plane) noexcept;
+  void SpreadRemainder(const TickIr& ir, std::size_t touched, const ProxyOutput* out) noexcept;
   void Remember(const TickIr& ir, const ProxyOutput& out) noexcept;
   void Fault(const Pose& X_WP, ProxyOutput* out) noexcept;
 
