@@ -18,7 +18,7 @@ struct Session;
 
 namespace mrh::experiments::internal {
 
-/// One case × method of t3.6 (issue 14): rendered |f| and |τ| statistics over 2–5 s, peak |ω|
+/// One case × method of t3.6: rendered |f| and |τ| statistics over 2–5 s, peak |ω|
 /// of any box after a global step, every box's COM at 4 s.
 struct T36Result {
   std::string case_name;
@@ -67,7 +67,7 @@ struct T37Result {
   double yaw = 0.0;             ///< rad, heading of the body's x axis about +z at the end
 };
 
-/// A run judged by the issue's bars against the analytic expectations and the reference run
+/// A run judged by the acceptance bars against the analytic expectations and the reference run
 /// of its case (virtual coupling at 1 ms). Unset optionals: the bar does not apply.
 struct T37Verdict {
   /// m/s: 2.5× the larger of the pointer's speed and the reference's peak speed.
@@ -135,7 +135,8 @@ struct PenaltySumWindows {
   double face_hold = 0.0;
 };
 
-/// B5 vs the proxy (SPEC §1.4 B5): checks the sum renders 2kδ on the held edge and 4kδ on the
+/// B5 vs the proxy (Berkelman & Hollis 2000, thesis ref. [43]): checks the sum renders 2kδ on
+/// the held edge and 4kδ on the
 /// held face (the proxy: k_t δ on both), and writes the forces and force-per-depth stiffnesses
 /// into `numbers`. Returns the checks.
 nlohmann::json CheckPenaltySumT31(const std::vector<ir::TickRecord>& ticks,

@@ -32,7 +32,7 @@ class Method;
 
 namespace mrh::experiments::internal {
 
-/// T3.3 (issue 15): real-time computation ratio per method and cube count (rows of 3 resting
+/// T3.3 (thesis §3.3.4): real-time computation ratio per method and cube count (rows of 3 resting
 /// cubes, the first row pushed by a box pointer). Lockstep; a method's ratio is its mean haptic
 /// compute per tick (run wall time − physics step time, over the ticks: engine bookkeeping
 /// included) / 1 ms plus its p50 physics step / physics_dt (20 ms; 1 ms for the single-rate
@@ -133,7 +133,7 @@ struct T43Options {
                                        "local-dynamics/no-perturbation"};
   std::vector<int> cubes = {1, 10, 100};  ///< frictionless (condim 1) runs
   /// Runs with friction (condim 3, μ = 1, pyramidal cones), file and summary keys
-  /// "<cubes>_friction". MuJoCo 2.2.2 holds at most ~620 such cubes (World's buffer sizing).
+  /// "<cubes>_friction".
   std::vector<int> friction_cubes = {1, 10, 100};
   double physics_dt = 0.02;      ///< s, multi-rate methods (single-rate steps at haptic_dt)
   int steps = 50;                ///< physics steps per multi-rate run
@@ -174,7 +174,7 @@ struct T45Options {
 
 int RunT45(const std::filesystem::path& out, bool quiet, const T45Options& options);
 
-/// T4.6 (issue 14 item 3): a body's 6×6 accelerance (and the 3×3 point accelerance) estimated
+/// T4.6 (thesis §4.6.3): a body's 6×6 accelerance (and the 3×3 point accelerance) estimated
 /// by the thesis' 1 + 18 perturbation runs, its 2-run estimate, the analytic island estimate
 /// and the thesis' 3-DOF 1 + 3 runs, against converged MuJoCo on a free box (zero gravity), a
 /// box resting on a floor (pushed, sticking; pushed harder, sliding) and a box pushed into a
@@ -203,9 +203,9 @@ struct LatencyOptions {
 
 int RunLatency(const std::filesystem::path& out, bool quiet, const LatencyOptions& options);
 
-/// A t4.push case (issue 13): scene scenes/t4_push_<scene or name>.xml, pointer height z (m),
+/// A t4.push case: scene scenes/t4_push_<scene or name>.xml, pointer height z (m),
 /// the time the pointer stops pushing (s), the run length (s), the pointer's lateral offset y
-/// (m) and whether local-dynamics is held to the issue's bars on it (`checked`; false for the
+/// (m) and whether local-dynamics is held to the acceptance bars on it (`checked`; false for the
 /// pyramidal-cone box, on which single-rate's straight push is unstable).
 struct PushCase {
   std::string name;
@@ -233,7 +233,7 @@ struct PushResult {
   double peak_spin = 0.0;        ///< rad/s
 };
 
-/// The issue's cases (one box, heavy box, row of three, wall, tip), plus the row's two
+/// The acceptance cases (one box, heavy box, row of three, wall, tip), plus the row's two
 /// chaos probes (10 µm lateral pointer offsets) and the row between rails (row_guided).
 PushOptions DefaultPushOptions();
 
@@ -241,7 +241,7 @@ PushOptions DefaultPushOptions();
 std::vector<std::vector<PushResult>> RunPushCases(const std::filesystem::path& out,
                                                   const PushOptions& options, bool quiet);
 
-/// t4.push: returns 0 if local-dynamics meets the issue's bars against single-rate in every
+/// t4.push: returns 0 if local-dynamics meets the acceptance bars against single-rate in every
 /// case (mean within 5 %, sd <= max(2x, 2 % of mean), contact loss <= single-rate's, box within
 /// 2 cm at 5 s).
 int RunT4Push(const std::filesystem::path& out, bool quiet);
@@ -254,7 +254,7 @@ struct GraspRun {
 };
 
 /// The runs of every grasp case: the reference (single-rate at 1 ms) first, then the methods at
-/// 20 ms: the local-dynamics methods (checked against the issue's bars) and proxy-6dof and
+/// 20 ms: the local-dynamics methods (checked against the acceptance bars) and proxy-6dof and
 /// impulse (reported: their reaction arrives one physics step late).
 std::vector<GraspRun> GraspRuns();
 
@@ -278,7 +278,7 @@ struct GraspResult {
 /// `out` is not empty.
 GraspResult RunGraspCase(const std::filesystem::path& out, const GraspRun& run);
 
-/// The issue's bars for a grasp run against the reference: hold height within 5 mm, each
+/// The acceptance bars for a grasp run against the reference: hold height within 5 mm, each
 /// finger's mean force within 5 % and its standard deviation at most 2x the reference's.
 bool MeetsBars(const GraspResult& r, const GraspResult& reference);
 
@@ -348,13 +348,13 @@ void RunGraspSlide(const std::filesystem::path& out, bool quiet, std::string* md
 /// with Coulomb's force within 5 % and local-dynamics meets the slide bars.
 int RunGrasp(const std::filesystem::path& out, bool quiet);
 
-/// Demo D1 (thesis §4.6.4, issue 36 item 3): scenes/d1.json, a simulated hand sweeping through
+/// Demo D1 (thesis §4.6.4): scenes/d1.json, a simulated hand sweeping through
 /// 80 objects of four shapes on a table with local-dynamics. First a lockstep run with the hand
 /// held above the table (the objects must stay at rest), then the session itself, then (by
 /// default) the same hand path with the single-rate reference. Checks: the
 /// objects stay on the table, the hand touches them, no object is faster than the speed the
 /// hand and gravity can give it, no warnings or faults, peak RSS < 300 MB; in real time also
-/// the issue's bars (haptic rate >= 990 Hz, overruns <= 0.5 % of ticks, step p99 < physics_dt).
+/// the acceptance bars (haptic rate >= 990 Hz, overruns <= 0.5 % of ticks, step p99 < physics_dt).
 /// Writes d1.csv (per physics step), d1.md, d1.png and summary.json; returns 0 if every check
 /// passes.
 struct D1Options {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Experiment t3.7's report: tables, plots and the checks over the runs of t3_7.cc.
+// Experiment t3.7's report: tables, plots and the acceptance checks over the runs of t3_7.cc.
 #include <fmt/format.h>
 
 #include <cmath>

@@ -20,8 +20,8 @@ void Tangents(const Vec3& n, Vec3* t1, Vec3* t2) {
 // set |f_t1| + |f_t2| <= mu f_n about its contact frame (t1 = the exported tangent t rotated
 // like n and made orthogonal to n) is the square |f_e1|, |f_e2| <= mu f_n / sqrt 2 about the
 // diagonals e1,2 = (t1 ± t2) / sqrt 2: two independently clamped rows, which Gauss–Seidel solves
-// exactly (a Euclidean projection on the pyramid's edges, coupling both, lost a quarter of a
-// pushed box's friction and let it turn away).
+// exactly (a Euclidean projection on the pyramid's edges, coupling both, loses a quarter of a
+// pushed box's friction and lets it turn away).
 void FrictionDirections(const Vec3& n, const Vec3& t, bool pyramidal, Vec3* d1, Vec3* d2) {
   const Vec3 u = t - t.dot(n) * n;
   Vec3 t1, t2;
@@ -52,7 +52,7 @@ Vec3 EllipsoidSupport(const Vec3& p, const Quat& q_W, const Vec3& c, const Vec3&
   return p + q_W * (s - c) + q_WG * x_G;
 }
 
-// MuJoCo 2.2.2's impedance d(|r|) of solimp (dmin, dmax, width, midpoint, power).
+// MuJoCo's impedance d(|r|) of solimp (dmin, dmax, width, midpoint, power).
 double Impedance(const double* solimp, double depth) {
   const double dmin = solimp[0], dmax = solimp[1], width = solimp[2];
   const double mid = solimp[3], power = solimp[4];

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The contact local model of local-dynamics (issue 13): semi-implicit Euler + projected
+// The contact local model of local-dynamics: semi-implicit Euler + projected
 // Gauss–Seidel on the island's contact rows, at the haptic rate.
 #include "mrh/render/local_contact_solver.h"
 
@@ -17,7 +17,8 @@ bool Finite(const Vec3& v) {
 
 // (l1, l2) scaled onto the disc |(l1, l2)| <= limit (the elliptic cone).
 void ProjectOnDisc(double limit, double* l1, double* l2) {
-  // Impulses are far from overflow: the plain root (glibc's hypot was 6 % of a 1000-contact tick).
+  // Impulses are far from overflow: the plain root (glibc's hypot costs 6 % of a 1000-contact
+  // tick).
   const double mag2 = *l1 * *l1 + *l2 * *l2;
   if (mag2 <= limit * limit) return;
   const double s = mag2 > 0.0 ? limit / std::sqrt(mag2) : 0.0;

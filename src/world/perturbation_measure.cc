@@ -45,7 +45,7 @@ Mat3 TestForces(const Vec3& f1) {
   Mat3 F;
   F.col(0) = f1;
   F.col(1) = magnitude * (e1 + e2).normalized();  // eq. 4.5
-  F.col(2) = magnitude * (e1 + e3).normalized();  // eq. 4.6, corrected (C7)
+  F.col(2) = magnitude * (e1 + e3).normalized();  // eq. 4.6, corrected (printed as eq. 4.5)
   return F;
 }
 
@@ -68,7 +68,7 @@ DynamicIr Perturber::Measure(std::size_t index, const Vec3& f1, const Vec3& p_W)
   }
   Mat63 Y;
   for (int k = 0; k < 3; ++k) {
-    // eq. 4.8 (corrected, C8): y_k = (u_k − u_0)/Δt; b cancels.
+    // eq. 4.8 (corrected: rearranging eq. 4.3 gives −b, not +b): y_k = (u_k − u_0)/Δt; b cancels.
     Y.col(k) = (ToVec6(Run(index, F.col(k), p_W, k)) - u0) / dt_;
   }
   island_ready_ = false;

@@ -88,16 +88,16 @@ TEST(LocalDynamicsTest, ContactModelWorldHoldsTheOwnedBodyAtTheLocalEndStateOfTh
   EXPECT_GT(last.V_WCm.v.norm(), 0.01);  // the pointer did push the box
 }
 
-// Was disabled (issue 13): at physics_dt 0.05 the pushed cube was launched over the pointer and
-// left the island. Cause: the rows were exported at MuJoCo's end state of the global step, whose
-// soft contacts (time constant 0.1 s at this step) sank and pitched the overwritten cube; the
-// owned cube now ends the step at its local state (IslandSync::HoldOwned).
+// The owned cube ends the step at its local state (IslandSync::HoldOwned) before the rows are
+// exported: at MuJoCo's end state of the global step, whose soft contacts (time constant 0.1 s
+// at physics_dt 0.05) sink and pitch the overwritten cube, the pushed cube would be launched
+// over the pointer and leave the island.
 TEST(LocalDynamicsTest, ContactModelSynchronizationMovesNothingOnTheHapticSide) {
   // The contact model on a floor with friction: the local simulation owns the pushed cube, so
   // at every tick, synchronizations included, the pose advances by exactly one tick of the new
   // velocity (semi-implicit Euler), and the world takes the local end state every period. The
   // pointer starts 16 cm off and touches at about 1.6 s, once MuJoCo has settled the cube
-  // (pushed during the settling bounce, the contact model launches the cube: see issue 13).
+  // (pushed during the settling bounce, the contact model launches the cube).
   constexpr double kTol = 1e-12;
   const double duration = 4.0;
   EngineState state(world::World::LoadString(kCubeOnFloor),
@@ -157,7 +157,7 @@ TEST(LocalDynamicsTest, SynchronizationKeepsGlobalAndLocalStatesConsistent) {
   // A cube pushed across a floor with friction: contacts and friction make the correction of
   // eq. 4.18 non-zero. (1) Local → global (eq. 4.16–4.17): step k starts from period k−1's
   // local end state u^L plus the correction sent for period k (dV_k), so with the residual
-  // correction (SPEC §4.11) the global velocity after the step is exactly
+  // correction (Springhead's realization of eq. 4.18) the global velocity after the step is exactly
   // u^G = u^L + dV_k + b_k Δt^G + dV_{k+1}: |u^G − u^L| is what the correction accounts for.
   // (2) Global → local (eq. 4.18): the local velocity jumps at tick 0 by dV_k plus one tick of
   // (A f + b), and the pose moves by one tick of the new velocity.

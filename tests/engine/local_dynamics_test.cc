@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // Method local-dynamics: accelerance of free bodies and of a row of cubes, felt mass, rest,
-// T4.1, RT contract and determinism (issue 5); synchronization in local_dynamics_sync_test.cc.
+// T4.1, RT contract and determinism; synchronization in local_dynamics_sync_test.cc.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -81,7 +81,7 @@ ir::Mat63 FreeBodyAccelerance(const world::World& world, int body, const Vec3& p
 }
 
 TEST(LocalDynamicsTest, FreeBodyAcceleranceIsInverseMassAndLeverArmCoupling) {
-  // The issue's tolerance; roundoff of the perturbation runs is ~1e-15.
+  // The acceptance tolerance; roundoff of the perturbation runs is ~1e-15.
   constexpr double kTol = 1e-9;
   for (bool perturbation : {true, false}) {
     world::World world = world::World::LoadString(kFreeBox);
@@ -225,8 +225,8 @@ TEST_P(RestTest, UntouchedRestingNeighborStaysAtRest) {
 INSTANTIATE_TEST_SUITE_P(Models, RestTest, ::testing::Values("perturbation", "contact"));
 
 TEST(LocalDynamicsTest, T41ImpulseMatchesTheElasticBounceAndTheCubeMomentum) {
-  // SPEC T4.1: the proposed method's impulse is within a few percent of B1's (2.0466 N·s here)
-  // and of the elastic 2mv = 2.04 N·s; momentum bookkeeping holds to roundoff.
+  // T4.1 (thesis §4.5.3): the proposed method's impulse is within a few percent of B1's (2.0466 N·s
+  // here) and of the elastic 2mv = 2.04 N·s; momentum bookkeeping holds to roundoff.
   constexpr double kRelTol = 0.02;
   constexpr double kMomentumTol = 1e-9;
   auto engine = T41Engine(T41Settings("local-dynamics"));

@@ -101,7 +101,7 @@ TEST(ProxyRendererTest, RowsBeyondCapacityAreDroppedWithTheRowsFullBit) {
 }
 
 TEST(ProxyRendererTest, RotationWeightFromInertiaScalesTheUnitMassInertia) {
-  // SPEC §3.10: a 0.2 m cube has 0.2²/6 m²; ×500 gives T3.1's R_w ≈ 3.33.
+  // Thesis §3.4.1: a 0.2 m cube has 0.2²/6 m²; ×500 gives T3.1's R_w ≈ 3.33.
   const Mat3 weight = RotationWeightFromInertia((0.04 / 6.0) * Mat3::Identity(), 500.0);
   EXPECT_NEAR(weight(0, 0), 3.3333333333, 1e-9);
   EXPECT_EQ(weight(0, 1), 0.0);

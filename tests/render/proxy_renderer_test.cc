@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Tests of the 6-DOF proxy renderer (SPEC §3.4–3.8, §5.0 U1–U4): wrench, friction states,
+// Tests of the 6-DOF proxy renderer (thesis §3.2.2–3.2.4, eq. 3.1–3.10): wrench, friction states,
 // moving objects, reactions, dampers and warm starts; its RT contract and errors are in
 // proxy_renderer_contract_test.cc.
 #include "mrh/render/proxy_renderer.h"
@@ -306,7 +306,7 @@ TEST(ProxyRendererTest, DampersActOnTheChangeOfTheProxyOffset) {
   EXPECT_GT(out.dr.z(), dr1.z());
 }
 
-// Issue 18: a pointer that starts inside an object has no previous offset; its dampers start at
+// A pointer that starts inside an object has no previous offset; its dampers start at
 // rest instead of seeing the whole offset appear in one tick (15 N against a steady 5 N).
 TEST(ProxyRendererTest, FirstTickAfterStartRendersTheSpringOnly) {
   ProxyRendererSettings settings = T31();
