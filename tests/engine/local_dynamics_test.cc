@@ -72,7 +72,7 @@ settings::EngineSettings LocalSettings(double duration, const char* model = "per
   s.rendering.stiffness = 1000.0;
   // Most tests check the thesis model (eq. 4.16–4.18 with A, b); the rest and synchronization
   // tests also run the contact model (issue 13).
-  s.rendering.local_model = model;
+  s.rendering.local_model = *settings::ParseChoice<settings::LocalModel>(model);
   s.safety.ramp = false;
   s.realtime_priority = false;
   return s;
