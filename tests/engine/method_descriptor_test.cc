@@ -42,7 +42,9 @@ TEST(MethodDescriptorTest, StatusBitNamesAreUniqueAndNonEmptyWhereABitIsDefined)
     for (std::size_t i = 0; i < names.size(); ++i) {
       const bool is_defined = (defined >> i) & 1u;
       EXPECT_EQ(!names[i].empty(), is_defined) << "bit " << i;
-      if (is_defined) EXPECT_TRUE(seen.insert(names[i]).second) << names[i] << " twice";
+      if (is_defined) {
+        EXPECT_TRUE(seen.insert(names[i]).second) << names[i] << " twice";
+      }
     }
   }
 }
