@@ -172,50 +172,60 @@ Method LocalDynamics6dof(const physics::MethodContext& c) {
 constexpr StatusBitGroup kProxyBits{"proxy", render::kProxyStatusNames};
 constexpr StatusBitGroup kLocalDynamicsBits{"local_dynamics", haptic::kLocalDynamicsStatusNames};
 
+// The baselines B1–B5: one RegisterMethod call per method.
+void RegisterBaselines() {
+  RegisterMethod({"single-rate",
+                  "B1: world stepped at the haptic rate, 3-DOF penalty force applied every tick",
+                  {},
+                  SingleRate});
+  RegisterMethod({"impulse",
+                  "B4: conventional multi-rate, reaction impulse sent to the next physics step",
+                  {},
+                  Impulse});
+  RegisterMethod({"penalty-sum",
+                  "B5: proxy-6dof's geometric IR, wrench = sum of per-contact springs "
+                  "k·depth·n (stiffness grows with the contact count)",
+                  {{"penalty_sum", render::kPenaltySumStatusNames}},
+                  PenaltySum});
+  RegisterMethod({"virtual-coupling",
+                  "B3: pointer as a dynamic tool in MuJoCo at the haptic rate, spring-damper to "
+                  "the device (the tool's inertia is felt)",
+                  {{"virtual_coupling", haptic::kVirtualCouplingStatusNames}},
+                  VirtualCoupling});
+  RegisterMethod({"contact-volume",
+                  "B2: whole scene as one penalty simulation at the haptic rate, force "
+                  "k·(V/A)·n per intersection volume, anchored friction; device on the pointer",
+                  {{"contact_volume", haptic::kContactVolumeStatusNames}},
+                  ContactVolume});
+}
+
+// The thesis' methods (chapters 3 and 4) and their combination: one call per method.
+void RegisterThesisMethods() {
+  RegisterMethod({"proxy-6dof",
+                  "Ch. 3: geometric IR + 6-DOF proxy with friction cones, reaction one step late",
+                  {kProxyBits},
+                  Proxy});
+  RegisterMethod({"local-dynamics",
+                  "Ch. 4: neighbors simulated at the haptic rate; rendering.local_model "
+                  "\"contact\" (their contact island with friction, default) or "
+                  "\"perturbation\" (thesis: accelerance + bias)",
+                  {kLocalDynamicsBits},
+                  LocalDynamics});
+  RegisterMethod({"local-dynamics-6dof",
+                  "Issue 14: proxy-6dof's geometric IR and 6-DOF proxy against the neighbors' "
+                  "contact island simulated at the haptic rate (the push moves them in the same "
+                  "tick, with rotation)",
+                  {kProxyBits, {"local_dynamics", haptic::kLocalDynamics6dofStatusNames}},
+                  LocalDynamics6dof});
+}
+
 // Built-in methods register on first use: self-registering statics would be dropped by the
-// linker from a static library. One RegisterMethod call per method.
+// linker from a static library.
 void RegisterBuiltins() {
   static std::once_flag once;
   std::call_once(once, [] {
-    RegisterMethod({"single-rate",
-                    "B1: world stepped at the haptic rate, 3-DOF penalty force applied every tick",
-                    {},
-                    SingleRate});
-    RegisterMethod({"impulse",
-                    "B4: conventional multi-rate, reaction impulse sent to the next physics step",
-                    {},
-                    Impulse});
-    RegisterMethod({"proxy-6dof",
-                    "Ch. 3: geometric IR + 6-DOF proxy with friction cones, reaction one step late",
-                    {kProxyBits},
-                    Proxy});
-    RegisterMethod({"penalty-sum",
-                    "B5: proxy-6dof's geometric IR, wrench = sum of per-contact springs "
-                    "k·depth·n (stiffness grows with the contact count)",
-                    {{"penalty_sum", render::kPenaltySumStatusNames}},
-                    PenaltySum});
-    RegisterMethod({"virtual-coupling",
-                    "B3: pointer as a dynamic tool in MuJoCo at the haptic rate, spring-damper to "
-                    "the device (the tool's inertia is felt)",
-                    {{"virtual_coupling", haptic::kVirtualCouplingStatusNames}},
-                    VirtualCoupling});
-    RegisterMethod({"contact-volume",
-                    "B2: whole scene as one penalty simulation at the haptic rate, force "
-                    "k·(V/A)·n per intersection volume, anchored friction; device on the pointer",
-                    {{"contact_volume", haptic::kContactVolumeStatusNames}},
-                    ContactVolume});
-    RegisterMethod({"local-dynamics",
-                    "Ch. 4: neighbors simulated at the haptic rate; rendering.local_model "
-                    "\"contact\" (their contact island with friction, default) or "
-                    "\"perturbation\" (thesis: accelerance + bias)",
-                    {kLocalDynamicsBits},
-                    LocalDynamics});
-    RegisterMethod({"local-dynamics-6dof",
-                    "Issue 14: proxy-6dof's geometric IR and 6-DOF proxy against the neighbors' "
-                    "contact island simulated at the haptic rate (the push moves them in the same "
-                    "tick, with rotation)",
-                    {kProxyBits, {"local_dynamics", haptic::kLocalDynamics6dofStatusNames}},
-                    LocalDynamics6dof});
+    RegisterBaselines();
+    RegisterThesisMethods();
   });
 }
 
