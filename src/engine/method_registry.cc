@@ -26,6 +26,12 @@ std::mutex& RegistryMutex() {
   return mutex;
 }
 
+void Add(MethodDescriptor descriptor) {
+  const std::lock_guard lock(RegistryMutex());
+  std::string name = descriptor.name;
+  Registry()[std::move(name)] = std::move(descriptor);
+}
+
 }  // namespace
 
 namespace {
@@ -172,51 +178,51 @@ Method LocalDynamics6dof(const physics::MethodContext& c) {
 constexpr StatusBitGroup kProxyBits{"proxy", render::kProxyStatusNames};
 constexpr StatusBitGroup kLocalDynamicsBits{"local_dynamics", haptic::kLocalDynamicsStatusNames};
 
-// The baselines B1–B5: one RegisterMethod call per method.
+// The baselines B1–B5: one call per method.
 void RegisterBaselines() {
-  RegisterMethod({"single-rate",
-                  "B1: world stepped at the haptic rate, 3-DOF penalty force applied every tick",
-                  {},
-                  SingleRate});
-  RegisterMethod({"impulse",
-                  "B4: conventional multi-rate, reaction impulse sent to the next physics step",
-                  {},
-                  Impulse});
-  RegisterMethod({"penalty-sum",
-                  "B5: proxy-6dof's geometric IR, wrench = sum of per-contact springs "
-                  "k·depth·n (stiffness grows with the contact count)",
-                  {{"penalty_sum", render::kPenaltySumStatusNames}},
-                  PenaltySum});
-  RegisterMethod({"virtual-coupling",
-                  "B3: pointer as a dynamic tool in MuJoCo at the haptic rate, spring-damper to "
-                  "the device (the tool's inertia is felt)",
-                  {{"virtual_coupling", haptic::kVirtualCouplingStatusNames}},
-                  VirtualCoupling});
-  RegisterMethod({"contact-volume",
-                  "B2: whole scene as one penalty simulation at the haptic rate, force "
-                  "k·(V/A)·n per intersection volume, anchored friction; device on the pointer",
-                  {{"contact_volume", haptic::kContactVolumeStatusNames}},
-                  ContactVolume});
+  Add({"single-rate",
+       "B1: world stepped at the haptic rate, 3-DOF penalty force applied every tick",
+       {},
+       SingleRate});
+  Add({"impulse",
+       "B4: conventional multi-rate, reaction impulse sent to the next physics step",
+       {},
+       Impulse});
+  Add({"penalty-sum",
+       "B5: proxy-6dof's geometric IR, wrench = sum of per-contact springs "
+       "k·depth·n (stiffness grows with the contact count)",
+       {{"penalty_sum", render::kPenaltySumStatusNames}},
+       PenaltySum});
+  Add({"virtual-coupling",
+       "B3: pointer as a dynamic tool in MuJoCo at the haptic rate, spring-damper to "
+       "the device (the tool's inertia is felt)",
+       {{"virtual_coupling", haptic::kVirtualCouplingStatusNames}},
+       VirtualCoupling});
+  Add({"contact-volume",
+       "B2: whole scene as one penalty simulation at the haptic rate, force "
+       "k·(V/A)·n per intersection volume, anchored friction; device on the pointer",
+       {{"contact_volume", haptic::kContactVolumeStatusNames}},
+       ContactVolume});
 }
 
 // The thesis' methods (chapters 3 and 4) and their combination: one call per method.
 void RegisterThesisMethods() {
-  RegisterMethod({"proxy-6dof",
-                  "Ch. 3: geometric IR + 6-DOF proxy with friction cones, reaction one step late",
-                  {kProxyBits},
-                  Proxy});
-  RegisterMethod({"local-dynamics",
-                  "Ch. 4: neighbors simulated at the haptic rate; rendering.local_model "
-                  "\"contact\" (their contact island with friction, default) or "
-                  "\"perturbation\" (thesis: accelerance + bias)",
-                  {kLocalDynamicsBits},
-                  LocalDynamics});
-  RegisterMethod({"local-dynamics-6dof",
-                  "Issue 14: proxy-6dof's geometric IR and 6-DOF proxy against the neighbors' "
-                  "contact island simulated at the haptic rate (the push moves them in the same "
-                  "tick, with rotation)",
-                  {kProxyBits, {"local_dynamics", haptic::kLocalDynamics6dofStatusNames}},
-                  LocalDynamics6dof});
+  Add({"proxy-6dof",
+       "Ch. 3: geometric IR + 6-DOF proxy with friction cones, reaction one step late",
+       {kProxyBits},
+       Proxy});
+  Add({"local-dynamics",
+       "Ch. 4: neighbors simulated at the haptic rate; rendering.local_model "
+       "\"contact\" (their contact island with friction, default) or "
+       "\"perturbation\" (thesis: accelerance + bias)",
+       {kLocalDynamicsBits},
+       LocalDynamics});
+  Add({"local-dynamics-6dof",
+       "Issue 14: proxy-6dof's geometric IR and 6-DOF proxy against the neighbors' "
+       "contact island simulated at the haptic rate (the push moves them in the same "
+       "tick, with rotation)",
+       {kProxyBits, {"local_dynamics", haptic::kLocalDynamics6dofStatusNames}},
+       LocalDynamics6dof});
 }
 
 // Built-in methods register on first use: self-registering statics would be dropped by the
@@ -231,10 +237,10 @@ void RegisterBuiltins() {
 
 }  // namespace
 
+// The built-ins first, so that a program's method of the same name replaces the built-in one.
 void RegisterMethod(MethodDescriptor descriptor) {
-  const std::lock_guard lock(RegistryMutex());
-  std::string name = descriptor.name;
-  Registry()[std::move(name)] = std::move(descriptor);
+  RegisterBuiltins();
+  Add(std::move(descriptor));
 }
 
 void RegisterMethod(const std::string& name, const std::string& summary, MethodFactory factory) {

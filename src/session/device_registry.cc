@@ -24,6 +24,12 @@ std::mutex& RegistryMutex() {
   return mutex;
 }
 
+void Add(DeviceDescriptor descriptor) {
+  const std::lock_guard lock(RegistryMutex());
+  std::string name = descriptor.name;
+  Registry()[std::move(name)] = std::move(descriptor);
+}
+
 // The scripted target: inline keyframes, or the CSV file the session names.
 std::vector<device::Keyframe> TargetKeyframes(const DeviceSource& s) {
   if (s.config.trajectory.empty()) return s.config.keyframes;
@@ -68,37 +74,30 @@ std::unique_ptr<device::Device> Udp(const DeviceSource& s) {
 }
 
 // Built-in types register on first use: self-registering statics would be dropped by the
-// linker from a static library. One RegisterDevice call per type; the parser reads each
-// built-in type's own keys (session/schema.h, kDeviceTypes).
+// linker from a static library. One call per type; the parser reads each built-in type's own
+// keys (session/schema.h, kDeviceTypes).
 void RegisterBuiltins() {
   static std::once_flag once;
   std::call_once(once, [] {
-    RegisterDevice({"fixed", "holds the grip at device.pose", Fixed});
-    RegisterDevice(
-        {"scripted", "moves the grip through keyframes (inline or a CSV trajectory)", Scripted});
-    RegisterDevice(
-        {"hand", "a simulated hand following keyframes, pushed back by the force", Hand});
-    RegisterDevice({"replay", "replays the device poses of a recorded run's ticks.csv", Replay});
-    RegisterDevice(
-        {"external", "fed by the caller's servo loop (Engine::Start/Tick/Stop)", External});
-    RegisterDevice({"forcedimension",
-                    "a Force Dimension device through libdhd, loaded at run "
-                    "time",
-                    ForceDimension});
-    RegisterDevice({"openhaptics",
-                    "a 3D Systems device through OpenHaptics (libHD), loaded at "
-                    "run time",
-                    OpenHaptics});
-    RegisterDevice({"udp", "poses in, wrenches out over UDP", Udp});
+    Add({"fixed", "holds the grip at device.pose", Fixed});
+    Add({"scripted", "moves the grip through keyframes (inline or a CSV trajectory)", Scripted});
+    Add({"hand", "a simulated hand following keyframes, pushed back by the force", Hand});
+    Add({"replay", "replays the device poses of a recorded run's ticks.csv", Replay});
+    Add({"external", "fed by the caller's servo loop (Engine::Start/Tick/Stop)", External});
+    Add({"forcedimension", "a Force Dimension device through libdhd, loaded at run time",
+         ForceDimension});
+    Add({"openhaptics", "a 3D Systems device through OpenHaptics (libHD), loaded at run time",
+         OpenHaptics});
+    Add({"udp", "poses in, wrenches out over UDP", Udp});
   });
 }
 
 }  // namespace
 
+// The built-ins first, so that a program's type of the same name replaces the built-in one.
 void RegisterDevice(DeviceDescriptor descriptor) {
-  const std::lock_guard lock(RegistryMutex());
-  std::string name = descriptor.name;
-  Registry()[std::move(name)] = std::move(descriptor);
+  RegisterBuiltins();
+  Add(std::move(descriptor));
 }
 
 std::optional<DeviceDescriptor> FindDevice(const std::string& name) {
