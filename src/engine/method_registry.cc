@@ -197,12 +197,14 @@ void RegisterBaselines() {
        "B3: pointer as a dynamic tool in MuJoCo at the haptic rate, spring-damper to "
        "the device (the tool's inertia is felt)",
        {{"virtual_coupling", haptic::kVirtualCouplingStatusNames}},
-       VirtualCoupling});
+       VirtualCoupling,
+       {.dynamic_pointer = true}});
   Add({"contact-volume",
        "B2: whole scene as one penalty simulation at the haptic rate, force "
        "k·(V/A)·n per intersection volume, anchored friction; device on the pointer",
        {{"contact_volume", haptic::kContactVolumeStatusNames}},
-       ContactVolume});
+       ContactVolume,
+       {.penalty_contacts = true}});
 }
 
 // The thesis' methods (chapters 3 and 4) and their combination: one call per method.
@@ -257,6 +259,14 @@ std::vector<std::string> StatusBitNames(std::span<const StatusBitGroup> groups) 
     }
   }
   return out;
+}
+
+std::optional<MethodDescriptor> FindMethod(const std::string& name) {
+  RegisterBuiltins();
+  const std::lock_guard lock(RegistryMutex());
+  const auto it = Registry().find(name);
+  if (it == Registry().end()) return std::nullopt;
+  return it->second;
 }
 
 std::vector<MethodDescriptor> MethodDescriptors() {

@@ -72,6 +72,17 @@ TEST(MethodDescriptorTest, BuiltInStatusBitNamesReadAsRunStatsReportsThem) {
   EXPECT_EQ(actual, expected);
 }
 
+// session::LoadWorld loads the scene as the method says; only these two need more than the
+// default (a mocap pointer, MuJoCo's own contacts).
+TEST(MethodDescriptorTest, WorldNeedsOfTheBuiltIns) {
+  for (const MethodDescriptor& d : MethodDescriptors()) {
+    SCOPED_TRACE(d.name);
+    EXPECT_EQ(d.world.dynamic_pointer, d.name == "virtual-coupling");
+    EXPECT_EQ(d.world.penalty_contacts, d.name == "contact-volume");
+  }
+  EXPECT_FALSE(FindMethod("no-such-method").has_value());
+}
+
 TEST(MethodDescriptorTest, StatusBitNamesLeaveUnnamedBitsEmpty) {
   static constexpr StatusBitName kBits[] = {{1u << 2, "two"}, {1u << 0, "zero"}};
   const StatusBitGroup groups[] = {{"toy", kBits}};

@@ -4,6 +4,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -52,6 +53,16 @@ struct StatusBitGroup {
   std::span<const StatusBitName> names;
 };
 
+/// How session::LoadWorld must load the scene for a method (world::LoadOptions).
+struct MethodWorldNeeds {
+  /// The pointer body becomes a free body of the world, the tool the method couples the device
+  /// to (virtual-coupling), instead of a mocap body.
+  bool dynamic_pointer = false;
+  /// MuJoCo's own contacts are off: the method computes every contact force itself
+  /// (contact-volume).
+  bool penalty_contacts = false;
+};
+
 /// Everything the engine, the CLI (`mrh methods`) and the session parser know of a method.
 struct MethodDescriptor {
   std::string name;     ///< session key `method`, e.g. "proxy-6dof"
@@ -61,6 +72,7 @@ struct MethodDescriptor {
   /// Method::status_bits stand.
   std::vector<StatusBitGroup> status_bits;
   MethodFactory factory;
+  MethodWorldNeeds world = {};
 };
 
 /// Registers a method; a later registration under the same name replaces the earlier one.
@@ -76,6 +88,9 @@ std::vector<std::string> StatusBitNames(std::span<const StatusBitGroup> groups);
 
 /// Creates a registered method. @throws mrh::InvalidArgument listing the known names.
 Method MakeMethod(const std::string& name, const physics::MethodContext& context);
+
+/// The descriptor of method `name`, or nullopt if none is registered under it.
+std::optional<MethodDescriptor> FindMethod(const std::string& name);
 
 /// Every registered method's descriptor, sorted by name.
 std::vector<MethodDescriptor> MethodDescriptors();
