@@ -192,19 +192,23 @@ void RegisterBaselines() {
        "B5: proxy-6dof's geometric IR, wrench = sum of per-contact springs "
        "k·depth·n (stiffness grows with the contact count)",
        {{"penalty_sum", render::kPenaltySumStatusNames}},
-       PenaltySum});
+       PenaltySum,
+       {},
+       {.torque = true}});
   Add({"virtual-coupling",
        "B3: pointer as a dynamic tool in MuJoCo at the haptic rate, spring-damper to "
        "the device (the tool's inertia is felt)",
        {{"virtual_coupling", haptic::kVirtualCouplingStatusNames}},
        VirtualCoupling,
-       {.dynamic_pointer = true}});
+       {.dynamic_pointer = true},
+       {.stiffness = false, .coupling = true, .torque = true}});
   Add({"contact-volume",
        "B2: whole scene as one penalty simulation at the haptic rate, force "
        "k·(V/A)·n per intersection volume, anchored friction; device on the pointer",
        {{"contact_volume", haptic::kContactVolumeStatusNames}},
        ContactVolume,
-       {.penalty_contacts = true}});
+       {.penalty_contacts = true},
+       {.friction = true, .torque = true}});
 }
 
 // The thesis' methods (chapters 3 and 4) and their combination: one call per method.
@@ -212,7 +216,9 @@ void RegisterThesisMethods() {
   Add({"proxy-6dof",
        "Ch. 3: geometric IR + 6-DOF proxy with friction cones, reaction one step late",
        {kProxyBits},
-       Proxy});
+       Proxy,
+       {},
+       {.friction = true, .rot_stiffness = true, .torque = true}});
   Add({"local-dynamics",
        "Ch. 4: neighbors simulated at the haptic rate; rendering.local_model "
        "\"contact\" (their contact island with friction, default) or "
@@ -224,7 +230,9 @@ void RegisterThesisMethods() {
        "contact island simulated at the haptic rate (the push moves them in the same "
        "tick, with rotation)",
        {kProxyBits, {"local_dynamics", haptic::kLocalDynamics6dofStatusNames}},
-       LocalDynamics6dof});
+       LocalDynamics6dof,
+       {},
+       {.friction = true, .rot_stiffness = true, .torque = true}});
 }
 
 // Built-in methods register on first use: self-registering statics would be dropped by the

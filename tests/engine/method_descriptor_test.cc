@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -81,6 +82,21 @@ TEST(MethodDescriptorTest, WorldNeedsOfTheBuiltIns) {
     EXPECT_EQ(d.world.penalty_contacts, d.name == "contact-volume");
   }
   EXPECT_FALSE(FindMethod("no-such-method").has_value());
+}
+
+// Run reports plot a torque, and the viewer shows rot_stiffness, only where the method has one.
+TEST(MethodDescriptorTest, OnlyThe3DofMethodsRenderNoTorque) {
+  const std::set<std::string> three_dof = {"single-rate", "impulse", "local-dynamics"};
+  const std::set<std::string> proxies = {"proxy-6dof", "local-dynamics-6dof"};
+  for (const char* name :
+       {"single-rate", "impulse", "proxy-6dof", "penalty-sum", "virtual-coupling", "contact-volume",
+        "local-dynamics", "local-dynamics-6dof"}) {
+    SCOPED_TRACE(name);
+    const std::optional<MethodDescriptor> d = FindMethod(name);
+    ASSERT_TRUE(d.has_value());
+    EXPECT_EQ(d->settings.torque, three_dof.count(name) == 0);
+    EXPECT_EQ(d->settings.rot_stiffness, proxies.count(name) == 1);
+  }
 }
 
 TEST(MethodDescriptorTest, StatusBitNamesLeaveUnnamedBitsEmpty) {

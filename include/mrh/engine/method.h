@@ -63,6 +63,17 @@ struct MethodWorldNeeds {
   bool penalty_contacts = false;
 };
 
+/// Which of the session's rendering gains a method reads, and whether it renders a torque. The
+/// viewer's panel shows only these gains (so an edit always changes what the user feels); run
+/// reports plot a torque only for a method that renders one.
+struct MethodSettingsUsed {
+  bool stiffness = true;       ///< rendering.stiffness and rendering.damping
+  bool friction = false;       ///< rendering.friction
+  bool rot_stiffness = false;  ///< rendering.rot_stiffness
+  bool coupling = false;       ///< rendering.coupling_stiffness and coupling_damping
+  bool torque = false;         ///< the method renders a torque (6-DOF)
+};
+
 /// Everything the engine, the CLI (`mrh methods`) and the session parser know of a method.
 struct MethodDescriptor {
   std::string name;     ///< session key `method`, e.g. "proxy-6dof"
@@ -73,6 +84,7 @@ struct MethodDescriptor {
   std::vector<StatusBitGroup> status_bits;
   MethodFactory factory;
   MethodWorldNeeds world = {};
+  MethodSettingsUsed settings = {};
 };
 
 /// Registers a method; a later registration under the same name replaces the earlier one.
