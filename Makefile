@@ -63,6 +63,7 @@ example:
 	cmake --build $(BUILD)/example -j $(JOBS)
 	$(BUILD)/example/servo_loop scenes/t4_1_impulse.json
 	$(BUILD)/example/realtime_embedding scenes/t4_1_impulse.json
+	$(BUILD)/example/toy_method scenes/t4_1_impulse.json
 
 clean:
 	rm -rf $(BUILD) out

@@ -65,6 +65,7 @@ CLI::App* AddIrCommand(CLI::App& app, IrOptions* options);
 CLI::App* AddViewCommand(CLI::App& app, ViewOptions* options);
 CLI::App* AddValidateCommand(CLI::App& app, ValidateOptions* options);
 CLI::App* AddMethodsCommand(CLI::App& app);
+CLI::App* AddDevicesCommand(CLI::App& app);
 CLI::App* AddExperimentCommand(CLI::App& app, ExperimentOptions* options);
 
 /// Each returns the process exit code. They throw mrh::Error subclasses on bad input or failure;
@@ -76,6 +77,7 @@ int ValidateCommand(const ValidateOptions& options);
 /// psychophysics run` reads it. @throws mrh::InvalidArgument naming the file and key.
 void CheckStudy(const std::filesystem::path& session, const std::vector<std::string>& sets);
 int MethodsCommand();
+int DevicesCommand();
 int ExperimentCommand(const ExperimentOptions& options);
 int IrCommand(const IrOptions& options);
 int ViewCommand(const ViewOptions& options);

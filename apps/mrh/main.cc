@@ -24,6 +24,7 @@ constexpr const char* kRootFooter = R"(Examples:
   mrh run session.json --mode realtime --duration 5
   mrh validate session.json                  check a session and its scene
   mrh methods                                list the rendering methods
+  mrh devices                                list the device types
   mrh experiment --list                      list the reproducible experiments
   mrh ir session.json --pose 0 0 0.1 1 0 0 0 print the contact IR at a pointer pose (JSON)
   mrh view session.json                      open the interactive viewer
@@ -81,6 +82,7 @@ struct Commands {
   const CLI::App* run;
   const CLI::App* validate;
   const CLI::App* methods;
+  const CLI::App* devices;
   const CLI::App* ir;
   const CLI::App* view;
   PsychophysicsCommands psychophysics;
@@ -90,6 +92,7 @@ int Dispatch(const CLI::App& app, const Options& o, const Commands& c) {
   if (app.got_subcommand(c.run)) return RunCommand(o.run);
   if (app.got_subcommand(c.validate)) return ValidateCommand(o.validate);
   if (app.got_subcommand(c.methods)) return MethodsCommand();
+  if (app.got_subcommand(c.devices)) return DevicesCommand();
   if (app.got_subcommand(c.ir)) return IrCommand(o.ir);
   if (app.got_subcommand(c.view)) return ViewCommand(o.view);
   if (app.got_subcommand(c.psychophysics.top)) {
@@ -112,6 +115,7 @@ int Main(int argc, char** argv) {
   c.run = AddRunCommand(app, &o.run);
   c.validate = AddValidateCommand(app, &o.validate);
   c.methods = AddMethodsCommand(app);
+  c.devices = AddDevicesCommand(app);
   AddExperimentCommand(app, &o.experiment);
   c.ir = AddIrCommand(app, &o.ir);
   c.view = AddViewCommand(app, &o.view);
@@ -120,9 +124,10 @@ int Main(int argc, char** argv) {
   if (const std::optional<std::string> word = UnknownCommand(app, argc, argv)) {
     return Fail(
         kExitBadInput,
-        fmt::format("unknown command '{}'; expected run, validate, methods, experiment, ir, view or "
-                    "psychophysics",
-                    *word),
+        fmt::format(
+            "unknown command '{}'; expected run, validate, methods, devices, experiment, ir, "
+            "view or psychophysics",
+            *word),
         true);
   }
   try {

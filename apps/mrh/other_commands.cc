@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// `mrh validate`, `mrh methods` and `mrh experiment`, plus the shared --set option.
+// `mrh validate`, `mrh methods`, `mrh devices` and `mrh experiment`, plus the shared --set
+// option.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -13,6 +14,7 @@
 #include "mrh/engine/method.h"
 #include "mrh/experiments/experiments.h"
 #include "mrh/psychophysics/study.h"
+#include "mrh/session/devices.h"
 #include "mrh/session/session.h"
 #include "mrh/world/world.h"
 
@@ -33,6 +35,11 @@ Examples:
 constexpr const char* kMethodsFooter = R"(Examples:
   mrh methods
   mrh run session.json --method single-rate
+)";
+
+constexpr const char* kDevicesFooter = R"(Examples:
+  mrh devices
+  mrh run session.json --set 'device={"type": "fixed", "pose": [0, 0, 0, 1, 0, 0, 0]}'
 )";
 
 constexpr const char* kExperimentFooter = R"(Examples:
@@ -71,6 +78,12 @@ CLI::App* AddMethodsCommand(CLI::App& app) {
   CLI::App* methods = app.add_subcommand("methods", "List the haptic rendering methods");
   methods->footer(kMethodsFooter);
   return methods;
+}
+
+CLI::App* AddDevicesCommand(CLI::App& app) {
+  CLI::App* devices = app.add_subcommand("devices", "List the device types (session device.type)");
+  devices->footer(kDevicesFooter);
+  return devices;
 }
 
 CLI::App* AddExperimentCommand(CLI::App& app, ExperimentOptions* o) {
@@ -120,6 +133,15 @@ int ValidateCommand(const ValidateOptions& o) {
 
 int MethodsCommand() {
   PrintTable(engine::ListMethods());
+  return kExitOk;
+}
+
+int DevicesCommand() {
+  std::vector<std::pair<std::string, std::string>> rows;
+  for (const session::DeviceDescriptor& d : session::DeviceDescriptors()) {
+    rows.emplace_back(d.name, d.summary);
+  }
+  PrintTable(rows);
   return kExitOk;
 }
 

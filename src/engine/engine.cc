@@ -139,7 +139,8 @@ EngineState::EngineState(world::World w, std::vector<std::unique_ptr<device::Dev
   device = std::move(devices[0]);
   calibration = calibrations[0];
   // virtual-coupling's tool is the pointer made a free body (world::LoadOptions::dynamic_pointer).
-  const bool tool = settings.method == "virtual-coupling" &&
+  const std::optional<MethodDescriptor> descriptor = FindMethod(settings.method);
+  const bool tool = descriptor && descriptor->world.dynamic_pointer &&
                     world.FindBody(settings.pointer.body) == world.pointer_body();
   pointer_body = FindPointerBody(world, n >= 2 ? "pointers[0].body" : "pointer.body",
                                  settings.pointer.body, tool);

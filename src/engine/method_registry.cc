@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <bit>
 #include <map>
 #include <mutex>
 
@@ -15,19 +16,20 @@
 namespace mrh::engine {
 namespace {
 
-struct Entry {
-  std::string summary;
-  MethodFactory factory;
-};
-
-std::map<std::string, Entry>& Registry() {
-  static std::map<std::string, Entry> registry;
+std::map<std::string, MethodDescriptor>& Registry() {
+  static std::map<std::string, MethodDescriptor> registry;
   return registry;
 }
 
 std::mutex& RegistryMutex() {
   static std::mutex mutex;
   return mutex;
+}
+
+void Add(MethodDescriptor descriptor) {
+  const std::lock_guard lock(RegistryMutex());
+  std::string name = descriptor.name;
+  Registry()[std::move(name)] = std::move(descriptor);
 }
 
 }  // namespace
@@ -86,34 +88,37 @@ Method Proxy(const physics::MethodContext& c) {
   std::vector<std::unique_ptr<haptic::MethodHaptic>> group;
   for (const render::ProxyRendererSettings& s : settings)
     group.push_back(haptic::MakeProxyHaptic(s));
-  // render::ProxyStatusBits
-  return PointerGroupMethod("proxy-6dof", physics::MakeProxyPhysics(c), std::move(group),
-                            {"proxy.rows_full", "proxy.not_converged", "proxy.bad_input", "",
-                             "proxy.pair_force_limited"});
+  return PointerGroupMethod("proxy-6dof", physics::MakeProxyPhysics(c), std::move(group), {});
 }
 
 // B5: proxy-6dof's physics half (reaction one step late, geometric IR), per-contact springs.
 Method PenaltySum(const physics::MethodContext& c) {
   const settings::RenderingSettings& r = c.settings->rendering;
-  return Method{"penalty-sum", false, physics::MakeProxyPhysics(c),
-                haptic::MakePenaltySumHaptic(render::PenaltySumSettings{.k = r.stiffness,
-                                                                        .d = r.damping}),
-                {"", "", "penalty_sum.bad_input"}};  // render::kProxyStatusBadInput
+  return Method{
+      "penalty-sum",
+      false,
+      physics::MakeProxyPhysics(c),
+      haptic::MakePenaltySumHaptic(render::PenaltySumSettings{.k = r.stiffness, .d = r.damping}),
+      {}};
 }
 
 // B3: single-rate; the tool is a free body of the world (session::LoadWorld).
 Method VirtualCoupling(const physics::MethodContext& c) {
-  return Method{"virtual-coupling", true, physics::MakeVirtualCouplingPhysics(c),
+  return Method{"virtual-coupling",
+                true,
+                physics::MakeVirtualCouplingPhysics(c),
                 haptic::MakeVirtualCouplingHaptic(physics::ResolveCouplingGains(c)),
-                {"virtual_coupling.bad_input"}};  // haptic::kVirtualCouplingBadInput
+                {}};
 }
 
 // B2: single-rate; the whole scene is one penalty simulation (session::LoadWorld switches
 // MuJoCo's contacts off), the device connected directly to the pointer.
 Method ContactVolume(const physics::MethodContext& c) {
-  return Method{"contact-volume", true, physics::MakeContactVolumePhysics(c),
+  return Method{"contact-volume",
+                true,
+                physics::MakeContactVolumePhysics(c),
                 haptic::MakeContactVolumeHaptic(),
-                {"contact_volume.bad_input"}};  // haptic::kContactVolumeBadInput
+                {}};
 }
 
 // rendering.local_model picks the local model: "contact" (default; free-jointed scenes only)
@@ -136,8 +141,7 @@ Method LocalDynamics(const physics::MethodContext& c) {
           i, c.world->body(c.pointers[i].body).name, i));
     }
     return PointerGroupMethod("local-dynamics", physics::MakeLocalContactPhysics(c),
-                              haptic::MakeLocalContactHapticGroup(gains),
-                              {"local_dynamics.local_body_fault"});
+                              haptic::MakeLocalContactHapticGroup(gains), {});
   }
   if (physics::UsesContactLocalModel(c)) {
     return Method{"local-dynamics",
@@ -145,29 +149,90 @@ Method LocalDynamics(const physics::MethodContext& c) {
                   physics::MakeLocalContactPhysics(c),
                   haptic::MakeLocalContactHaptic(physics::PointerRadiusFor3Dof(c), r.stiffness,
                                                  r.damping, r.friction),
-                  {"local_dynamics.local_body_fault"}};  // haptic::LocalDynamicsStatusBits
+                  {}};
   }
-  return Method{"local-dynamics", false, physics::MakeLocalDynamicsPhysics(c),
-                haptic::MakeLocalDynamicsHaptic(physics::PointerRadiusFor3Dof(c), r.stiffness,
-                                                r.damping),
-                {"local_dynamics.local_body_fault"}};  // haptic::LocalDynamicsStatusBits
+  return Method{
+      "local-dynamics",
+      false,
+      physics::MakeLocalDynamicsPhysics(c),
+      haptic::MakeLocalDynamicsHaptic(physics::PointerRadiusFor3Dof(c), r.stiffness, r.damping),
+      {}};
 }
 
 // The 6-DOF proxy against the neighbors' contact island simulated at the haptic rate.
 Method LocalDynamics6dof(const physics::MethodContext& c) {
   const std::vector<render::ProxyRendererSettings> settings = PointerProxySettings(c);
-  // render::ProxyStatusBits, then the local island's fault bit
-  std::vector<std::string> status_bits = {"proxy.rows_full", "proxy.not_converged",
-                                          "proxy.bad_input", "local_dynamics.local_body_fault",
-                                          "proxy.pair_force_limited"};
   if (settings.size() >= 2) {
     // Several pointers: one island, every pointer's proxy with its own gains and geometry.
     return PointerGroupMethod("local-dynamics-6dof", physics::MakeLocalDynamics6dofPhysics(c),
-                              haptic::MakeLocalDynamics6dofHapticGroup(settings),
-                              std::move(status_bits));
+                              haptic::MakeLocalDynamics6dofHapticGroup(settings), {});
   }
-  return Method{"local-dynamics-6dof", false, physics::MakeLocalDynamics6dofPhysics(c),
-                haptic::MakeLocalDynamics6dofHaptic(settings[0]), std::move(status_bits)};
+  return Method{"local-dynamics-6dof",
+                false,
+                physics::MakeLocalDynamics6dofPhysics(c),
+                haptic::MakeLocalDynamics6dofHaptic(settings[0]),
+                {}};
+}
+
+// The status-bit groups of the built-in methods' haptic halves.
+constexpr StatusBitGroup kProxyBits{"proxy", render::kProxyStatusNames};
+constexpr StatusBitGroup kLocalDynamicsBits{"local_dynamics", haptic::kLocalDynamicsStatusNames};
+
+// The baselines B1–B5: one call per method.
+void RegisterBaselines() {
+  Add({"single-rate",
+       "B1: world stepped at the haptic rate, 3-DOF penalty force applied every tick",
+       {},
+       SingleRate});
+  Add({"impulse",
+       "B4: conventional multi-rate, reaction impulse sent to the next physics step",
+       {},
+       Impulse});
+  Add({"penalty-sum",
+       "B5: proxy-6dof's geometric IR, wrench = sum of per-contact springs "
+       "k·depth·n (stiffness grows with the contact count)",
+       {{"penalty_sum", render::kPenaltySumStatusNames}},
+       PenaltySum,
+       {},
+       {.torque = true}});
+  Add({"virtual-coupling",
+       "B3: pointer as a dynamic tool in MuJoCo at the haptic rate, spring-damper to "
+       "the device (the tool's inertia is felt)",
+       {{"virtual_coupling", haptic::kVirtualCouplingStatusNames}},
+       VirtualCoupling,
+       {.dynamic_pointer = true},
+       {.stiffness = false, .coupling = true, .torque = true}});
+  Add({"contact-volume",
+       "B2: whole scene as one penalty simulation at the haptic rate, force "
+       "k·(V/A)·n per intersection volume, anchored friction; device on the pointer",
+       {{"contact_volume", haptic::kContactVolumeStatusNames}},
+       ContactVolume,
+       {.penalty_contacts = true},
+       {.friction = true, .torque = true}});
+}
+
+// The thesis' methods (chapters 3 and 4) and their combination: one call per method.
+void RegisterThesisMethods() {
+  Add({"proxy-6dof",
+       "Ch. 3: geometric IR + 6-DOF proxy with friction cones, reaction one step late",
+       {kProxyBits},
+       Proxy,
+       {},
+       {.friction = true, .rot_stiffness = true, .torque = true}});
+  Add({"local-dynamics",
+       "Ch. 4: neighbors simulated at the haptic rate; rendering.local_model "
+       "\"contact\" (their contact island with friction, default) or "
+       "\"perturbation\" (thesis: accelerance + bias)",
+       {kLocalDynamicsBits},
+       LocalDynamics});
+  Add({"local-dynamics-6dof",
+       "Ch. 3 + 4: proxy-6dof's geometric IR and 6-DOF proxy against the neighbors' "
+       "contact island simulated at the haptic rate (the push moves them in the same "
+       "tick, with rotation)",
+       {kProxyBits, {"local_dynamics", haptic::kLocalDynamics6dofStatusNames}},
+       LocalDynamics6dof,
+       {},
+       {.friction = true, .rot_stiffness = true, .torque = true}});
 }
 
 // Built-in methods register on first use: self-registering statics would be dropped by the
@@ -175,58 +240,60 @@ Method LocalDynamics6dof(const physics::MethodContext& c) {
 void RegisterBuiltins() {
   static std::once_flag once;
   std::call_once(once, [] {
-    RegisterMethod("single-rate",
-                   "B1: world stepped at the haptic rate, 3-DOF penalty force applied every tick",
-                   SingleRate);
-    RegisterMethod("impulse",
-                   "B4: conventional multi-rate, reaction impulse sent to the next physics step",
-                   Impulse);
-    RegisterMethod("proxy-6dof",
-                   "Ch. 3: geometric IR + 6-DOF proxy with friction cones, reaction one step late",
-                   Proxy);
-    RegisterMethod("penalty-sum",
-                   "B5: proxy-6dof's geometric IR, wrench = sum of per-contact springs k·depth·n "
-                   "(stiffness grows with the contact count)",
-                   PenaltySum);
-    RegisterMethod("virtual-coupling",
-                   "B3: pointer as a dynamic tool in MuJoCo at the haptic rate, spring-damper to "
-                   "the device (the tool's inertia is felt)",
-                   VirtualCoupling);
-    RegisterMethod("contact-volume",
-                   "B2: whole scene as one penalty simulation at the haptic rate, force "
-                   "k·(V/A)·n per intersection volume, anchored friction; device on the pointer",
-                   ContactVolume);
-    RegisterMethod("local-dynamics",
-                   "Ch. 4: neighbors simulated at the haptic rate; rendering.local_model "
-                   "\"contact\" (their contact island with friction, default) or "
-                   "\"perturbation\" (thesis: accelerance + bias)",
-                   LocalDynamics);
-    RegisterMethod("local-dynamics-6dof",
-                   "Issue 14: proxy-6dof's geometric IR and 6-DOF proxy against the neighbors' "
-                   "contact island simulated at the haptic rate (the push moves them in the same "
-                   "tick, with rotation)",
-                   LocalDynamics6dof);
+    RegisterBaselines();
+    RegisterThesisMethods();
   });
 }
 
 }  // namespace
 
+// The built-ins first, so that a program's method of the same name replaces the built-in one.
+void RegisterMethod(MethodDescriptor descriptor) {
+  RegisterBuiltins();
+  Add(std::move(descriptor));
+}
+
 void RegisterMethod(const std::string& name, const std::string& summary, MethodFactory factory) {
+  RegisterMethod(MethodDescriptor{name, summary, {}, std::move(factory)});
+}
+
+std::vector<std::string> StatusBitNames(std::span<const StatusBitGroup> groups) {
+  std::vector<std::string> out;
+  for (const StatusBitGroup& group : groups) {
+    for (const StatusBitName& bit : group.names) {
+      const auto i = static_cast<std::size_t>(std::countr_zero(bit.mask));
+      if (out.size() <= i) out.resize(i + 1);
+      out[i] = fmt::format("{}.{}", group.prefix, bit.name);
+    }
+  }
+  return out;
+}
+
+std::optional<MethodDescriptor> FindMethod(const std::string& name) {
+  RegisterBuiltins();
   const std::lock_guard lock(RegistryMutex());
-  Registry()[name] = Entry{summary, std::move(factory)};
+  const auto it = Registry().find(name);
+  if (it == Registry().end()) return std::nullopt;
+  return it->second;
+}
+
+std::vector<MethodDescriptor> MethodDescriptors() {
+  RegisterBuiltins();
+  const std::lock_guard lock(RegistryMutex());
+  std::vector<MethodDescriptor> out;
+  for (const auto& [name, descriptor] : Registry()) out.push_back(descriptor);
+  return out;
 }
 
 std::vector<std::pair<std::string, std::string>> ListMethods() {
-  RegisterBuiltins();
-  const std::lock_guard lock(RegistryMutex());
   std::vector<std::pair<std::string, std::string>> out;
-  for (const auto& [name, entry] : Registry()) out.emplace_back(name, entry.summary);
+  for (const MethodDescriptor& d : MethodDescriptors()) out.emplace_back(d.name, d.summary);
   return out;
 }
 
 Method MakeMethod(const std::string& name, const physics::MethodContext& context) {
   RegisterBuiltins();
-  MethodFactory factory;
+  MethodDescriptor descriptor;
   {
     const std::lock_guard lock(RegistryMutex());
     const auto it = Registry().find(name);
@@ -236,10 +303,12 @@ Method MakeMethod(const std::string& name, const physics::MethodContext& context
       throw InvalidArgument(
           fmt::format("method = \"{}\" is unknown; expected one of: {}", name, known));
     }
-    factory = it->second.factory;
+    descriptor = it->second;
   }
   physics::CheckMaterialsUsed(*context.world, context.settings->rendering);
-  return factory(context);
+  Method method = descriptor.factory(context);
+  if (!descriptor.status_bits.empty()) method.status_bits = StatusBitNames(descriptor.status_bits);
+  return method;
 }
 
 }  // namespace mrh::engine

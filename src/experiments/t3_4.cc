@@ -319,7 +319,8 @@ nlohmann::json T34Summary(const std::vector<Result>& results) {
     if (r.friction && r.sides == 1000)
       summary["goal_p99_100us_at_1000_friction"] = r.p99 <= kGoalP99;
   }
-  summary["solver"] = PrismSettings(false).rendering.proxy_solver;
+  summary["solver"] =
+      std::string(settings::ChoiceName(PrismSettings(false).rendering.proxy_solver));
   return summary;
 }
 

@@ -158,7 +158,8 @@ MethodResult RunCase(const session::Session& session, const Case& c,
 // interface: one physics step from the initial state, read the snapshot's A.
 ir::Mat63 MeasureAccelerance() {
   session::Session s = CaseSession("local-dynamics", Case{}, {});
-  s.engine.rendering.local_model = "perturbation";  // the thesis' A (the contact model has none)
+  // the thesis' A (the contact model has none)
+  s.engine.rendering.local_model = settings::LocalModel::kPerturbation;
   world::World world = session::LoadWorld(s);
   world.set_timestep(s.engine.physics_dt);
   physics::MethodContext context{.world = &world,

@@ -218,24 +218,32 @@ world::PerturberSettings ConvergedSettings() {
   return s;
 }
 
+// local-dynamics whose perturbation measurements are repeated with `reference` settings.
+void RegisterAccuracyMethod(const std::string& method, const world::PerturberSettings& used,
+                            const world::PerturberSettings& reference) {
+  engine::RegisterMethod(
+      {method,
+       "t4.3: local-dynamics, measurements repeated by a reference",
+       {{"local_dynamics", haptic::kLocalDynamicsStatusNames}},
+       [used, reference](const physics::MethodContext& context) {
+         physics::LocalDynamicsOptions o;
+         o.perturber = used;
+         o.reference = reference;
+         const settings::RenderingSettings& r = context.settings->rendering;
+         return engine::Method{
+             "local-dynamics",
+             false,
+             physics::MakeLocalDynamicsPhysics(context, o),
+             haptic::MakeLocalDynamicsHaptic(context.pointer_radius, r.stiffness, r.damping),
+             {}};
+       }});
+}
+
 AccuracyResult RunAccuracy(const std::filesystem::path& scene, int cubes, const T43Options& options,
                            const std::string& name, const world::PerturberSettings& used,
                            const world::PerturberSettings& reference) {
   const std::string method = "t4.3:accuracy:" + name;
-  engine::RegisterMethod(
-      method, "t4.3: local-dynamics, measurements repeated by a reference",
-      [used, reference](const physics::MethodContext& context) {
-        physics::LocalDynamicsOptions o;
-        o.perturber = used;
-        o.reference = reference;
-        const settings::RenderingSettings& r = context.settings->rendering;
-        return engine::Method{
-            "local-dynamics",
-            false,
-            physics::MakeLocalDynamicsPhysics(context, o),
-            haptic::MakeLocalDynamicsHaptic(context.pointer_radius, r.stiffness, r.damping),
-            {"local_dynamics.local_body_fault"}};
-      });
+  RegisterAccuracyMethod(method, used, reference);
   const double dt = options.physics_dt;
   const auto steps = static_cast<std::size_t>(options.accuracy_steps);
   const auto timings = std::make_shared<MethodTimings>();

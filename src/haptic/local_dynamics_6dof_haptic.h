@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "mrh/haptic/method_haptic.h"
+#include "mrh/haptic/methods.h"
 #include "mrh/render/contact_transients.h"
 #include "mrh/render/ir_interpolator.h"
 #include "mrh/render/local_contact_solver.h"
@@ -17,7 +18,7 @@ namespace mrh::haptic::internal {
 
 /// TickOutput::status bit of local-dynamics-6dof beyond render::ProxyStatusBits (bits 0–2): an
 /// island body's local state became non-finite and was stopped.
-inline constexpr std::uint32_t kLocal6dofBodyFault = 1u << 3;
+inline constexpr std::uint32_t kLocal6dofBodyFault = kLocalDynamics6dofBodyFault;
 
 /// The haptic half of `local-dynamics-6dof`. Per tick (RT-safe: fixed capacity, no allocation,
 /// lock, throw or I/O):

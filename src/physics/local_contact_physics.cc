@@ -170,7 +170,7 @@ bool AllMovingBodiesFree(world::World& world) {
 namespace mrh::physics {
 
 bool UsesContactLocalModel(const MethodContext& context) {
-  return context.settings->rendering.local_model != "perturbation" &&
+  return context.settings->rendering.local_model != settings::LocalModel::kPerturbation &&
          internal::AllMovingBodiesFree(*context.world);
 }
 

@@ -46,8 +46,9 @@ render::ProxyRendererSettings ProxySettingsFor(const world::World& world, int po
   s.d_t = rendering.damping;
   s.k_r = rendering.rot_stiffness;
   s.d_r = rendering.rot_damping;
-  s.torque_model = rendering.torque_model == "thesis" ? render::ProxyTorqueModel::kThesis
-                                                      : render::ProxyTorqueModel::kContact;
+  s.torque_model = rendering.torque_model == settings::TorqueModel::kThesis
+                       ? render::ProxyTorqueModel::kThesis
+                       : render::ProxyTorqueModel::kContact;
   if (s.torque_model == render::ProxyTorqueModel::kThesis) {
     s.rotation_weight = PointerRotationWeight(world, pointer_body, rendering);
   } else if (!(s.k_t > 0.0 && s.k_r > 0.0)) {
@@ -57,8 +58,9 @@ render::ProxyRendererSettings ProxySettingsFor(const world::World& world, int po
         rendering.stiffness, rendering.rot_stiffness));
   }
   s.mu = rendering.friction;
-  s.solver = rendering.proxy_solver == "pgs" ? render::ProxySolverKind::kPgs
-                                             : render::ProxySolverKind::kActiveSet;
+  s.solver = rendering.proxy_solver == settings::ProxySolver::kPgs
+                 ? render::ProxySolverKind::kPgs
+                 : render::ProxySolverKind::kActiveSet;
   s.max_iterations = rendering.max_iterations;
   s.tolerance = rendering.solver_tolerance;
   return s;
@@ -86,7 +88,7 @@ ProxyPhysics::ProxyPhysics(const MethodContext& context)
   // tick's split of the load among its contact points reaches it a step after the pose that
   // made it; a box pushed square then wobbles in yaw and slides 7 % below Coulomb's force.
   const double haptic_dt = context.settings->haptic_dt;
-  if (rendering.proxy_reaction == "local") {
+  if (rendering.proxy_reaction == settings::ProxyReaction::kLocal) {
     local_.emplace(*world_, pointer_body_, rendering, ProxySettingsFor(context), physics_dt_,
                    haptic_dt);
   }

@@ -16,6 +16,7 @@
 #include <system_error>
 #include <vector>
 
+#include "mrh/engine/method.h"
 #include "mrh/report/report.h"
 #include "report/report_script.h"
 
@@ -189,9 +190,8 @@ bool PlotRunReport(const std::filesystem::path& dir, const std::filesystem::path
   const std::string title = fmt::format("{}: {} ({})", session_file.filename().string(),
                                         stats.method, settings::ModeName(stats.mode));
   // The 3-DOF methods render a force only (their torque column is zero or noise).
-  const bool three_dof = stats.method == "single-rate" || stats.method == "impulse" ||
-                         stats.method == "local-dynamics";
-  ReportOptions options{.six_dof = !three_dof};
+  const std::optional<engine::MethodDescriptor> descriptor = engine::FindMethod(stats.method);
+  ReportOptions options{.six_dof = !descriptor || descriptor->settings.torque};
   for (const engine::PointerRunStats& pointer : stats.pointers) {
     options.pointers.push_back(pointer.body);
   }

@@ -6,6 +6,7 @@
 
 #include "mrh/core/error.h"
 #include "mrh/engine/engine.h"
+#include "mrh/engine/method.h"
 #include "mrh/session/session.h"
 #include "mrh/world/world.h"
 
@@ -51,17 +52,16 @@ std::vector<std::string> MorePointerBodies(const Session& session) {
 // The timestep is left to the engine: it sets physics_dt, or haptic_dt for single-rate methods.
 world::World LoadWorld(const Session& session) {
   const settings::RenderingSettings& r = session.engine.rendering;
-  // Virtual coupling (B3) simulates the pointer as a dynamic tool inside MuJoCo.
-  const bool tool = session.engine.method == "virtual-coupling";
+  // The method says how (e.g. virtual-coupling's pointer is a dynamic tool inside MuJoCo).
+  const std::optional<engine::MethodDescriptor> method = engine::FindMethod(session.engine.method);
+  const engine::MethodWorldNeeds needs = method ? method->world : engine::MethodWorldNeeds{};
   world::World world = world::World::LoadFile(
-      session.scene,
-      world::LoadOptions{.pointer_body = session.engine.pointer.body,
-                         .more_pointer_bodies = MorePointerBodies(session),
-                         .dynamic_pointer = tool,
-                         .tool_mass = r.tool_mass,
-                         .tool_inertia = r.tool_inertia.value_or(Vec3::Zero()),
-                         // B2 replaces MuJoCo's contacts by its contact-volume penalty.
-                         .penalty_contacts = session.engine.method == "contact-volume"});
+      session.scene, world::LoadOptions{.pointer_body = session.engine.pointer.body,
+                                        .more_pointer_bodies = MorePointerBodies(session),
+                                        .dynamic_pointer = needs.dynamic_pointer,
+                                        .tool_mass = r.tool_mass,
+                                        .tool_inertia = r.tool_inertia.value_or(Vec3::Zero()),
+                                        .penalty_contacts = needs.penalty_contacts});
   if (!session.keyframe.empty()) world.ApplyKeyframe(session.keyframe);
   if (session.gravity) world.set_gravity(*session.gravity);
   return world;

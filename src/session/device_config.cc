@@ -13,6 +13,7 @@
 #include "mrh/core/error.h"
 #include "mrh/core/validate.h"
 #include "mrh/device/models.h"
+#include "mrh/session/devices.h"
 
 namespace mrh::session::internal {
 namespace {
@@ -35,19 +36,30 @@ std::vector<std::string_view> AllDeviceKeys() {
   return keys;
 }
 
-// "fixed", "scripted", ... for messages.
+bool IsBuiltinType(std::string_view name) {
+  return std::any_of(kDeviceTypes.begin(), kDeviceTypes.end(), [&](const DeviceType& type) {
+    return type.name == name;
+  });
+}
+
+// "fixed", "scripted", ... for messages: the built-in types, then those registered by the
+// program (mrh/session/devices.h).
 std::string TypeNames() {
   std::vector<std::string> names;
-  names.reserve(kDeviceTypes.size());
   for (const DeviceType& type : kDeviceTypes) names.push_back(fmt::format("\"{}\"", type.name));
+  for (const DeviceDescriptor& d : DeviceDescriptors()) {
+    if (!IsBuiltinType(d.name)) names.push_back(fmt::format("\"{}\"", d.name));
+  }
   return fmt::format("{}", fmt::join(names, ", "));
 }
 
-const DeviceType& ParseType(const Node& node) {
-  const std::string name = node.String();
+// The type `name` and the keys only it accepts: a built-in type's from kDeviceTypes, none for a
+// registered one. `name` must outlive the result.
+DeviceType ParseType(const Node& node, const std::string& name) {
   for (const DeviceType& type : kDeviceTypes) {
     if (type.name == name) return type;
   }
+  if (FindDevice(name)) return DeviceType{name, {}};
   node.Fail(fmt::format("unknown device type \"{}\"", name), "one of " + TypeNames());
 }
 
@@ -244,8 +256,10 @@ Quat ParseQuaternion(const Node& node, double qw, double qx, double qy, double q
 DeviceConfig ParseDevice(const Node& device) {
   device.ExpectObject(AllDeviceKeys(), "an object");
   DeviceConfig config;
-  const DeviceType& type = ParseType(device.Require("type", "one of " + TypeNames()));
-  config.type = std::string(type.name);
+  const Node type_node = device.Require("type", "one of " + TypeNames());
+  const std::string type_name = type_node.String();
+  const DeviceType type = ParseType(type_node, type_name);
+  config.type = type_name;
   RejectForeignKeys(device, type);
   if (type.name == "fixed") {
     config.pose =

@@ -99,6 +99,15 @@ std::vector<std::string_view> KeysOf(const Table& fields) {
   return keys;
 }
 
+/// The value of a choice enum (settings/choices.h) that `node` names; any other string is an
+/// error naming the file, the key and the value, listing the choices.
+template <typename E>
+E ReadChoice(const Node& node) {
+  const std::string name = node.String();
+  if (const std::optional<E> value = settings::ParseChoice<E>(name)) return *value;
+  node.Fail("unknown value \"" + name + "\"", "one of " + settings::ChoiceNames<E>());
+}
+
 /// Reads every field of `fields` present in `object` into `out` (absent ones keep their value).
 template <typename Table, typename S>
 void ReadFields(const Node& object, const Table& fields, S* out) {
@@ -115,6 +124,8 @@ void ReadFields(const Node& object, const Table& fields, S* out) {
             target = node->Integer();
           } else if constexpr (std::is_same_v<T, bool>) {
             target = node->Bool();
+          } else if constexpr (std::is_enum_v<T>) {
+            target = ReadChoice<T>(*node);
           } else {
             target = node->String();
           }

@@ -1,51 +1,28 @@
 // SPDX-License-Identifier: Apache-2.0
-// Session → simulated device. Apart from build.cc so it links without the world and the engine.
+// Session → device, through the device registry. Apart from build.cc so it links without the
+// world and the engine.
 #include <fmt/format.h>
 
 #include "mrh/core/error.h"
-#include "mrh/device/external.h"
-#include "mrh/device/hardware.h"
+#include "mrh/session/devices.h"
 #include "mrh/session/session.h"
 
 namespace mrh::session {
 namespace {
 
-// The scripted target: inline keyframes, or the CSV file the session names.
-std::vector<device::Keyframe> TargetKeyframes(const Session& session, const DeviceConfig& config,
-                                              const std::string& key) {
-  if (config.trajectory.empty()) return config.keyframes;
-  try {
-    return device::LoadKeyframesCsv(config.trajectory);
-  } catch (const InvalidArgument& e) {
-    throw InvalidArgument(
-        fmt::format("{}: {}.trajectory: {}", session.file.string(), key, e.what()));
-  }
-}
-
 std::unique_ptr<device::Device> MakeConfiguredDevice(const Session& session,
                                                      const DeviceConfig& config,
                                                      const std::string& key) {
-  if (config.type == "fixed") return device::MakeFixedDevice(config.pose, config.specs);
-  if (config.type == "scripted") {
-    return device::MakeScriptedDevice(TargetKeyframes(session, config, key), config.specs);
+  const std::optional<DeviceDescriptor> type = FindDevice(config.type);
+  if (!type) {
+    std::string known;
+    for (const DeviceDescriptor& d : DeviceDescriptors()) {
+      known += fmt::format("{}\"{}\"", known.empty() ? "" : ", ", d.name);
+    }
+    throw InvalidArgument(fmt::format("{}: {}.type: unknown device type \"{}\"; expected one of {}",
+                                      session.file.string(), key, config.type, known));
   }
-  if (config.type == "hand") {
-    return device::MakeHandDevice(TargetKeyframes(session, config, key), config.hand, config.specs);
-  }
-  if (config.type == "replay") return device::MakeReplayDevice(config.replay, config.specs);
-  if (config.type == "external") return std::make_unique<device::ExternalDevice>(config.specs);
-  if (config.type == "forcedimension") {
-    return device::MakeForceDimensionDevice(config.forcedimension, config.specs);
-  }
-  if (config.type == "openhaptics") {
-    return device::MakeOpenHapticsDevice(config.openhaptics, config.specs);
-  }
-  if (config.type == "udp") return device::MakeUdpDevice(config.udp, config.specs);
-  throw InvalidArgument(
-      fmt::format("{}: {}.type: unknown device type \"{}\"; expected \"fixed\", "
-                  "\"scripted\", \"hand\", \"replay\", \"external\", \"forcedimension\", "
-                  "\"openhaptics\" or \"udp\"",
-                  session.file.string(), key, config.type));
+  return type->factory(DeviceSource{session, config, key});
 }
 
 }  // namespace

@@ -21,7 +21,9 @@ namespace mrh::session::internal {
 template <typename S>
 struct Field {
   std::string_view key;
-  std::variant<double S::*, int S::*, bool S::*, std::string S::*, std::optional<double> S::*>
+  std::variant<double S::*, int S::*, bool S::*, std::string S::*, std::optional<double> S::*,
+               settings::TorqueModel S::*, settings::ProxySolver S::*, settings::ProxyReaction S::*,
+               settings::LocalModel S::*>
       member;
   std::string_view unit;  ///< SI unit of a number, for messages ("" for flags and strings)
   std::string_view doc;   ///< one line, for readers of this table

@@ -38,13 +38,7 @@ constexpr int kMaxCurvedSegments = 1024;
 // The contact model derives R_w and the rotational damping from k_t, k_r and d_t; a session that
 // sets them means the thesis model.
 void ValidateTorqueModel(const RenderingSettings& r) {
-  if (r.torque_model == "thesis") return;
-  if (r.torque_model != "contact") {
-    throw InvalidArgument(fmt::format(
-        "rendering.torque_model = \"{}\"; expected \"contact\" (default: every force a contact "
-        "force) or \"thesis\" (eq. 3.8 with a rotation weight)",
-        r.torque_model));
-  }
+  if (r.torque_model == TorqueModel::kThesis) return;
   if (r.rotation_weight || r.rotation_weight_scale != 1.0) {
     throw InvalidArgument(
         "rendering.rotation_weight/rotation_weight_scale is set, but torque_model \"contact\" "
@@ -75,12 +69,6 @@ void ValidateProxy(const RenderingSettings& r) {
   }
   RequireNonNegative(r.friction, "rendering.friction", "", kMaxFriction);
   ValidateTorqueModel(r);
-  if (r.proxy_solver != "active-set" && r.proxy_solver != "pgs") {
-    throw InvalidArgument(fmt::format(
-        "rendering.proxy_solver = \"{}\"; expected \"active-set\" (exact, default) or \"pgs\" "
-        "(the thesis' projected Gauss-Seidel)",
-        r.proxy_solver));
-  }
   RequireIntInRange(r.max_iterations, 1, static_cast<long long>(kMaxIterations),
                     "rendering.max_iterations");
   RequireInRange(r.solver_tolerance, 1e-18, 1.0, "rendering.solver_tolerance", "m");
@@ -109,16 +97,6 @@ void ValidateRendering(const RenderingSettings& r) {
     for (int i = 0; i < 3; ++i) {
       RequirePositive((*r.tool_inertia)[i], "rendering.tool_inertia", "kg*m^2", 1e3);
     }
-  }
-  if (r.proxy_reaction != "local" && r.proxy_reaction != "impulse") {
-    throw InvalidArgument(fmt::format(
-        "rendering.proxy_reaction = \"{}\"; expected \"local\" (default) or \"impulse\"",
-        r.proxy_reaction));
-  }
-  if (r.local_model != "contact" && r.local_model != "perturbation") {
-    throw InvalidArgument(fmt::format(
-        "rendering.local_model = \"{}\"; expected \"contact\" (default) or \"perturbation\"",
-        r.local_model));
   }
 }
 

@@ -16,8 +16,8 @@ struct MethodFields {
   bool torque = false;         ///< the method renders a torque (6-DOF)
 };
 
-/// The fields of a built-in method (see `mrh methods`); an unknown name shows stiffness and
-/// damping, which every penalty-like method reads.
+/// The fields of a registered method (engine::MethodDescriptor::settings); an unknown name shows
+/// stiffness and damping, which every penalty-like method reads.
 MethodFields FieldsFor(const std::string& method);
 
 }  // namespace mrh::viewer::internal

@@ -17,7 +17,7 @@ using mrh::testing::HashingRecorder;
 std::uint64_t RunAndHash(const char* method, const char* torque_model = "contact") {
   HashingRecorder recorder;
   settings::EngineSettings settings = T41Settings(method);
-  settings.rendering.torque_model = torque_model;
+  settings.rendering.torque_model = *settings::ParseChoice<settings::TorqueModel>(torque_model);
   auto engine = T41Engine(settings);
   (void)engine->Run(&recorder);
   return recorder.hash();
@@ -35,7 +35,7 @@ std::uint64_t PushHash(const char* method) {
   s.rendering.rot_stiffness = 20.0;
   s.rendering.rot_damping = 0.1;
   s.rendering.friction = 0.3;
-  s.rendering.torque_model = "thesis";  // scenes/t3_6_push.json
+  s.rendering.torque_model = settings::TorqueModel::kThesis;  // scenes/t3_6_push.json
   s.safety.ramp = false;
   s.realtime_priority = false;
   auto device = device::MakeScriptedDevice(

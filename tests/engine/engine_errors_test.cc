@@ -24,27 +24,9 @@ TEST(EngineErrorsTest, PhysicsStepNotMultipleOfHapticTickIsRejected) {
   EXPECT_THAT([&] { T41Engine(s); }, ThrowsMessage<InvalidArgument>(HasSubstr("physics_dt")));
 }
 
-TEST(EngineErrorsTest, UnknownProxySolverIsRejectedNamingTheChoices) {
-  settings::EngineSettings s = T41Settings("impulse");
-  s.rendering.proxy_solver = "newton";
-  EXPECT_THAT([&] { T41Engine(s); },
-              ThrowsMessage<InvalidArgument>(AllOf(HasSubstr("rendering.proxy_solver = \"newton\""),
-                                                   HasSubstr("\"active-set\""),
-                                                   HasSubstr("\"pgs\""))));
-}
-
-TEST(EngineErrorsTest, UnknownTorqueModelIsRejectedNamingTheChoices) {
-  settings::EngineSettings s = T41Settings("impulse");
-  s.rendering.torque_model = "euler";
-  EXPECT_THAT([&] { T41Engine(s); },
-              ThrowsMessage<InvalidArgument>(AllOf(HasSubstr("rendering.torque_model = \"euler\""),
-                                                   HasSubstr("\"contact\""),
-                                                   HasSubstr("\"thesis\""))));
-}
-
 TEST(EngineErrorsTest, ContactTorqueModelRefusesTheThesisOnlyKeys) {
   settings::EngineSettings s = T41Settings("impulse");
-  s.rendering.torque_model = "contact";
+  s.rendering.torque_model = settings::TorqueModel::kContact;
   s.rendering.rot_damping = 0.1;
   EXPECT_THAT([&] { T41Engine(s); },
               ThrowsMessage<InvalidArgument>(HasSubstr("rendering.rot_damping = 0.1")));

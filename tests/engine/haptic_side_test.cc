@@ -42,7 +42,7 @@ settings::EngineSettings FloorSettings(const std::string& method) {
   s.rendering.stiffness = 9000.0;
   s.rendering.rot_stiffness = 9000.0;
   s.rendering.rotation_weight = Vec3::Constant(3.33);
-  s.rendering.torque_model = "thesis";
+  s.rendering.torque_model = settings::TorqueModel::kThesis;
   s.rendering.friction = 0.0;
   s.rendering.max_iterations = 2000;
   s.safety.ramp = false;

@@ -36,7 +36,7 @@ settings::EngineSettings PushSettings(const char* method, double physics_dt, dou
   s.rendering.rot_damping = 0.1;
   s.rendering.friction = 0.3;
   // The thesis model of scenes/t3_6_push.json, whose bars these runs were set against.
-  s.rendering.torque_model = "thesis";
+  s.rendering.torque_model = settings::TorqueModel::kThesis;
   s.safety.ramp = false;
   s.realtime_priority = false;
   return s;
@@ -293,7 +293,7 @@ TEST(LocalDynamics6dofTest, ASpherePastABoxEdgeFeelsNoMoreThanItsDepth) {
   settings.rendering.damping = 0.0;
   settings.rendering.rot_damping = 0.0;
   settings.rendering.friction = 0.0;
-  settings.rendering.torque_model = "contact";
+  settings.rendering.torque_model = settings::TorqueModel::kContact;
   internal::EngineState state(
       world::World::LoadString(xml),
       device::MakeScriptedDevice(

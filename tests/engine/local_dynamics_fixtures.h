@@ -56,7 +56,7 @@ inline settings::EngineSettings LocalSettings(double duration, const char* model
   s.rendering.stiffness = 1000.0;
   // Most tests check the thesis model (eq. 4.16–4.18 with A, b); the rest and synchronization
   // tests also run the contact model.
-  s.rendering.local_model = model;
+  s.rendering.local_model = *settings::ParseChoice<settings::LocalModel>(model);
   s.safety.ramp = false;
   s.realtime_priority = false;
   return s;

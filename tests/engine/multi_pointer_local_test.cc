@@ -133,7 +133,7 @@ TEST(MultiPointerLocalTest, ThePerturbationModelRefusesSeveralPointers) {
   const auto build = [] {
     settings::EngineSettings s;
     s.method = "local-dynamics";
-    s.rendering.local_model = "perturbation";
+    s.rendering.local_model = settings::LocalModel::kPerturbation;
     s.pointer.body = "f0";
     s.pointers = {settings::PointerLaneSettings{settings::PointerSettings{"f0", 0.0}, s.rendering},
                   settings::PointerLaneSettings{settings::PointerSettings{"f1", 0.0}, s.rendering}};

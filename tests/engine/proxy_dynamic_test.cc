@@ -39,7 +39,7 @@ settings::EngineSettings PushSettings(double physics_dt) {
   s.rendering.rot_damping = 0.1;
   s.rendering.friction = 0.3;
   // The thesis model of scenes/t3_6_push.json, whose bars these runs were set against.
-  s.rendering.torque_model = "thesis";
+  s.rendering.torque_model = settings::TorqueModel::kThesis;
   s.safety.ramp = false;
   s.realtime_priority = false;
   return s;

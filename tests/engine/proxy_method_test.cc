@@ -59,7 +59,7 @@ settings::EngineSettings T31Settings(double duration) {
   s.rendering.stiffness = 9000.0;
   s.rendering.rot_stiffness = 9000.0;
   s.rendering.rotation_weight = Vec3::Constant(3.33);
-  s.rendering.torque_model = "thesis";
+  s.rendering.torque_model = settings::TorqueModel::kThesis;
   s.rendering.friction = 0.0;
   s.safety.ramp = false;
   s.realtime_priority = false;
@@ -148,7 +148,8 @@ struct PushRun {
   int n = 0;
 };
 
-PushRun RunPush(double friction, const char* proxy_reaction = "local") {
+PushRun RunPush(double friction,
+                settings::ProxyReaction proxy_reaction = settings::ProxyReaction::kLocal) {
   settings::EngineSettings s = T31Settings(2.0);
   s.rendering.proxy_reaction = proxy_reaction;
   s.rendering.stiffness = 1000.0;
@@ -167,7 +168,7 @@ PushRun RunPush(double friction, const char* proxy_reaction = "local") {
 // The thesis' timing (rendering.proxy_reaction "impulse"). The default "local" reaction is
 // predictive: it may move the box during the step in which the pointer first reaches it.
 TEST(ProxyMethodTest, PushedBoxStartsMovingOneStepAfterTheFirstContactPeriod) {
-  const PushRun run = RunPush(0.0, "impulse");
+  const PushRun run = RunPush(0.0, settings::ProxyReaction::kImpulse);
   const auto first =
       std::find_if(run.tap.ticks.begin(), run.tap.ticks.end(), [](const ir::TickRecord& t) {
         return t.contacts > 0;
@@ -205,7 +206,7 @@ TEST_P(ProxyAllocationTest, HapticTicksNeverAllocateWithFrictionAndAMovingBox) {
   settings::EngineSettings s = T31Settings(1.0);
   s.rendering.friction = 0.5;
   s.rendering.stiffness = 2000.0;
-  s.rendering.torque_model = GetParam();
+  s.rendering.torque_model = *settings::ParseChoice<settings::TorqueModel>(GetParam());
   if (GetParam() == "contact") {
     s.rendering.rotation_weight.reset();
     s.rendering.rot_stiffness = 20.0;
@@ -338,7 +339,7 @@ TEST(ProxyMethodTest, MasslessPointerRunsUnderTheContactTorqueModel) {
   // The contact model's rotation weight is k_r / k_t: the pointer's inertia is not needed.
   settings::EngineSettings s = T31Settings(0.1);
   s.rendering.rotation_weight.reset();
-  s.rendering.torque_model = "contact";
+  s.rendering.torque_model = settings::TorqueModel::kContact;
   world::World w = world::World::LoadString(Scene("0 0 -9.81", true, false, 0));
   Engine engine(std::move(w), device::MakeFixedDevice(Pose{}), {}, s);
   EXPECT_GT(engine.Run(nullptr).ticks, 0);

@@ -2,10 +2,12 @@
 // The built-in methods' haptic halves, built from plain parameters (they never see the world).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
 
+#include "mrh/core/status_bits.h"
 #include "mrh/haptic/method_haptic.h"
 #include "mrh/render/local_contact_solver.h"
 #include "mrh/render/penalty_sum.h"
@@ -19,6 +21,12 @@ namespace mrh::haptic {
 enum LocalDynamicsStatusBits : std::uint32_t {
   kLocalBodyFault = 1u << 0,  ///< a local body's state became non-finite and was stopped
 };
+
+/// The names of LocalDynamicsStatusBits.
+inline constexpr std::array<StatusBitName, 1> kLocalDynamicsStatusNames{{
+    {kLocalBodyFault, "local_body_fault"},
+}};
+static_assert(ValidStatusBitNames(kLocalDynamicsStatusNames));
 
 /// Haptic half of "single-rate" and "impulse": 3-DOF penalty (eq. 4.11) with a pointer sphere
 /// of `radius` (m), stiffness k (N/m) and damping d (N·s/m), and Coulomb friction μ at each
@@ -37,6 +45,10 @@ std::unique_ptr<MethodHaptic> MakePenaltySumHaptic(const render::PenaltySumSetti
 /// Status bit of "virtual-coupling"'s haptic half: the coupling wrench was not finite (zero
 /// output this tick).
 inline constexpr std::uint32_t kVirtualCouplingBadInput = 1u << 0;
+inline constexpr std::array<StatusBitName, 1> kVirtualCouplingStatusNames{{
+    {kVirtualCouplingBadInput, "bad_input"},
+}};
+static_assert(ValidStatusBitNames(kVirtualCouplingStatusNames));
 
 /// Haptic half of "virtual-coupling" (B3): the spring–damper to the tool of the snapshot.
 std::unique_ptr<MethodHaptic> MakeVirtualCouplingHaptic(const render::CouplingGains& gains);
@@ -44,6 +56,10 @@ std::unique_ptr<MethodHaptic> MakeVirtualCouplingHaptic(const render::CouplingGa
 /// Status bit of "contact-volume"'s haptic half: the snapshot's pointer wrench was not finite
 /// (zero output this tick).
 inline constexpr std::uint32_t kContactVolumeBadInput = 1u << 0;
+inline constexpr std::array<StatusBitName, 1> kContactVolumeStatusNames{{
+    {kContactVolumeBadInput, "bad_input"},
+}};
+static_assert(ValidStatusBitNames(kContactVolumeStatusNames));
 
 /// Haptic half of "contact-volume" (B2): displays the penalty wrench on the pointer that the
 /// newest snapshot carries (ir::PhysicsSnapshot::pointer_wrench_W). RT-safe after construction.
@@ -73,6 +89,17 @@ struct PointerGains {
 /// pointer's force. Keep them alive together, pointer 0's last. Not RT-safe (allocates once).
 std::vector<std::unique_ptr<MethodHaptic>> MakeLocalContactHapticGroup(
     const std::vector<PointerGains>& pointers);
+
+/// Status bit of "local-dynamics-6dof"'s haptic half beyond render::ProxyStatusBits: a local
+/// body's state became non-finite and was stopped.
+inline constexpr std::uint32_t kLocalDynamics6dofBodyFault = 1u << 3;
+inline constexpr std::array<StatusBitName, 1> kLocalDynamics6dofStatusNames{{
+    {kLocalDynamics6dofBodyFault, "local_body_fault"},
+}};
+static_assert(ValidStatusBitNames(kLocalDynamics6dofStatusNames));
+static_assert((kLocalDynamics6dofBodyFault &
+               (render::kProxyStatusRowsFull | render::kProxyStatusNotConverged |
+                render::kProxyStatusBadInput | render::kProxyStatusPairForceLimited)) == 0);
 
 /// Haptic half of "local-dynamics-6dof": the 6-DOF proxy with `settings`
 /// (physics::ProxySettingsFor) against planes riding on the snapshot's contact island, simulated

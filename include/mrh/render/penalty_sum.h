@@ -8,6 +8,7 @@
 
 #include "mrh/core/fixed_vector.h"
 #include "mrh/core/spatial.h"
+#include "mrh/core/status_bits.h"
 #include "mrh/ir/snapshot.h"
 #include "mrh/render/proxy_renderer.h"
 #include "mrh/render/tick_ir.h"
@@ -22,6 +23,12 @@ struct PenaltySumSettings {
   /// @throws mrh::InvalidArgument naming the field and its value. Not RT-safe.
   void Validate() const;
 };
+
+/// The names of the status bits a PenaltySum tick sets (a subset of ProxyStatusBits).
+inline constexpr std::array<StatusBitName, 1> kPenaltySumStatusNames{{
+    {kProxyStatusBadInput, "bad_input"},
+}};
+static_assert(ValidStatusBitNames(kPenaltySumStatusNames));
 
 /// What one PenaltySum tick produces.
 struct PenaltySumOutput {

@@ -12,6 +12,7 @@
 
 #include "mrh/core/fixed_vector.h"
 #include "mrh/core/spatial.h"
+#include "mrh/core/status_bits.h"
 #include "mrh/ir/snapshot.h"
 #include "mrh/render/pressure_split.h"
 #include "mrh/render/proxy_active_set.h"
@@ -40,6 +41,15 @@ enum ProxyStatusBits : std::uint32_t {
   /// scaled down by one factor (a proxy wedged between objects whose rows nearly contradict).
   kProxyStatusPairForceLimited = 1u << 4,
 };
+
+/// The names of ProxyStatusBits (RunStats::method_status prefixes them, "proxy.rows_full").
+inline constexpr std::array<StatusBitName, 4> kProxyStatusNames{{
+    {kProxyStatusRowsFull, "rows_full"},
+    {kProxyStatusNotConverged, "not_converged"},
+    {kProxyStatusBadInput, "bad_input"},
+    {kProxyStatusPairForceLimited, "pair_force_limited"},
+}};
+static_assert(ValidStatusBitNames(kProxyStatusNames));
 
 /// Which algorithm solves the proxy LCP of eq. 3.4 each tick.
 enum class ProxySolverKind : std::uint8_t {

@@ -9,6 +9,7 @@
 
 #include "mrh/core/spatial.h"
 #include "mrh/device/safety.h"
+#include "mrh/settings/choices.h"
 
 namespace mrh::settings {
 
@@ -72,7 +73,7 @@ struct RenderingSettings {
   /// where they act; "thesis": eq. 3.8 with the rotation weight below; the objects receive the
   /// rendered wrench, torque included, which is not a contact wrench (a point contact can be
   /// given a moment), so it is for static worlds (T3.1–T3.5).
-  std::string torque_model = "contact";
+  TorqueModel torque_model = TorqueModel::kContact;
   /// Diagonal of the rotation weight R_w (m²), torque_model "thesis" only. Empty: the pointer's
   /// unit-mass inertia times rotation_weight_scale (thesis §3.4.1).
   std::optional<Vec3> rotation_weight;
@@ -85,7 +86,7 @@ struct RenderingSettings {
   /// Proxy solver: "active-set" (exact dual active-set method, the converged answer of the
   /// LCP in a few steps) or "pgs" (the thesis' projected Gauss–Seidel, eq. 3.6, which converges
   /// slowly in rotation when R_w ≫ |r|²).
-  std::string proxy_solver = "active-set";
+  ProxySolver proxy_solver = ProxySolver::kActiveSet;
   /// Per tick at most: PGS sweeps, or active-set steps (>= 1).
   int max_iterations = 50;
   /// Tolerance of the proxy solve (m): PGS stops when no multiplier changed more than this in a
@@ -96,7 +97,7 @@ struct RenderingSettings {
   /// predicted poses, physics::internal::ProxyLocalReaction; stable on light objects at 20 ms)
   /// or "impulse" (the thesis' constant wrench J/Δt^G of the haptic period, §3.5; flings
   /// light objects when k Δt²/I ≳ 1).
-  std::string proxy_reaction = "local";
+  ProxyReaction proxy_reaction = ProxyReaction::kLocal;
 
   // Local simulation (method local-dynamics, thesis §4.2.2–4.4).
   /// Run the perturbation simulations that measure A and b. false: A from the object's own
@@ -107,7 +108,7 @@ struct RenderingSettings {
   /// Local model of local-dynamics: "contact" (default: the neighbors' contact
   /// island, its contacts with the world and each other, normal + Coulomb friction, simulated at
   /// the haptic rate) or "perturbation" (the thesis' accelerance A and bias b, eq. 4.3–4.10).
-  std::string local_model = "contact";
+  LocalModel local_model = LocalModel::kContact;
 
   // Virtual coupling (B3, Colgate et al. 1995; thesis §1.2.3): the spring–damper between the
   // device pose and the tool.
