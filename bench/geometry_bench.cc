@@ -86,7 +86,6 @@ std::unique_ptr<Scene> MakeScene(const Shape& pointer, const Shape& object, doub
   return scene;
 }
 
-
 // Times one pair's IR per iteration; arg "distance": 1 includes SignedDistance, 0 times
 // ComputeContactRegion alone on precomputed distance results.
 void RunPair(benchmark::State& state, const Scene& scene) {

@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "physics/geometric_ir_builder.h"
 #include "mrh/geometry/broadphase.h"
 #include "mrh/world/world.h"
+#include "physics/geometric_ir_builder.h"
 
 namespace mrh {
 namespace {

@@ -73,7 +73,6 @@ double ThreadCpuUs() {
   return static_cast<double>(ts.tv_sec) * 1e6 + static_cast<double>(ts.tv_nsec) * 1e-3;
 }
 
-
 void BM_LocalContactTick16(benchmark::State& state) {
   const ir::LocalContactModel model = Grid();
   LocalContactSolver solver;
@@ -91,8 +90,8 @@ void BM_LocalContactTick16(benchmark::State& state) {
       solver.AddForce(i, Vec3(3.0, 0, 0), solver.p_WCm(i) - Vec3(kHalf, 0, 0));
     }
     benchmark::DoNotOptimize(solver.Step(kDt));
-    const double us = std::chrono::duration<double, std::micro>(
-                          std::chrono::steady_clock::now() - t0).count();
+    const double us =
+        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
     const double cpu = ThreadCpuUs() - c0;
     sweeps += solver.last_sweeps();
     if (samples_us.size() < samples_us.capacity()) samples_us.push_back(us);
@@ -106,6 +105,7 @@ void BM_LocalContactTick16(benchmark::State& state) {
   state.counters["cpu_p50_us"] = Percentile(cpu_us, 50.0);
   state.counters["cpu_p99_us"] = Percentile(cpu_us, 99.0);
 }
+
 BENCHMARK(BM_LocalContactTick16);
 
 }  // namespace

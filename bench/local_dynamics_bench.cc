@@ -10,8 +10,8 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
-#include <map>
 #include <cstdlib>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -24,13 +24,13 @@
 namespace mrh::engine {
 namespace {
 
-constexpr double kPhysicsDt = 0.02;   // s
-constexpr double kHapticDt = 0.001;   // s
+constexpr double kPhysicsDt = 0.02;  // s
+constexpr double kHapticDt = 0.001;  // s
 constexpr int kTicksPerStep = 20;
-constexpr double kHalf = 0.05;        // m, cube half size
-constexpr double kRadius = 0.02;      // m, pointer sphere
+constexpr double kHalf = 0.05;    // m, cube half size
+constexpr double kRadius = 0.02;  // m, pointer sphere
 constexpr double kStartX = -kHalf - kRadius - 0.002;
-constexpr double kSpeed = 0.1;        // m/s
+constexpr double kSpeed = 0.1;  // m/s
 
 // The CI smoke run only checks that the benchmark runs: a small world, a few steps.
 bool Smoke() {
@@ -47,7 +47,8 @@ std::string CubesXml(int cubes) {
               " 0.05\"><freejoint/><geom type=\"box\" size=\"0.05 0.05 0.05\" mass=\"0.2\"/>"
               "</body>";
   }
-  return "<mujoco><option timestep=\"0.02\" solver=\"Newton\" tolerance=\"1e-10\"/><default><geom condim=\"3\"/>"
+  return "<mujoco><option timestep=\"0.02\" solver=\"Newton\" tolerance=\"1e-10\"/><default><geom "
+         "condim=\"3\"/>"
          "</default><worldbody><geom type=\"plane\" size=\"20 20 0.1\"/>" +
          bodies + "<body name=\"pointer\" mocap=\"true\" pos=\"" + std::to_string(kStartX) +
          " 0 0.05\"><geom type=\"sphere\" size=\"0.02\" contype=\"0\" conaffinity=\"0\"/></body>"
@@ -70,6 +71,7 @@ class StepTimes final : public physics::Recorder {
   void OnStep(const physics::StepRecord& step, const world::World&) override {
     last_ms = step.compute_ms;
   }
+
   double last_ms = 0.0;
 };
 
@@ -120,7 +122,6 @@ void StepFriction(benchmark::State& state, int cubes) {
   }
 }
 
-
 void BM_LocalDynamicsStep500Friction(benchmark::State& state) {
   StepFriction(state, 500);
 }
@@ -142,8 +143,13 @@ BENCHMARK(BM_LocalDynamicsStep500Friction)
     ->Iterations(1)
     ->Repetitions(Smoke() ? 3 : 100)
     ->ReportAggregatesOnly(true)
-    ->ComputeStatistics("p50", [](const std::vector<double>& v) { return Percentile(v, 50.0); })
-    ->ComputeStatistics("p99", [](const std::vector<double>& v) { return Percentile(v, 99.0); });
+    ->ComputeStatistics("p50",
+                        [](const std::vector<double>& v) {
+                          return Percentile(v, 50.0);
+                        })
+    ->ComputeStatistics("p99", [](const std::vector<double>& v) {
+      return Percentile(v, 99.0);
+    });
 
 BENCHMARK(BM_LocalDynamicsStep1000Friction)
     ->Unit(benchmark::kMillisecond)
@@ -151,8 +157,13 @@ BENCHMARK(BM_LocalDynamicsStep1000Friction)
     ->Iterations(1)
     ->Repetitions(Smoke() ? 3 : 100)
     ->ReportAggregatesOnly(true)
-    ->ComputeStatistics("p50", [](const std::vector<double>& v) { return Percentile(v, 50.0); })
-    ->ComputeStatistics("p99", [](const std::vector<double>& v) { return Percentile(v, 99.0); });
+    ->ComputeStatistics("p50",
+                        [](const std::vector<double>& v) {
+                          return Percentile(v, 50.0);
+                        })
+    ->ComputeStatistics("p99", [](const std::vector<double>& v) {
+      return Percentile(v, 99.0);
+    });
 
 BENCHMARK(BM_LocalDynamicsStep2000Friction)
     ->Unit(benchmark::kMillisecond)
@@ -160,8 +171,13 @@ BENCHMARK(BM_LocalDynamicsStep2000Friction)
     ->Iterations(1)
     ->Repetitions(Smoke() ? 3 : 100)
     ->ReportAggregatesOnly(true)
-    ->ComputeStatistics("p50", [](const std::vector<double>& v) { return Percentile(v, 50.0); })
-    ->ComputeStatistics("p99", [](const std::vector<double>& v) { return Percentile(v, 99.0); });
+    ->ComputeStatistics("p50",
+                        [](const std::vector<double>& v) {
+                          return Percentile(v, 50.0);
+                        })
+    ->ComputeStatistics("p99", [](const std::vector<double>& v) {
+      return Percentile(v, 99.0);
+    });
 
 }  // namespace
 }  // namespace mrh::engine

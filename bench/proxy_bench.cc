@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <fstream>
 #include <memory>
 #include <numbers>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -36,7 +36,8 @@ Prism LoadPrism() {
   std::stringstream text;
   text << file.rdbuf();
   const std::string mjcf = text.str();
-  const session::MjcfAttributeSpan span = session::FindMjcfAttribute(mjcf, "mesh", "prism", "vertex");
+  const session::MjcfAttributeSpan span =
+      session::FindMjcfAttribute(mjcf, "mesh", "prism", "vertex");
   if (!span.found) throw std::runtime_error(path + ": no <mesh name=\"prism\" vertex=\"...\">");
   std::istringstream values(mjcf.substr(span.offset, span.size));
   Prism prism;
@@ -104,7 +105,6 @@ Pose PointerAt(int i) {
   const double depth = 1e-3 + 2e-4 * std::sin(2.0 * std::numbers::pi * 2.0 * t);
   return Pose{Vec3(kSpeed * t, 0.0, ThePrism().half_height - depth), Quat::Identity()};
 }
-
 
 // Args: contacts N, friction (0/1), solver mode (see kModeTolerance).
 void BM_ProxyTick(benchmark::State& state) {

@@ -45,7 +45,7 @@ struct ExperimentOptions {
 /// `mrh ir` (ir_command.cc).
 struct IrOptions {
   std::filesystem::path session;
-  std::vector<double> pose;       ///< x y z qw qx qy qz (m, unit quaternion), world frame
+  std::vector<double> pose;  ///< x y z qw qx qy qz (m, unit quaternion), world frame
   std::vector<std::string> sets;
 };
 

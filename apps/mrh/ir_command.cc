@@ -12,8 +12,8 @@
 #include "commands.h"
 #include "mrh/core/error.h"
 #include "mrh/core/validate.h"
-#include "mrh/physics/geometric_ir.h"
 #include "mrh/ir/snapshot.h"
+#include "mrh/physics/geometric_ir.h"
 #include "mrh/session/session.h"
 #include "mrh/world/world.h"
 

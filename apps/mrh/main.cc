@@ -9,8 +9,8 @@
 #include <string_view>
 
 #include "commands.h"
-#include "psychophysics_command.h"
 #include "mrh/core/error.h"
+#include "psychophysics_command.h"
 
 namespace mrh::cli {
 namespace {

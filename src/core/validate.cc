@@ -90,8 +90,8 @@ Problem KeyframeTimeProblem(double t, double previous) {
     return {"t = " + FormatNumber(t) + " s", "a finite time in [-1e+06, 1e+06] s"};
   }
   if (!std::isnan(previous) && !(t - previous >= kMinKeyframeSpacing)) {
-    return {"t = " + FormatNumber(t) + " s is not 1e-06 s or more after the previous t = " +
-                FormatNumber(previous) + " s",
+    return {"t = " + FormatNumber(t) +
+                " s is not 1e-06 s or more after the previous t = " + FormatNumber(previous) + " s",
             "strictly increasing times"};
   }
   return {};

@@ -8,8 +8,8 @@
 #include <string>
 
 #include "device/csv_impl.h"
-#include "mrh/core/validate.h"
 #include "mrh/core/error.h"
+#include "mrh/core/validate.h"
 
 namespace mrh::device::internal {
 namespace {

@@ -6,10 +6,10 @@
 #include <string>
 #include <utility>
 
-#include "mrh/core/validate.h"
 #include "device/track_impl.h"
 #include "mrh/core/error.h"
 #include "mrh/core/spatial.h"
+#include "mrh/core/validate.h"
 #include "mrh/device/simulated.h"
 
 namespace mrh::device {
@@ -28,7 +28,7 @@ constexpr double kStepCountSlack = 1e-9;
 // Documented ranges (docs/session-format.md, "Ranges"). The rate limits keep the 1 ms
 // semi-implicit Euler step stable and accurate: omega * h <= 1 and (d / m) * h <= 1.
 constexpr double kMaxStiffnessPerMass = 1.0 / (kMaxStep * kMaxStep);  // 1/s^2
-constexpr double kMaxDampingPerMass = 1.0 / kMaxStep;                  // 1/s
+constexpr double kMaxDampingPerMass = 1.0 / kMaxStep;                 // 1/s
 
 // `gain` / `mass` (a spring or damper over its mass or inertia) must be at most `limit`.
 void RequireRate(double gain, double mass, double limit, const char* gain_key,

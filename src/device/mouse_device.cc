@@ -3,9 +3,9 @@
 #include <cmath>
 #include <string>
 
-#include "mrh/core/validate.h"
 #include "mrh/core/error.h"
 #include "mrh/core/spatial.h"
+#include "mrh/core/validate.h"
 #include "mrh/device/mouse.h"
 
 namespace mrh::device {

@@ -155,6 +155,7 @@ class OpenHapticsDevice final : public ServoDevice {
   void MakeCurrent() noexcept {
     if (api_.make_current_device != nullptr) api_.make_current_device(hhd_);
   }
+
   DeviceState PublishReading(double t) noexcept;
   void WriteWrench(const Wrench& w_D) noexcept;
   bool CheckHd() noexcept;

@@ -16,10 +16,10 @@
 #include <thread>
 
 #include "device/hardware_impl.h"
-#include "mrh/core/validate.h"
 #include "device/udp_packets.h"
 #include "mrh/core/error.h"
 #include "mrh/core/triple_buffer.h"
+#include "mrh/core/validate.h"
 #include "mrh/device/hardware.h"
 #include "mrh/device/safety.h"
 

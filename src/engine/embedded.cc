@@ -14,6 +14,7 @@ namespace internal {
 struct EmbeddedRun {
   EmbeddedRun(EngineState* state, physics::Recorder* recorder)
       : physics(state->MakePhysicsSide(recorder)) {}
+
   PhysicsSide physics;
   device::ExternalDevice* device = nullptr;
   std::int64_t period = 0;
@@ -24,7 +25,9 @@ struct EmbeddedRun {
   std::thread physics_thread;
 };
 
-void DestroyEmbeddedRun(EmbeddedRun* run) { delete run; }
+void DestroyEmbeddedRun(EmbeddedRun* run) {
+  delete run;
+}
 
 }  // namespace internal
 
@@ -65,7 +68,9 @@ void Engine::Start(physics::Recorder* recorder) {
   run.device = external;
   internal::StartPhysics(s, run.physics);
   if (s.settings.mode == settings::Mode::kRealtime) {
-    run.physics_thread = std::thread([&run] { internal::RunPhysicsThread(run.physics, run.done); });
+    run.physics_thread = std::thread([&run] {
+      internal::RunPhysicsThread(run.physics, run.done);
+    });
   }
 }
 

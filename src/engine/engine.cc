@@ -283,15 +283,21 @@ std::vector<std::string> Engine::pointer_names() const {
 
 Engine::~Engine() = default;
 
-const world::World& Engine::world() const { return impl_->state->world; }
+const world::World& Engine::world() const {
+  return impl_->state->world;
+}
 
 const settings::EngineSettings& Engine::settings() const {
   return impl_->state->settings;
 }
 
-double Engine::pointer_radius() const { return impl_->state->pointer_radius; }
+double Engine::pointer_radius() const {
+  return impl_->state->pointer_radius;
+}
 
-const haptic::MethodHaptic& Engine::haptic_method() const { return *impl_->state->method.haptic; }
+const haptic::MethodHaptic& Engine::haptic_method() const {
+  return *impl_->state->method.haptic;
+}
 
 const physics::MethodPhysics& Engine::physics_method() const {
   return *impl_->state->method.physics;
@@ -320,7 +326,9 @@ void Engine::SetDisplayGain(double gain) {
   for (const auto& lane : impl_->state->lanes) lane->haptic->SetDisplayGain(gain);
 }
 
-double Engine::display_gain() const { return impl_->state->haptic->display_gain(); }
+double Engine::display_gain() const {
+  return impl_->state->haptic->display_gain();
+}
 
 RunStats Engine::Run(physics::Recorder* recorder, const ProgressFn& progress) {
   internal::EngineState& s = *impl_->state;

@@ -7,8 +7,8 @@
 #include <optional>
 #include <vector>
 
-#include "mrh/core/stats.h"
 #include "mrh/core/spsc_ring.h"
+#include "mrh/core/stats.h"
 #include "mrh/core/triple_buffer.h"
 #include "mrh/engine/engine.h"
 #include "mrh/engine/method.h"
@@ -121,10 +121,12 @@ RunStats RunRealtime(EngineState& state, physics::Recorder* recorder,
 namespace mrh::engine {
 struct Engine::Impl {
   std::unique_ptr<internal::EngineState> state;
+
   // Embedded runs (Start / Tick / Stop). Defined in embedded.cc.
   struct EmbeddedDeleter {
     void operator()(internal::EmbeddedRun* run) const { internal::DestroyEmbeddedRun(run); }
   };
+
   std::unique_ptr<internal::EmbeddedRun, EmbeddedDeleter> embedded;
 };
 }  // namespace mrh::engine

@@ -22,8 +22,7 @@ RunStats RunLockstep(EngineState& state, physics::Recorder* recorder,
   const auto wall0 = std::chrono::steady_clock::now();
   const int n = state.ticks_per_step;
   const double dt = state.settings.haptic_dt;
-  const auto total_ticks =
-      static_cast<std::int64_t>(std::llround(state.settings.duration / dt));
+  const auto total_ticks = static_cast<std::int64_t>(std::llround(state.settings.duration / dt));
   const std::int64_t periods = (total_ticks + n - 1) / n;
 
   PhysicsSide physics = state.MakePhysicsSide(recorder);
@@ -38,7 +37,8 @@ RunStats RunLockstep(EngineState& state, physics::Recorder* recorder,
     physics.Publish();      // ... and step k's snapshot for period k+1.
     physics.RecordStep();
     const auto now = std::chrono::steady_clock::now();
-    if (progress && std::chrono::duration<double>(now - last_progress).count() > kProgressInterval) {
+    if (progress &&
+        std::chrono::duration<double>(now - last_progress).count() > kProgressInterval) {
       progress(static_cast<double>(k + 1) / static_cast<double>(periods));
       last_progress = now;
     }

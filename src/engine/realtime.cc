@@ -22,7 +22,7 @@ constexpr std::int64_t kNsPerS = 1'000'000'000;
 constexpr std::size_t kJitterSlack = 1024;
 
 struct HapticTiming {
-  std::vector<double> jitter_us;   // preallocated; |measured period − dt|
+  std::vector<double> jitter_us;  // preallocated; |measured period − dt|
   std::size_t samples = 0;
   std::int64_t overruns = 0;
 };
@@ -55,7 +55,8 @@ void HapticLoop(EngineState& s, HapticTiming* timing, std::atomic<bool>* done,
 // A MuJoCo error on the physics thread (a RuntimeError) ends the physics side; the watchdog
 // fades the force to zero, and the error is rethrown here once both threads are done.
 void RunThreads(EngineState& s, PhysicsSide& physics, HapticTiming* timing,
-                std::atomic<bool>* fifo_ok, std::int64_t wall0, const Engine::ProgressFn& progress) {
+                std::atomic<bool>* fifo_ok, std::int64_t wall0,
+                const Engine::ProgressFn& progress) {
   std::atomic<bool> done{false};
   std::exception_ptr physics_error;
   std::thread physics_thread([&] {
@@ -65,7 +66,9 @@ void RunThreads(EngineState& s, PhysicsSide& physics, HapticTiming* timing,
       physics_error = std::current_exception();
     }
   });
-  std::thread haptic_thread([&] { HapticLoop(s, timing, &done, fifo_ok); });
+  std::thread haptic_thread([&] {
+    HapticLoop(s, timing, &done, fifo_ok);
+  });
   while (!done.load(std::memory_order_acquire)) {
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
     if (progress) {
@@ -78,8 +81,9 @@ void RunThreads(EngineState& s, PhysicsSide& physics, HapticTiming* timing,
 }
 
 void FillJitter(const HapticTiming& timing, RunStats* stats) {
-  std::vector<double> jitter(timing.jitter_us.begin(),
-                             timing.jitter_us.begin() + static_cast<std::ptrdiff_t>(timing.samples));
+  std::vector<double> jitter(
+      timing.jitter_us.begin(),
+      timing.jitter_us.begin() + static_cast<std::ptrdiff_t>(timing.samples));
   stats->jitter_p50_us = Percentile(jitter, 50.0);
   stats->jitter_p99_us = Percentile(jitter, 99.0);
   stats->jitter_max_us = jitter.empty() ? 0.0 : *std::max_element(jitter.begin(), jitter.end());
@@ -109,7 +113,8 @@ RunStats RunRealtime(EngineState& s, physics::Recorder* recorder,
   }
   if (locked) UnlockAllMemory();
   if (s.settings.realtime_priority && !fifo_ok.load()) {
-    stats.warnings.push_back("SCHED_FIFO refused for the haptic thread; running at normal priority");
+    stats.warnings.push_back(
+        "SCHED_FIFO refused for the haptic thread; running at normal priority");
   }
   for (const std::string& w : stats.warnings) spdlog::warn("{}", w);
   const double wall_time = static_cast<double>(NowNs() - wall0) / kNsPerS;

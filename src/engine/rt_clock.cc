@@ -50,7 +50,10 @@ void SleepUntilNs(std::int64_t deadline_ns, std::int64_t spin_ns) noexcept {
 }
 
 PeriodicDeadline::PeriodicDeadline(std::int64_t period_ns) noexcept
-    : period_ns_(period_ns), start_ns_(NowNs()), deadline_ns_(start_ns_), last_wake_ns_(start_ns_) {}
+    : period_ns_(period_ns),
+      start_ns_(NowNs()),
+      deadline_ns_(start_ns_),
+      last_wake_ns_(start_ns_) {}
 
 PeriodicDeadline::Wake PeriodicDeadline::Next() noexcept {
   deadline_ns_ += period_ns_;
@@ -89,6 +92,8 @@ bool LockAllMemory(std::string* why) {
   return true;
 }
 
-void UnlockAllMemory() noexcept { munlockall(); }
+void UnlockAllMemory() noexcept {
+  munlockall();
+}
 
 }  // namespace mrh::engine

@@ -65,7 +65,6 @@ void FillMethodStatus(const HapticCounters& c, const Method& method, RunStats* s
   }
 }
 
-
 void FillPhysicsStats(PhysicsSide& physics, RunStats* stats) {
   physics::PhysicsStats p;
   physics.Finish(&p);

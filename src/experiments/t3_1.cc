@@ -287,8 +287,8 @@ int RunT31(const std::filesystem::path& out, bool quiet) {
                       {"f_z_N", last.f}, {"tau_x_Nm", last.tau},    {"contacts", last.contacts}};
   Checks checks = CheckT31(rows, r, R_w, &summary["numbers"]);
   summary["numbers"]["pgs_50_sweeps_max_torque_error_Nm"] = budget_tau_error;
-  const PenaltySumWindows windows{r.stiffness, kEdgeDepth, kFaceDepth,
-                                  {kEdgeHold[0], kEdgeHold[1]}, kFaceHold};
+  const PenaltySumWindows windows{
+      r.stiffness, kEdgeDepth, kFaceDepth, {kEdgeHold[0], kEdgeHold[1]}, kFaceHold};
   checks.AddJson(CheckPenaltySumT31(sum, windows, &summary["numbers"]));
   if (!quiet) PrintT31(last, summary["numbers"]);
   return FinishExperiment(out, std::move(summary), checks, quiet);

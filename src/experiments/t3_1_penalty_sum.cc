@@ -55,8 +55,8 @@ nlohmann::json CheckPenaltySumT31(const std::vector<ir::TickRecord>& ticks,
     if (tick.t >= w.face_hold) {
       ++face_ticks;
       face_f = f;
-      face_ok = face_ok && tick.contacts == 4 &&
-                std::abs(f - 4.0 * w.k * w.face_depth) <= kRelTol * f;
+      face_ok =
+          face_ok && tick.contacts == 4 && std::abs(f - 4.0 * w.k * w.face_depth) <= kRelTol * f;
     }
   }
   // Force per unit depth: the proxy keeps k_t; the sum goes from 2k (edge) to 4k (face).

@@ -33,8 +33,8 @@ struct SweepPoint {
   double bound_penetration = 0.0;     // m, deepest constrained vertex at the proxy (≈ 0)
   double peak_torque = 0.0;           // N·m, max |τ| while rolling
   double peak_torque_analytic = 0.0;  // single edge at the flat limit, k_r δ h/(R_w + h²)
-  double edge_torque_error = 0.0;  // N·m, max |τ − τ_analytic| over converged one-edge ticks
-  double edge_peak_torque = 0.0;   // N·m, max |τ| over those ticks
+  double edge_torque_error = 0.0;   // N·m, max |τ − τ_analytic| over converged one-edge ticks
+  double edge_peak_torque = 0.0;    // N·m, max |τ| over those ticks
   double edge_peak_analytic = 0.0;  // N·m, the analytic τ of that tick (its own δ and lever)
   int edge_ticks = 0;
   double mean_torque = 0.0;  // N·m, mean |τ| while rolling

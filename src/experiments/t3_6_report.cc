@@ -183,7 +183,9 @@ std::string OpenCases() {
   for (const Case& c : kCases) {
     if (c.open) s += fmt::format("{}{}", s.empty() ? "" : ", ", c.name);
   }
-  return s.empty() ? s : "\nOpen (reported, not checked; docs/notes/local-dynamics-6dof.md): " + s + ".\n";
+  return s.empty()
+             ? s
+             : "\nOpen (reported, not checked; docs/notes/local-dynamics-6dof.md): " + s + ".\n";
 }
 
 // The acceptance bars for one case. Every method: nothing thrown. local-dynamics-6dof at 20 ms and

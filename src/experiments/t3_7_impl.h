@@ -14,11 +14,11 @@
 
 namespace mrh::experiments::internal {
 
-inline constexpr double kSpeed = 0.1;      // m/s along +x
-inline constexpr double kTouch = 1.0;      // s, the pointer reaches the object
-inline constexpr double kDuration = 5.0;   // s
-inline constexpr double kFrom = 2.0;       // s, statistics window 2–5 s
-inline constexpr double kFriction = 0.5;   // the floor's (scenes/t3_7_*.xml); pointers have none
+inline constexpr double kSpeed = 0.1;     // m/s along +x
+inline constexpr double kTouch = 1.0;     // s, the pointer reaches the object
+inline constexpr double kDuration = 5.0;  // s
+inline constexpr double kFrom = 2.0;      // s, statistics window 2–5 s
+inline constexpr double kFriction = 0.5;  // the floor's (scenes/t3_7_*.xml); pointers have none
 inline constexpr double kThrowBar = 2.5;  // the acceptance bar: speed ≤ 2.5 v, spin ≤ 2.5 v / r
 inline constexpr double kSlideBar = 0.05;  // steady slide: mean |f| within 5 % of μ m g
 inline constexpr double kForceBar = 0.10;  // off-centre: mean |f| within 10 % of the reference's

@@ -69,7 +69,8 @@ std::string SceneXml(int cubes, int condim) {
       "    </body>\n"
       "  </worldbody>\n"
       "</mujoco>\n",
-      cubes, condim, cubes, condim > 1 ? "solver=\"Newton\" tolerance=\"1e-10\"" : "solver=\"CG\"", condim, bodies, StartX(), kHalf, kRadius);
+      cubes, condim, cubes, condim > 1 ? "solver=\"Newton\" tolerance=\"1e-10\"" : "solver=\"CG\"",
+      condim, bodies, StartX(), kHalf, kRadius);
 }
 
 namespace {

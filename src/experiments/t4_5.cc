@@ -85,18 +85,18 @@ std::string SceneXml(int balls) {
 
 session::Session MakeSession(const std::filesystem::path& scene, const std::string& method,
                              double duration) {
-  const nlohmann::json json = {{"scene", scene.filename().string()},
-                               {"method", method},
-                               {"physics_dt", kPhysicsDt},
-                               {"haptic_dt", 0.001},
-                               {"duration", duration},
-                               {"pointer", {{"body", "pointer"}, {"radius", kPointerRadius}}},
-                               // The thesis' cost per locally simulated neighbor (A, b; the
-                               // contact local model holds at most 32 island bodies).
-                               {"rendering", {{"stiffness", 1000.0}, {"damping", 5.0},
-                                              {"local_model", "perturbation"}}},
-                               {"safety", {{"ramp", false}}},
-                               {"device", {{"type", "fixed"}, {"pose", {0, 0, 0, 1, 0, 0, 0}}}}};
+  const nlohmann::json json = {
+      {"scene", scene.filename().string()},
+      {"method", method},
+      {"physics_dt", kPhysicsDt},
+      {"haptic_dt", 0.001},
+      {"duration", duration},
+      {"pointer", {{"body", "pointer"}, {"radius", kPointerRadius}}},
+      // The thesis' cost per locally simulated neighbor (A, b; the
+      // contact local model holds at most 32 island bodies).
+      {"rendering", {{"stiffness", 1000.0}, {"damping", 5.0}, {"local_model", "perturbation"}}},
+      {"safety", {{"ramp", false}}},
+      {"device", {{"type", "fixed"}, {"pose", {0, 0, 0, 1, 0, 0, 0}}}}};
   return session::ParseSession(json.dump(2), scene.parent_path(), {}, "t4.5 " + method);
 }
 

@@ -37,11 +37,13 @@ struct Tap final : physics::Recorder {
     const world::BodyState s = world.body_state(box);
     steps.push_back({step.t, s.p_WCm, s.V_WCm.w.norm()});
   }
+
   struct Step {
     double t;
     Vec3 p;
     double spin;
   };
+
   int box = -1;
   std::vector<double> t, f;
   std::vector<Step> steps;
@@ -103,10 +105,11 @@ void WriteRun(const std::filesystem::path& dir, const std::string& slug, const T
 std::string PushScript(const PushOptions& o) {
   std::string gp =
       "# t4.push: |f|(t) per method and the box trajectory, per case. gnuplot t4_push.gp\n"
-      "set terminal pngcairo size 1400,"
-      + std::to_string(330 * o.cases.size()) +
+      "set terminal pngcairo size 1400," +
+      std::to_string(330 * o.cases.size()) +
       " enhanced font ',9'\nset output 't4_push.png'\nset datafile separator ','\nset grid\n"
-      "set key top left\nset multiplot layout " + std::to_string(o.cases.size()) + ",2\n";
+      "set key top left\nset multiplot layout " +
+      std::to_string(o.cases.size()) + ",2\n";
   for (const PushCase& c : o.cases) {
     gp += "set title '" + c.name + ": |f| (N)'\nset xlabel 't (s)'\nplot ";
     for (std::size_t i = 0; i < o.methods.size(); ++i) {

@@ -48,7 +48,8 @@ Vec3 ContactNormal(const IntersectionVolume& v, const ConvexPolyhedron& a, const
     if (!(s.norm() > 0.0)) continue;
     const Vec3 m = (v.vertices_W[static_cast<std::size_t>(t[0])] +
                     v.vertices_W[static_cast<std::size_t>(t[1])] +
-                    v.vertices_W[static_cast<std::size_t>(t[2])]) / 3.0;
+                    v.vertices_W[static_cast<std::size_t>(t[2])]) /
+                   3.0;
     const bool on_a = OnSurface(a, X_WA, m, s, tolerance);
     const bool on_b = OnSurface(b, X_WB, m, s, tolerance);
     if (on_b && !on_a) sum += s;
@@ -122,8 +123,9 @@ Wrench IntegratePressure(const IntersectionVolume& v, std::span<const double> pr
     if (surface == PressureSurface::kUpper && !(s.dot(n) > 0.0)) continue;
     w.f += (f[0] + f[1] + f[2]) / 6.0 * s;
     // Σ_ab w_ab f_b q_a = (Σ_a f_a q_a + (Σ f)(Σ q)) / 24.
-    const Vec3 first = (f[0] * q[0] + f[1] * q[1] + f[2] * q[2] +
-                        (f[0] + f[1] + f[2]) * (q[0] + q[1] + q[2])) / 24.0;
+    const Vec3 first =
+        (f[0] * q[0] + f[1] * q[1] + f[2] * q[2] + (f[0] + f[1] + f[2]) * (q[0] + q[1] + q[2])) /
+        24.0;
     w.tau += first.cross(s);
   }
   return w;

@@ -19,7 +19,6 @@ namespace mrh::geometry::internal {
 /// has no volume, or when qhull fails. Never prints. Not RT-safe.
 std::optional<std::vector<Vec3>> RegionVertices(const ConvexPolyhedron& a, const Pose& X_WA,
                                                 const ConvexPolyhedron& b, const Pose& X_WB,
-                                                const DistanceResult& d,
-                                                double touching_tolerance);
+                                                const DistanceResult& d, double touching_tolerance);
 
 }  // namespace mrh::geometry::internal

@@ -7,9 +7,8 @@
 namespace mrh::haptic {
 
 HapticSide::HapticSide(MethodHaptic* method, device::Device* device,
-                       const device::Calibration& calibration,
-                       const device::SafetySettings& safety, int ticks_per_step, double haptic_dt,
-                       const Exchange& exchange)
+                       const device::Calibration& calibration, const device::SafetySettings& safety,
+                       int ticks_per_step, double haptic_dt, const Exchange& exchange)
     : method_(method),
       device_(device),
       calibration_(calibration),

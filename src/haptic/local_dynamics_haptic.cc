@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
 // Haptic half of local-dynamics: local simulation of the neighbors and 3-DOF penalty rendering.
+#include "local_dynamics_haptic.h"
+
 #include <algorithm>
 
-#include "local_dynamics_haptic.h"
 #include "normal_carry.h"
 
 namespace mrh::haptic::internal {
@@ -72,8 +73,8 @@ void LocalDynamicsHaptic::RenderContacts(const TickInput& in, double alpha,
     render::SphereContact contact;
     Vec3 p_WCm;
     if (body.has_dynamics) {
-      contact =
-          local()[motion].TouchSphere(c.p_BC, n, in.X_WP.p, in.V_WP, radius_, g.stiffness, g.damping);
+      contact = local()[motion].TouchSphere(c.p_BC, n, in.X_WP.p, in.V_WP, radius_, g.stiffness,
+                                            g.damping);
       p_WCm = local()[motion].p_WCm();
     } else {
       const render::BlendedPoint o = render::BlendBodyPoint(body, c.p_BC, alpha);

@@ -6,8 +6,8 @@
 #include <cstdint>
 
 #include "mrh/haptic/method_haptic.h"
-#include "mrh/render/contact_transients.h"
 #include "mrh/haptic/methods.h"
+#include "mrh/render/contact_transients.h"
 #include "mrh/render/local_body.h"
 #include "normal_carry.h"
 

@@ -25,6 +25,7 @@ class PenaltySumHaptic final : public MethodHaptic {
 
   /// The last tick's output and the IR it rendered. Valid until the next tick.
   const render::PenaltySumOutput& last_output() const noexcept { return output_; }
+
   const render::TickIr& last_tick_ir() const noexcept { return tick_ir_; }
 
  private:

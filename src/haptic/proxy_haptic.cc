@@ -21,7 +21,6 @@ void ProxyHaptic::HapticTick(const TickInput& in, TickOutput* out) noexcept {
   render::AddReactionImpulses(output_, in.dt, &period_);
   render::TouchPairs(tick_ir_, in.X_WP, in.V_WP, &transients_);
   render::AddTransientForce(in.dt, &transients_, &out->w_W.f);
-
 }
 
 void ProxyHaptic::EndPeriod(ir::HapticReport* report) noexcept {

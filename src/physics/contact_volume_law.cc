@@ -26,10 +26,8 @@ NormalForce Normal(const geometry::IntersectionVolume& v, const BodyKinematics& 
     depth[k] = (p - v.c_W).dot(v.n_W);
     approach[k] = -(a.VelocityAt(p) - b.VelocityAt(p)).dot(v.n_W);
   }
-  const Wrench spring =
-      geometry::IntegratePressure(v, depth, geometry::PressureSurface::kClosed);
-  const Wrench damper =
-      geometry::IntegratePressure(v, approach, geometry::PressureSurface::kUpper);
+  const Wrench spring = geometry::IntegratePressure(v, depth, geometry::PressureSurface::kClosed);
+  const Wrench damper = geometry::IntegratePressure(v, approach, geometry::PressureSurface::kUpper);
   const double area = v.projected_area;
   const double spring_n = gains.k * spring.f.dot(v.n_W) / area;
   const double damper_n = gains.d * damper.f.dot(v.n_W) / area;
@@ -45,7 +43,9 @@ NormalForce Normal(const geometry::IntersectionVolume& v, const BodyKinematics& 
   return out;
 }
 
-Vec3 Tangential(const Vec3& x, const Vec3& n) { return x - x.dot(n) * n; }
+Vec3 Tangential(const Vec3& x, const Vec3& n) {
+  return x - x.dot(n) * n;
+}
 
 // Anchored tangential spring–damper capped at μ N (static while it holds, dynamic once it slid).
 Vec3 Friction(const Vec3& n, const NormalForce& normal, const BodyKinematics& a,

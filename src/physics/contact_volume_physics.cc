@@ -18,9 +18,13 @@ namespace {
 constexpr double kSphereMargin = 1e-6;
 constexpr double kSphereGrowth = 1e-2;
 
-bool Dynamic(const world::BodyInfo& body) { return !body.is_static && !body.is_mocap; }
+bool Dynamic(const world::BodyInfo& body) {
+  return !body.is_static && !body.is_mocap;
+}
 
-bool Moves(const world::BodyInfo& body) { return !body.is_static || body.is_mocap; }
+bool Moves(const world::BodyInfo& body) {
+  return !body.is_static || body.is_mocap;
+}
 
 }  // namespace
 
@@ -36,8 +40,8 @@ ContactVolumePhysics::ContactVolumePhysics(const MethodContext& context)
         world_->origin()));
   }
   const settings::RenderingSettings& r = context.settings->rendering;
-  gains_ = PenaltyGains{.k = r.stiffness, .d = r.damping, .mu_static = r.friction,
-                        .mu_dynamic = r.friction};
+  gains_ = PenaltyGains{
+      .k = r.stiffness, .d = r.damping, .mu_static = r.friction, .mu_dynamic = r.friction};
   MakePieces(r);
   MakePairs();
   X_WG_.resize(pieces_.size());
@@ -53,17 +57,18 @@ void ContactVolumePhysics::MakePieces(const settings::RenderingSettings& renderi
     piece.body = info.body;
     piece.plane = info.shape.type == geometry::ShapeType::kPlane;
     try {
-      piece.polyhedron = geometry::ConvexPolyhedron::FromShape(info.shape,
-                                                               rendering.curved_segments);
+      piece.polyhedron =
+          geometry::ConvexPolyhedron::FromShape(info.shape, rendering.curved_segments);
       piece.shape = std::make_unique<geometry::CollisionShape>(info.shape);
     } catch (const Error& e) {
       throw SceneError(fmt::format("{}: geom {} ('{}') of body '{}': {}", world_->origin(), g,
                                    info.name, world_->body(info.body).name, e.what()));
     }
     if (piece.plane && on_pointer) {
-      throw SceneError(fmt::format("{}: pointer geom {} is a plane; contact-volume needs "
-                                   "bounded convex pointer geoms",
-                                   world_->origin(), g));
+      throw SceneError(
+          fmt::format("{}: pointer geom {} is a plane; contact-volume needs "
+                      "bounded convex pointer geoms",
+                      world_->origin(), g));
     }
     for (const Vec3& v : piece.polyhedron.vertices()) {
       piece.radius = std::max(piece.radius, v.norm());
@@ -124,7 +129,8 @@ void ContactVolumePhysics::AnalysePair(Pair* pair, const Twist& V_WP) {
   const Pose& X_WB = X_WG_[static_cast<std::size_t>(pair->b)];
   const geometry::DistanceResult d = geometry::SignedDistance(*a.shape, X_WA, *b.shape, X_WB);
   std::optional<geometry::IntersectionVolume> volume;
-  if (d.distance < 0.0) volume = geometry::IntersectConvex(a.polyhedron, X_WA, b.polyhedron, X_WB, d);
+  if (d.distance < 0.0)
+    volume = geometry::IntersectConvex(a.polyhedron, X_WA, b.polyhedron, X_WB, d);
   if (!volume) {
     pair->anchor.active = false;
     return;
@@ -133,7 +139,8 @@ void ContactVolumePhysics::AnalysePair(Pair* pair, const Twist& V_WP) {
                                              Kinematics(b.body, V_WP), gains_, &pair->anchor);
   ++stats_.contacts;
   const Vec3 origin = world_->body_state(pointer_).X_WB.p;
-  for (const auto& [body, f] : {std::pair{a.body, force.f_W}, std::pair{b.body, Vec3(-force.f_W)}}) {
+  for (const auto& [body, f] :
+       {std::pair{a.body, force.f_W}, std::pair{b.body, Vec3(-force.f_W)}}) {
     if (body == pointer_) {
       pointer_wrench_.f += f;
       pointer_wrench_.tau += (force.p_W - origin).cross(f);
@@ -169,8 +176,7 @@ void ContactVolumePhysics::Publish(ir::PhysicsSnapshot* out) const {
   out->physics_dt = physics_dt_;
 }
 
-void ContactVolumePhysics::PhysicsStart(const ir::HapticReport& initial,
-                                        ir::PhysicsSnapshot* out) {
+void ContactVolumePhysics::PhysicsStart(const ir::HapticReport& initial, ir::PhysicsSnapshot* out) {
   world_->SetMocapPose(pointer_, initial.X_WP);
   Publish(out);  // no force before the first step's analysis
   out->step = -1;

@@ -15,9 +15,9 @@ namespace mrh::physics::internal {
 
 /// Work of the latest contact analysis, for tests and experiments.
 struct ContactVolumeStats {
-  int candidate_pairs = 0;  ///< pairs whose bounding spheres overlapped
-  int contacts = 0;         ///< pairs with an intersection volume (penalty applied)
-  int pointer_contacts = 0; ///< of them, pairs with a pointer geom
+  int candidate_pairs = 0;   ///< pairs whose bounding spheres overlapped
+  int contacts = 0;          ///< pairs with an intersection volume (penalty applied)
+  int pointer_contacts = 0;  ///< of them, pairs with a pointer geom
 };
 
 /// B2 (Hasegawa & Sato 2004, thesis ref. [1], §1.2.1), physics half; single-rate
@@ -42,6 +42,7 @@ class ContactVolumePhysics final : public MethodPhysics {
 
   void PhysicsStart(const ir::HapticReport& initial, ir::PhysicsSnapshot* out) override;
   void PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot* out) override;
+
   PhaseTimes last_phases() const noexcept override { return phases_; }
 
   const ContactVolumeStats& stats() const { return stats_; }
@@ -55,6 +56,7 @@ class ContactVolumePhysics final : public MethodPhysics {
     geometry::ConvexPolyhedron polyhedron;
     std::unique_ptr<geometry::CollisionShape> shape;
   };
+
   struct Pair {
     int a = -1;  // index into pieces_ (never a plane)
     int b = -1;  // index into pieces_ (a plane if either is)

@@ -240,5 +240,4 @@ void GeometricIrBuilder::FillPair(const Neighbor& n, const Pose& X_WP, int motio
   (void)out->pairs.PushBack(pair);
 }
 
-
 }  // namespace mrh::physics::internal

@@ -78,12 +78,12 @@ class GeometricIrBuilder {
   struct Piece {
     int geom = -1;
     int body = -1;
-    Pose X_BG;          // geom in its body frame
-    Pose X_WG;          // last world pose (objects)
-    bool moves = true;  // its body can move (boxes refreshed every Build)
-    bool round = false; // sphere or capsule (ir::GeometricPair::round)
+    Pose X_BG;                     // geom in its body frame
+    Pose X_WG;                     // last world pose (objects)
+    bool moves = true;             // its body can move (boxes refreshed every Build)
+    bool round = false;            // sphere or capsule (ir::GeometricPair::round)
     Faces faces = Faces::kCurved;  // NormalSide::faces
-    int handle = -1;    // sweep-and-prune handle
+    int handle = -1;               // sweep-and-prune handle
     geometry::ConvexPolyhedron polyhedron;
     std::unique_ptr<geometry::CollisionShape> shape;
   };

@@ -58,9 +58,8 @@ void IslandSync::Overwrite(const ir::HapticReport& report) {
 
 void IslandSync::HoldOwned(double coast_s) {
   for (const ir::LocalBodyState& s : written_) {
-    const Pose X_WB = coast_s == 0.0
-                          ? s.X_WB
-                          : Coast(s.X_WB, world_->body(s.body).p_BCm, s.V_WCm, coast_s);
+    const Pose X_WB =
+        coast_s == 0.0 ? s.X_WB : Coast(s.X_WB, world_->body(s.body).p_BCm, s.V_WCm, coast_s);
     (void)world_->SetBodyState(s.body, X_WB, s.V_WCm);
   }
 }

@@ -18,11 +18,11 @@ namespace mrh::physics::internal {
 
 /// Counters of an island method's physics half (physics thread; read them after the run).
 struct IslandCounters {
-  std::int64_t steps = 0;             ///< physics steps
-  std::int64_t overwrites = 0;        ///< local states written into the world (eq. 4.16–4.17)
+  std::int64_t steps = 0;       ///< physics steps
+  std::int64_t overwrites = 0;  ///< local states written into the world (eq. 4.16–4.17)
   std::int64_t overwrite_failures = 0;
-  int last_island_bodies = 0;         ///< bodies in the latest exported model
-  int last_island_contacts = 0;       ///< contact rows in the latest exported model
+  int last_island_bodies = 0;    ///< bodies in the latest exported model
+  int last_island_contacts = 0;  ///< contact rows in the latest exported model
 };
 
 /// Which island bodies the local simulation owns, and their states going into and out of the
@@ -58,6 +58,7 @@ class IslandSync {
                        std::span<const int> motions, ir::PhysicsSnapshot* out);
 
   void CountStep() { ++counters_.steps; }
+
   const IslandCounters& counters() const { return counters_; }
 
  private:

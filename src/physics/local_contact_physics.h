@@ -44,6 +44,7 @@ class LocalContactPhysics final : public MethodPhysics {
                             std::span<ir::PhysicsSnapshot* const> out) override;
   void PhysicsStepPointers(std::span<const ir::HapticReport* const> reports,
                            std::span<ir::PhysicsSnapshot* const> out) override;
+
   PhaseTimes last_phases() const noexcept override { return phases_; }
 
   const LocalContactCounters& counters() const { return sync_.counters(); }

@@ -129,7 +129,7 @@ void LocalDynamicsPhysics::GlobalStep(const ir::HapticReport& report) {
 // reaction the user applied at the end of the last period (thesis §4.2.2), or the nominal force
 // into the object when there is none.
 void LocalDynamicsPhysics::FindTargets(const ir::HapticReport* report,
-                                      const ir::PhysicsSnapshot& out) {
+                                       const ir::PhysicsSnapshot& out) {
   targets_.clear();
   for (std::size_t m = 0; m < out.bodies.size(); ++m) {
     const ir::BodyMotion& motion = out.bodies[m];

@@ -54,6 +54,7 @@ class LocalDynamicsPhysics final : public MethodPhysics {
 
   void PhysicsStart(const ir::HapticReport& initial, ir::PhysicsSnapshot* out) override;
   void PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot* out) override;
+
   /// counters().last as the engine's phases: overwrite → sync, global → world_step, ir,
   /// perturbation → model.
   PhaseTimes last_phases() const noexcept override {

@@ -40,7 +40,7 @@ void LocalDynamicsPhysics::Overwrite(const ir::HapticReport& report) {
 
 // The extension described at LocalDynamicsMethod: Δ_j = A_jB A_B⁺ Δ for the neighbor's group.
 void LocalDynamicsPhysics::SyncGroup(const SentBody& sent, const world::BodyState& global,
-                                    const ir::LocalBodyState& local) {
+                                     const ir::LocalBodyState& local) {
   if (sent.members == 0) return;
   // Columns: the twist discrepancy and the pose discrepancy (COM shift, rotation vector).
   Eigen::Matrix<double, 6, 2> delta;

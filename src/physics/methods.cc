@@ -26,7 +26,6 @@ double PointerRadiusFor3Dof(const MethodContext& context) {
       context.world->origin(), body, context.settings->method));
 }
 
-
 std::unique_ptr<MethodPhysics> MakePointPenaltyPhysics(const MethodContext& context) {
   return std::make_unique<internal::PointPenaltyPhysics>(context);
 }

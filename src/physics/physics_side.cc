@@ -192,5 +192,4 @@ void PhysicsSide::Finish(PhysicsStats* stats) {
   }
 }
 
-
 }  // namespace mrh::physics

@@ -68,7 +68,6 @@ void PointIrBuilder::CapturePreviousPoses(const world::World& world) {
   motions_.CapturePreviousPoses(world);
 }
 
-
 void PointIrBuilder::Build(const world::World& world, const Pose& X_WP,
                            ir::PhysicsSnapshot* out) const {
   out->bodies.Clear();
@@ -79,7 +78,8 @@ void PointIrBuilder::Build(const world::World& world, const Pose& X_WP,
     const Pose X_WG = world.geom_pose(c.geom);
     // Broad phase: bounding spheres (planes are unbounded and always pass).
     if ((X_WG.p - X_WP.p).norm() > c.bounding_radius + reach) continue;
-    const geometry::DistanceResult r = geometry::SignedDistance(pointer_shape_, X_WS, c.shape, X_WG);
+    const geometry::DistanceResult r =
+        geometry::SignedDistance(pointer_shape_, X_WS, c.shape, X_WG);
     if (r.distance > rendering_.neighbor_distance) continue;
     if (out->contacts.full()) {
       out->status |= ir::kStatusContactsFull;

@@ -12,7 +12,8 @@ PointPenaltyPhysics::PointPenaltyPhysics(const MethodContext& context)
     : world_(context.world),
       pointer_body_(context.pointer_body),
       physics_dt_(context.settings->physics_dt) {
-  builder_.emplace(*world_, pointer_body_, PointerRadiusFor3Dof(context), context.settings->rendering);
+  builder_.emplace(*world_, pointer_body_, PointerRadiusFor3Dof(context),
+                   context.settings->rendering);
   builders_.reserve(context.pointers.size());
   for (const PointerContext& pointer : context.pointers) {
     pointer_bodies_.push_back(pointer.body);
@@ -20,8 +21,7 @@ PointPenaltyPhysics::PointPenaltyPhysics(const MethodContext& context)
   }
 }
 
-void PointPenaltyPhysics::PhysicsStart(const ir::HapticReport& initial,
-                                       ir::PhysicsSnapshot* out) {
+void PointPenaltyPhysics::PhysicsStart(const ir::HapticReport& initial, ir::PhysicsSnapshot* out) {
   world_->SetMocapPose(pointer_body_, initial.X_WP);
   builder_->CapturePreviousPoses(*world_);
   builder_->Build(*world_, initial.X_WP, out);

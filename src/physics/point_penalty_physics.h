@@ -27,6 +27,7 @@ class PointPenaltyPhysics final : public MethodPhysics {
                             std::span<ir::PhysicsSnapshot* const> out) override;
   void PhysicsStepPointers(std::span<const ir::HapticReport* const> reports,
                            std::span<ir::PhysicsSnapshot* const> out) override;
+
   PhaseTimes last_phases() const noexcept override { return phases_; }
 
  private:

@@ -41,7 +41,9 @@ class ProxyPhysics final : public MethodPhysics {
                             std::span<ir::PhysicsSnapshot* const> out) override;
   void PhysicsStepPointers(std::span<const ir::HapticReport* const> reports,
                            std::span<ir::PhysicsSnapshot* const> out) override;
+
   PhaseTimes last_phases() const noexcept override { return phases_; }
+
   const ir::HapticReport* applied_reaction() const noexcept override {
     return local_ ? &local_->applied() : nullptr;
   }

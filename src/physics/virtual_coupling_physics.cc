@@ -4,9 +4,8 @@
 
 #include <fmt/format.h>
 
-#include <chrono>
-
 #include <Eigen/Eigenvalues>
+#include <chrono>
 
 #include "mrh/core/error.h"
 #include "mrh/core/validate.h"
@@ -21,8 +20,13 @@ namespace {
 constexpr double kMaxGrowth = 1.0 + 1e-9;
 
 // Gains that keep one axis well inside the stable region: a = 0.05, c = 0.3 (growth 0.77).
-double StableStiffness(double inertia, double h) { return 0.05 * inertia / (h * h); }
-double StableDamping(double inertia, double h) { return 0.3 * inertia / h; }
+double StableStiffness(double inertia, double h) {
+  return 0.05 * inertia / (h * h);
+}
+
+double StableDamping(double inertia, double h) {
+  return 0.3 * inertia / h;
+}
 
 // The smallest principal moment of the tool's inertia about its COM (kg·m²): the axis on which
 // the rotational coupling is closest to instability.
@@ -72,8 +76,8 @@ void CheckCouplingStable(const world::BodyInfo& tool, const render::CouplingGain
         "coupling_rot_stiffness {} and coupling_rot_damping {}, or a larger "
         "rendering.tool_inertia",
         origin, FormatNumber(g.k_r), FormatNumber(g.b_r), tool.name, FormatNumber(inertia),
-        FormatNumber(h), FormatNumber(rot_growth),
-        FormatNumber(StableStiffness(inertia, h)), FormatNumber(StableDamping(inertia, h))));
+        FormatNumber(h), FormatNumber(rot_growth), FormatNumber(StableStiffness(inertia, h)),
+        FormatNumber(StableDamping(inertia, h))));
   }
 }
 
@@ -111,15 +115,14 @@ void VirtualCouplingPhysics::Publish(ir::PhysicsSnapshot* out) const {
 }
 
 void VirtualCouplingPhysics::PhysicsStart(const ir::HapticReport& initial,
-                                         ir::PhysicsSnapshot* out) {
+                                          ir::PhysicsSnapshot* out) {
   // The tool starts at the device pose, at rest.
   (void)world_->SetBodyState(tool_, initial.X_WP, Twist{});
   Publish(out);
   out->step = -1;
 }
 
-void VirtualCouplingPhysics::PhysicsStep(const ir::HapticReport& report,
-                                        ir::PhysicsSnapshot* out) {
+void VirtualCouplingPhysics::PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot* out) {
   ApplyReportImpulses(*world_, report, physics_dt_, tool_);
   const double mass = world_->body(tool_).mass;
   world_->AddWrenchAtCom(tool_, Wrench{-mass * world_->gravity(), Vec3::Zero()});

@@ -41,6 +41,7 @@ class VirtualCouplingPhysics final : public MethodPhysics {
 
   void PhysicsStart(const ir::HapticReport& initial, ir::PhysicsSnapshot* out) override;
   void PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot* out) override;
+
   PhaseTimes last_phases() const noexcept override { return phases_; }
 
  private:

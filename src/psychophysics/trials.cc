@@ -26,8 +26,8 @@ constexpr std::array<const char*, 12> kColumns{
 
 // What the fit needs; data from another tool (PsychoPy, a spreadsheet) may hold only these.
 // The other columns are bookkeeping of mrh's own runs, with defaults when absent.
-constexpr std::array<const char*, 5> kEssentialColumns{
-    "subject", "method", "standard_mass", "comparison_mass", "comparison_heavier"};
+constexpr std::array<const char*, 5> kEssentialColumns{"subject", "method", "standard_mass",
+                                                       "comparison_mass", "comparison_heavier"};
 
 std::vector<std::string> Split(const std::string& line) {
   std::vector<std::string> cells;
@@ -46,6 +46,7 @@ class RowReader {
       : file_(file), line_(line), index_(index), cells_(cells) {}
 
   bool Has(const char* column) const { return index_.contains(column); }
+
   int line() const { return line_; }
 
   const std::string& Text(const char* column) const {
@@ -103,8 +104,8 @@ class RowReader {
 TrialRow ParseRow(const RowReader& r) {
   TrialRow row;
   row.subject = r.Text("subject");
-  row.trial = r.Has("trial") ? static_cast<int>(r.Integer("trial", 0, 1'000'000'000))
-                             : r.line() - 2;
+  row.trial =
+      r.Has("trial") ? static_cast<int>(r.Integer("trial", 0, 1'000'000'000)) : r.line() - 2;
   row.method = r.Text("method");
   if (r.Has("standard_method")) row.standard_method = r.Text("standard_method");
   row.standard_mass = r.Number("standard_mass");
@@ -113,7 +114,7 @@ TrialRow ParseRow(const RowReader& r) {
   if (r.Has("comparison_first")) row.comparison_first = r.Integer("comparison_first", 0, 1) == 1;
   row.comparison_heavier = r.Integer("comparison_heavier", 0, 1) == 1;
   row.answer = r.Has("answer") ? static_cast<int>(r.Integer("answer", 1, 2))
-               : (row.comparison_heavier == row.comparison_first ? 1 : 2);
+                               : (row.comparison_heavier == row.comparison_first ? 1 : 2);
   if (r.Has("response_time")) row.response_time = r.Number("response_time");
   if (r.Has("seed")) row.seed = r.Unsigned("seed");
   if (row.comparison_heavier != ((row.answer == 1) == row.comparison_first)) {
@@ -132,10 +133,10 @@ std::map<std::string, int> HeaderIndex(const std::filesystem::path& file,
   for (int i = 0; i < static_cast<int>(names.size()); ++i) index[names[i]] = i;
   for (const char* column : kEssentialColumns) {
     if (!index.contains(column)) {
-      throw InvalidArgument(fmt::format(
-          "{}:1: no column \"{}\"; expected at least subject, method, standard_mass, "
-          "comparison_mass and comparison_heavier (mrh's own header: {})",
-          file.string(), column, TrialsHeader()));
+      throw InvalidArgument(
+          fmt::format("{}:1: no column \"{}\"; expected at least subject, method, standard_mass, "
+                      "comparison_mass and comparison_heavier (mrh's own header: {})",
+                      file.string(), column, TrialsHeader()));
     }
   }
   return index;

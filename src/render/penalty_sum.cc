@@ -16,7 +16,9 @@ std::uint64_t PointId(std::uint64_t pair_key, int index_in_pair) noexcept {
   return pair_key * 0x9E3779B97F4A7C15ull ^ static_cast<std::uint64_t>(index_in_pair);
 }
 
-bool Finite(const Vec3& v) noexcept { return v.allFinite(); }
+bool Finite(const Vec3& v) noexcept {
+  return v.allFinite();
+}
 
 bool InputIsFinite(const TickIr& ir, const Pose& X_WP, double dt) noexcept {
   if (!(dt > 0.0) || !std::isfinite(dt) || !Finite(X_WP.p) || !X_WP.q.coeffs().allFinite()) {
@@ -49,8 +51,7 @@ Wrench PenaltySumWrench(const TickIr& ir, const Pose& X_WP, double k) noexcept {
   return w;
 }
 
-PenaltySumRenderer::PenaltySumRenderer(const PenaltySumSettings& settings)
-    : settings_(settings) {
+PenaltySumRenderer::PenaltySumRenderer(const PenaltySumSettings& settings) : settings_(settings) {
   settings_.Validate();
 }
 

@@ -77,8 +77,9 @@ Wrench ProxyRenderer::LimitedTotal(const TickIr& ir, double largest, ProxyOutput
   return total;
 }
 
-// Each row's spring force k_i f_k a_k (k_i the pair's stiffness: k_t without a material) and its moment about the pointer origin, summed per pair:
-// normal rows into force_pair_/torque_pair_, friction rows into friction_force_/_torque_.
+// Each row's spring force k_i f_k a_k (k_i the pair's stiffness: k_t without a material) and its
+// moment about the pointer origin, summed per pair: normal rows into force_pair_/torque_pair_,
+// friction rows into friction_force_/_torque_.
 void ProxyRenderer::AddRowForces() noexcept {
   for (std::size_t i = 0; i < ir::kMaxGeometricPairs; ++i) {
     force_pair_[i].setZero();

@@ -76,8 +76,7 @@ void ProxyRenderer::Tick(const TickIr& ir, const Pose& X_WP, double dt, ProxyOut
     const Vec3& dr_before = has_previous_ ? previous_dr_ : out->dr;
     const Vec3& dtheta_before = has_previous_ ? previous_dtheta_ : out->dtheta;
     out->w_W.f = settings_.k_t * out->dr + settings_.d_t * (out->dr - dr_before) / dt;
-    out->w_W.tau =
-        settings_.k_r * out->dtheta + settings_.d_r * (out->dtheta - dtheta_before) / dt;
+    out->w_W.tau = settings_.k_r * out->dtheta + settings_.d_r * (out->dtheta - dtheta_before) / dt;
   } else {
     ComputeContactForces(ir, X_WP, dt, out);
   }

@@ -53,8 +53,8 @@ void ProxyRendererSettings::Validate() const {
                           "RotationWeightFromInertia or a positive diagonal");
   }
   if (torque_model == ProxyTorqueModel::kContact && !(k_t > 0.0 && k_r > 0.0 && d_r == 0.0)) {
-    throw InvalidArgument("ProxyRendererSettings: k_t = " + Text(k_t) + " N/m, k_r = " +
-                          Text(k_r) + " N·m/rad, d_r = " + Text(d_r) +
+    throw InvalidArgument("ProxyRendererSettings: k_t = " + Text(k_t) + " N/m, k_r = " + Text(k_r) +
+                          " N·m/rad, d_r = " + Text(d_r) +
                           " N·m·s/rad; the contact torque model needs k_t > 0, k_r > 0 (R_w = "
                           "k_r / k_t) and d_r = 0 (it damps through the contacts)");
   }

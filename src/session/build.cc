@@ -27,8 +27,8 @@ auto WithFile(const Session& session, Build&& build) {
     return build();
   } catch (const Error& e) {
     const std::string_view message = e.what();
-    for (const auto* path : {&session.file, &session.scene, &session.device.trajectory,
-                             &session.device.replay}) {
+    for (const auto* path :
+         {&session.file, &session.scene, &session.device.trajectory, &session.device.replay}) {
       if (StartsWithPath(message, *path)) throw;
     }
     const std::string text = session.file.string() + ": " + std::string(message);

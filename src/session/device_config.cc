@@ -98,8 +98,7 @@ std::vector<device::Keyframe> ParseKeyframes(const Node& node) {
   std::vector<device::Keyframe> keyframes;
   for (const Node& element : elements) {
     const std::vector<double> v = element.Numbers(8, kKeyframeLayout);
-    const Problem problem =
-        KeyframeTimeProblem(v[0], keyframes.empty() ? NAN : keyframes.back().t);
+    const Problem problem = KeyframeTimeProblem(v[0], keyframes.empty() ? NAN : keyframes.back().t);
     if (problem) element.Fail(problem.what, problem.expected);
     keyframes.push_back(device::Keyframe{v[0], CheckedPose(element, v.data() + 1)});
   }
@@ -237,7 +236,8 @@ device::Calibration ParseCalibration(const Node& node) {
   if (const auto scale = node.Find("scale")) {
     calibration.scale = scale->Number("");
     if (!(calibration.scale >= 1e-3 && calibration.scale <= 1e3)) {
-      scale->Fail(FormatNumber(calibration.scale), "a number in [0.001, 1000] (world m per device m)");
+      scale->Fail(FormatNumber(calibration.scale),
+                  "a number in [0.001, 1000] (world m per device m)");
     }
   }
   return calibration;
@@ -284,9 +284,9 @@ void CheckStiffnessLimit(const Node& root, const DeviceConfig& device, double st
   if (!device.stiffness_limit_stated || stiffness <= device.specs.max_stiffness) return;
   const std::string source =
       device.model.empty() ? std::string() : fmt::format(" (device.model \"{}\")", device.model);
-  const std::string what = fmt::format(
-      "rendering.stiffness = {} N/m exceeds device.limits.max_stiffness = {} N/m{}", stiffness,
-      device.specs.max_stiffness, source);
+  const std::string what =
+      fmt::format("rendering.stiffness = {} N/m exceeds device.limits.max_stiffness = {} N/m{}",
+                  stiffness, device.specs.max_stiffness, source);
   const std::string fix =
       "rendering.stiffness <= device.limits.max_stiffness, or raise device.limits.max_stiffness "
       "if the device renders it stably";

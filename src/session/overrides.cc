@@ -53,8 +53,7 @@ nlohmann::json ParseValue(std::string_view value) {
 void ApplyOne(const std::string& text, nlohmann::json* document, Context* context) {
   const std::size_t equals = text.find('=');
   if (equals == std::string::npos) {
-    FailOverride(*context, text, "missing '='",
-                 "KEY=VALUE, e.g. --set rendering.stiffness=2000");
+    FailOverride(*context, text, "missing '='", "KEY=VALUE, e.g. --set rendering.stiffness=2000");
   }
   const std::string_view key = std::string_view(text).substr(0, equals);
   const std::vector<std::string> parts = SplitKey(*context, text, key);

@@ -105,8 +105,8 @@ inline constexpr std::array<Field<settings::VibrationSettings>, 3> kVibrationFie
 }};
 
 /// `rendering` keys the parser handles itself (not plain fields).
-inline constexpr std::array<std::string_view, 2> kRenderingSpecialKeys{{"rotation_weight",
-                                                                        "tool_inertia"}};
+inline constexpr std::array<std::string_view, 2> kRenderingSpecialKeys{
+    {"rotation_weight", "tool_inertia"}};
 
 /// `safety` block.
 inline constexpr std::array<Field<device::SafetySettings>, 5> kSafetyFields{{

@@ -19,18 +19,18 @@ namespace {
 // 0.05 / 0.001 = 49.99999999999999.
 constexpr double kRatioTolerance = 1e-6;
 // Bounds of what the engine can run (docs/session-format.md, "Ranges").
-constexpr double kMinHapticDt = 1e-5;          // s: 100 kHz
-constexpr double kMaxHapticDt = 0.1;           // s: haptic rendering needs ~1 ms
-constexpr double kMaxPhysicsDt = 1.0;          // s
+constexpr double kMinHapticDt = 1e-5;  // s: 100 kHz
+constexpr double kMaxHapticDt = 0.1;   // s: haptic rendering needs ~1 ms
+constexpr double kMaxPhysicsDt = 1.0;  // s
 constexpr double kMaxTicksPerStep = 1e6;
-constexpr double kMaxDuration = 3600.0;        // s
-constexpr double kMaxTicks = 1e7;              // duration / haptic_dt
-constexpr double kMaxPointerRadius = 1.0;      // m
-constexpr double kMaxStiffness = 1e6;          // N/m
-constexpr double kMaxDamping = 1e4;            // N*s/m
-constexpr double kMaxDistance = 10.0;          // m
-constexpr double kMaxRotStiffness = 1e4;       // N*m/rad
-constexpr double kMaxRotDamping = 1e3;         // N*m*s/rad
+constexpr double kMaxDuration = 3600.0;    // s
+constexpr double kMaxTicks = 1e7;          // duration / haptic_dt
+constexpr double kMaxPointerRadius = 1.0;  // m
+constexpr double kMaxStiffness = 1e6;      // N/m
+constexpr double kMaxDamping = 1e4;        // N*s/m
+constexpr double kMaxDistance = 10.0;      // m
+constexpr double kMaxRotStiffness = 1e4;   // N*m/rad
+constexpr double kMaxRotDamping = 1e3;     // N*m*s/rad
 constexpr double kMaxFriction = 10.0;
 constexpr double kMaxIterations = 1e6;
 constexpr int kMaxCurvedSegments = 1024;
@@ -115,11 +115,11 @@ void ValidateTimes(const EngineSettings& s) {
   }
   RequireInRange(s.duration, s.haptic_dt, kMaxDuration, "duration", "s");
   if (s.duration / s.haptic_dt > kMaxTicks) {
-    throw InvalidArgument(fmt::format(
-        "duration = {} s is {} ticks of haptic_dt = {} s; expected at most {} ticks "
-        "(a shorter duration or a longer haptic_dt)",
-        FormatNumber(s.duration), FormatNumber(std::round(s.duration / s.haptic_dt)),
-        FormatNumber(s.haptic_dt), FormatNumber(kMaxTicks)));
+    throw InvalidArgument(
+        fmt::format("duration = {} s is {} ticks of haptic_dt = {} s; expected at most {} ticks "
+                    "(a shorter duration or a longer haptic_dt)",
+                    FormatNumber(s.duration), FormatNumber(std::round(s.duration / s.haptic_dt)),
+                    FormatNumber(s.haptic_dt), FormatNumber(kMaxTicks)));
   }
 }
 

@@ -116,7 +116,7 @@ class HapticLoop {
   TripleBuffer<Window> windows_;
 
   // Haptic-thread state.
-  std::size_t samples_ = 0;         // samples in windows_.write_slot()
+  std::size_t samples_ = 0;  // samples in windows_.write_slot()
   std::int64_t window_start_ns_ = 0;
 
   // UI-thread state.

@@ -27,8 +27,7 @@ void Text(fmt::format_string<Args...> format, Args&&... args) {
 void DrawRates(const PanelInfo& info) {
   const settings::EngineSettings& e = *info.settings;
   Text("haptic   {:7.1f} Hz  (target {:.0f}, {}{})", info.loop.rate_hz, 1.0 / e.haptic_dt,
-       info.loop.fifo ? "SCHED_FIFO" : "normal priority",
-       info.memory_locked ? ", mlockall" : "");
+       info.loop.fifo ? "SCHED_FIFO" : "normal priority", info.memory_locked ? ", mlockall" : "");
   Text("jitter   mean {:.0f} / p99 {:.0f} / max {:.0f} us", info.loop.jitter_mean_us,
        info.loop.jitter_p99_us, info.loop.jitter_max_us);
   Text("physics  {:7.1f} Hz  step {:.2f} ms", info.physics_hz, info.step_ms);
@@ -146,8 +145,7 @@ void DrawStatus(const PanelInfo& info, bool torque) {
     Text("t {:.3f} s  contacts {}  |f| {:.2f} N  |tau| {:.3f} N m", info.t, info.contacts,
          info.displayed_W.f.norm(), info.displayed_W.tau.norm());
   } else {
-    Text("t {:.3f} s  contacts {}  |f| {:.2f} N", info.t, info.contacts,
-         info.displayed_W.f.norm());
+    Text("t {:.3f} s  contacts {}  |f| {:.2f} N", info.t, info.contacts, info.displayed_W.f.norm());
   }
 }
 

@@ -58,7 +58,7 @@ struct PanelActions {
   std::optional<InputSource> source;  ///< switch input (restart)
   bool record = false;                ///< reset and start recording to record_path
   bool stop_record = false;
-  bool replay = false;  ///< reset and play record_path
+  bool replay = false;         ///< reset and play record_path
   std::optional<int> pointer;  ///< drive this pointer instead (restart)
 };
 

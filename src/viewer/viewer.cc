@@ -321,7 +321,7 @@ class ViewerApp {
   LiveFeed feed_;
   InitialView initial_;
   int pointer_body_ = -1;
-  Pose target_W_;  // the pointer target the mouse drives (world frame)
+  Pose target_W_;            // the pointer target the mouse drives (world frame)
   std::vector<Pose> poses_;  // every pointer's newest tick pose (world frame)
   device::MouseDevice mouse_;
   LiveSession live_;  // after feed_ and mouse_: its threads stop before they go

@@ -90,8 +90,9 @@ std::string World::FindDivergence(double max_body_speed) {
     const double speed = FreeBodySpeed(m, d, j);
     if (speed > max_body_speed) {
       return impl_->origin + ": the simulation diverged" + At(d) + ": " + BodyName(m, body) +
-             " moves at " + Rounded(speed, 4) + " m/s, over safety.max_body_speed = " +
-             Rounded(max_body_speed, 4) + " m/s; " + kLikelyCauses;
+             " moves at " + Rounded(speed, 4) +
+             " m/s, over safety.max_body_speed = " + Rounded(max_body_speed, 4) + " m/s; " +
+             kLikelyCauses;
     }
   }
   return {};

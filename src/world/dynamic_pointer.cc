@@ -14,13 +14,13 @@ namespace mrh::world::internal {
 std::string MakePointerDynamic(const std::string& xml, const std::string& name,
                                const std::string& origin) {
   // The body's start tag: <body ... name="NAME" ...>.
-  const std::regex tag("<body\\b[^>]*\\bname\\s*=\\s*\"" + std::regex_replace(
-                           name, std::regex(R"([.^$|()\[\]{}*+?\\])"), R"(\$&)") +
+  const std::regex tag("<body\\b[^>]*\\bname\\s*=\\s*\"" +
+                       std::regex_replace(name, std::regex(R"([.^$|()\[\]{}*+?\\])"), R"(\$&)") +
                        "\"[^>]*>");
   std::smatch match;
   if (!std::regex_search(xml, match, tag) || match.str().ends_with("/>")) {
-    throw SceneError(origin + ": pointer body '" + name +
-                     "' has no <body name=\"" + name + "\" ...> element with children to make a "
+    throw SceneError(origin + ": pointer body '" + name + "' has no <body name=\"" + name +
+                     "\" ...> element with children to make a "
                      "dynamic tool of (virtual-coupling); give it its geoms as children");
   }
   std::string start = std::regex_replace(match.str(), std::regex("\\bmocap\\s*=\\s*\"true\""), "");

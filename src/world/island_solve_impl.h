@@ -49,6 +49,7 @@ class IslandSolve {
 
   /// Island dofs (global indices, ascending) and the active rows of the last settled solve.
   const std::vector<int>& dofs() const { return dofs_; }
+
   int active_rows() const { return active_rows_; }
 
  private:

@@ -65,14 +65,16 @@ void InstallMujocoHandlers() {
   static std::once_flag once;
   std::call_once(once, [] {
     mju_user_warning = [](const char*) {};
-    mju_user_error = [](const char* message) { ThrowMujocoError(message); };
+    mju_user_error = [](const char* message) {
+      ThrowMujocoError(message);
+    };
   });
 }
 
 // Bounds of the scene as MuJoCo read it (docs/session-format.md, "Ranges").
-constexpr double kMaxGravity = 1e3;   // m/s^2, per component
-constexpr double kMaxExtent = 1e4;    // m: positions, sizes, mesh vertices
-constexpr double kMaxMass = 1e6;      // kg
+constexpr double kMaxGravity = 1e3;  // m/s^2, per component
+constexpr double kMaxExtent = 1e4;   // m: positions, sizes, mesh vertices
+constexpr double kMaxMass = 1e6;     // kg
 
 std::string Name(const mjModel& m, mjtObj type, int id, const char* kind) {
   return std::string(kind) + " " + internal::Describe(m, type, id);
@@ -177,12 +179,14 @@ class QuietStdio {
     if (saved_err_ >= 0) ::dup2(null, STDERR_FILENO);
     ::close(null);
   }
+
   ~QuietStdio() {
     std::fflush(stdout);
     std::fflush(stderr);
     Restore(saved_out_, STDOUT_FILENO);
     Restore(saved_err_, STDERR_FILENO);
   }
+
   QuietStdio(const QuietStdio&) = delete;
   QuietStdio& operator=(const QuietStdio&) = delete;
 
@@ -286,8 +290,8 @@ World World::LoadFile(const std::filesystem::path& path, const LoadOptions& opti
                     options, origin, path.parent_path());
   }
   auto impl = std::make_unique<Impl>();
-  internal::InitializeState(LoadOrThrow(origin.c_str(), nullptr, origin, ReadScene(path)), origin, options,
-                            impl.get());
+  internal::InitializeState(LoadOrThrow(origin.c_str(), nullptr, origin, ReadScene(path)), origin,
+                            options, impl.get());
   return World(std::move(impl));
 }
 

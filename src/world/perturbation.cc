@@ -20,6 +20,7 @@
 namespace mrh::world {
 
 static_assert(mjNISLAND == 20, "Perturber::saved_solver_iter_ holds mjData::solver_niter");
+
 namespace {
 
 using internal::IsFreeBody;
@@ -42,10 +43,12 @@ class SolverOverride {
     if (settings.solver_tolerance > 0.0) m->opt.tolerance = settings.solver_tolerance;
     if (settings.solver_iterations > 0) m->opt.iterations = settings.solver_iterations;
   }
+
   ~SolverOverride() {
     m_->opt.tolerance = tolerance_;
     m_->opt.iterations = iterations_;
   }
+
   SolverOverride(const SolverOverride&) = delete;
   SolverOverride& operator=(const SolverOverride&) = delete;
 
@@ -65,11 +68,11 @@ Perturber::Perturber(World* world, const PerturberSettings& settings)
   MRH_DEMAND(world_ != nullptr);
   if (settings_.max_island_dofs < 0 || settings_.solver_iterations < 0 ||
       !(settings_.solver_tolerance >= 0.0)) {
-    throw InvalidArgument("Perturber: max_island_dofs = " +
-                          std::to_string(settings_.max_island_dofs) + ", solver_iterations = " +
-                          std::to_string(settings_.solver_iterations) + ", solver_tolerance = " +
-                          std::to_string(settings_.solver_tolerance) +
-                          "; expected each >= 0 (0: the model's own solver settings)");
+    throw InvalidArgument(
+        "Perturber: max_island_dofs = " + std::to_string(settings_.max_island_dofs) +
+        ", solver_iterations = " + std::to_string(settings_.solver_iterations) +
+        ", solver_tolerance = " + std::to_string(settings_.solver_tolerance) +
+        "; expected each >= 0 (0: the model's own solver settings)");
   }
   island_ = std::make_unique<internal::IslandSolve>();
   const mjModel& m = *world_->impl_->model;

@@ -194,6 +194,7 @@ std::vector<std::string> World::SimulatorWarnings() const {
     const char* what;
     const char* fix;
   };
+
   static constexpr std::array<Kind, 7> kKinds{{
       {mjWARN_INERTIA, "(near) singular inertia matrix", "give every body positive mass/inertia"},
       {mjWARN_CONTACTFULL, "contact buffer full, contacts dropped",
@@ -210,8 +211,8 @@ std::vector<std::string> World::SimulatorWarnings() const {
   for (const Kind& kind : kKinds) {
     const int count = d->warning[kind.index].number;
     if (count <= 0) continue;
-    lines.push_back(impl_->origin + ": MuJoCo warned " + std::to_string(count) + " time(s): " +
-                    kind.what + " (last info " +
+    lines.push_back(impl_->origin + ": MuJoCo warned " + std::to_string(count) +
+                    " time(s): " + kind.what + " (last info " +
                     std::to_string(d->warning[kind.index].lastinfo) + "); " + kind.fix);
   }
   return lines;

@@ -80,7 +80,7 @@ bool SetJointsFromBodyState(const mjModel& m, mjData* d, int body, const Pose& X
 struct WorldState {
   internal::ModelPtr model;
   internal::DataPtr data;
-  std::string origin;  // the scene's name in error messages
+  std::string origin;                      // the scene's name in error messages
   std::vector<std::string> load_warnings;  // World::LoadWarnings()
   std::vector<BodyInfo> bodies;
   std::vector<GeomInfo> geoms;
@@ -116,8 +116,10 @@ inline int SolverIterations(const mjData& d) {
 /// nconmax>; comments skipped, <include>d files not read).
 struct ExplicitSizes {
   bool memory = false, njmax = false, nconmax = false;
+
   bool any() const { return memory || njmax || nconmax; }
 };
+
 ExplicitSizes FindExplicitSizes(const std::string& mjcf);
 
 /// The bytes of mjData's arena (contacts, constraints and the solver's stack) for `m`

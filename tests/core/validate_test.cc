@@ -28,14 +28,23 @@ TEST(FormatNumberTest, PrintsDenormalsHugeAndNonFiniteValuesFaithfully) {
 }
 
 TEST(RequireTest, MessagesNameKeyValueUnitAndRange) {
-  EXPECT_THAT([] { RequirePositive(0.0, "haptic_dt", "s"); },
-              ThrowsMessage<InvalidArgument>("haptic_dt = 0 s; expected a finite value > 0"));
-  EXPECT_THAT([] { RequireNonNegative(1e308, "safety.watchdog_timeout", "s", 3600.0); },
-              ThrowsMessage<InvalidArgument>(
-                  "safety.watchdog_timeout = 1e+308 s; expected a finite value >= 0 and <= 3600 s"));
-  EXPECT_THAT([] { RequireInRange(5e-324, 1e-3, 1e3, "rendering.perturbation_force", "N"); },
-              ThrowsMessage<InvalidArgument>("rendering.perturbation_force = 5e-324 N; expected a "
-                                             "finite value in [0.001, 1000] N"));
+  EXPECT_THAT(
+      [] {
+        RequirePositive(0.0, "haptic_dt", "s");
+      },
+      ThrowsMessage<InvalidArgument>("haptic_dt = 0 s; expected a finite value > 0"));
+  EXPECT_THAT(
+      [] {
+        RequireNonNegative(1e308, "safety.watchdog_timeout", "s", 3600.0);
+      },
+      ThrowsMessage<InvalidArgument>(
+          "safety.watchdog_timeout = 1e+308 s; expected a finite value >= 0 and <= 3600 s"));
+  EXPECT_THAT(
+      [] {
+        RequireInRange(5e-324, 1e-3, 1e3, "rendering.perturbation_force", "N");
+      },
+      ThrowsMessage<InvalidArgument>("rendering.perturbation_force = 5e-324 N; expected a "
+                                     "finite value in [0.001, 1000] N"));
   EXPECT_NO_THROW(RequireInRange(1e-3, 1e-3, 1e3, "k", ""));
   EXPECT_NO_THROW(RequirePositive(1e300, "k", ""));
 }

@@ -133,7 +133,8 @@ TEST(ScriptedDeviceTest, RejectsNonIncreasingTimesNamingTheKeyframe) {
         (void)MakeScriptedDevice(
             {Key(0.0, Vec3::Zero()), Key(1.0, Vec3::Zero()), Key(1.0, Vec3::Zero())});
       },
-      ThrowsMessage<InvalidArgument>(HasSubstr("keyframe 2: t = 1 s is not 1e-06 s or more after the previous t = 1 s")));
+      ThrowsMessage<InvalidArgument>(
+          HasSubstr("keyframe 2: t = 1 s is not 1e-06 s or more after the previous t = 1 s")));
 }
 
 TEST(ScriptedDeviceTest, RejectsNonFiniteValuesNamingTheKeyframe) {
@@ -150,7 +151,8 @@ TEST(ScriptedDeviceTest, RejectsZeroQuaternionNamingTheKeyframe) {
       [] {
         (void)MakeScriptedDevice({Key(0.0, Vec3::Zero(), Quat(0, 0, 0, 0))});
       },
-      ThrowsMessage<InvalidArgument>(HasSubstr("keyframe 0: quaternion (qw, qx, qy, qz) = (0, 0, 0, 0) has (almost) zero norm")));
+      ThrowsMessage<InvalidArgument>(HasSubstr(
+          "keyframe 0: quaternion (qw, qx, qy, qz) = (0, 0, 0, 0) has (almost) zero norm")));
 }
 
 TEST(LoadKeyframesCsvTest, ReadsColumnsInAnyOrderIgnoringExtras) {
@@ -217,7 +219,8 @@ TEST(LoadKeyframesCsvTest, ZeroQuaternionNamesFileLine) {
         (void)LoadKeyframesCsv(path);
       },
       ThrowsMessage<InvalidArgument>(
-          HasSubstr(path.string() + ":2: columns x,y,z,qw,qx,qy,qz: quaternion (qw, qx, qy, qz) = (0, 0, 0, 0)")));
+          HasSubstr(path.string() +
+                    ":2: columns x,y,z,qw,qx,qy,qz: quaternion (qw, qx, qy, qz) = (0, 0, 0, 0)")));
 }
 
 TEST(LoadKeyframesCsvTest, NonIncreasingTimeNamesFileLine) {
@@ -227,8 +230,8 @@ TEST(LoadKeyframesCsvTest, NonIncreasingTimeNamesFileLine) {
       [&] {
         (void)LoadKeyframesCsv(path);
       },
-      ThrowsMessage<InvalidArgument>(
-          HasSubstr(path.string() + ":4: column 't': t = 0.5 s is not 1e-06 s or more after the previous")));
+      ThrowsMessage<InvalidArgument>(HasSubstr(
+          path.string() + ":4: column 't': t = 0.5 s is not 1e-06 s or more after the previous")));
 }
 
 TEST(LoadKeyframesCsvTest, HeaderOnlyFileNamesFile) {

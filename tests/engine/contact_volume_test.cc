@@ -3,14 +3,13 @@
 // forms: a face pressed to depth δ gives k δ whatever its area; a wedge gives the force and centre
 // of pressure of its linear pressure; a stack rests at its weights over k; friction holds below μN
 // and slides above it at g (sin α − μ cos α).
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "mrh/core/error.h"
 #include "mrh/device/simulated.h"
@@ -99,7 +98,7 @@ TEST(ContactVolume, FacePressedToDepthGivesKDeltaWhateverItsArea) {
   for (const auto& [hx, hy] : {std::pair{0.02, 0.02}, std::pair{0.08, 0.06}}) {
     const Pose pressed{Vec3(0.1, -0.2, kHalfZ - kDepth), Quat::Identity()};
     const Tap tap = RunPenalty(PenaltyWorld(PointerBox(hx, hy, kHalfZ)), pressed,
-                        PenaltySettings(0.05, 0.0, 0.0));
+                               PenaltySettings(0.05, 0.0, 0.0));
     const Wrench& w = tap.ticks.back().displayed_W;
     EXPECT_NEAR(w.f.z(), kK * kDepth, 1e-9 * kK) << "face " << hx << " x " << hy;
     EXPECT_NEAR(w.f.head<2>().norm(), 0.0, 1e-9 * kK);
@@ -118,15 +117,15 @@ TEST(ContactVolume, WedgeGivesTheForceAndCentreOfPressureOfALinearPressure) {
   const Vec3 corner = q * Vec3(kA, 0.0, -kC);  // the lowest edge, relative to the centre
   const Vec3 centre(0.2, 0.1, -kDepth - corner.z());
   const Tap tap = RunPenalty(PenaltyWorld(PointerBox(kA, kB, kC)), Pose{centre, q},
-                      PenaltySettings(0.05, 0.0, 0.0));
+                             PenaltySettings(0.05, 0.0, 0.0));
   const double x_e = centre.x() + corner.x();
   const double x_cp = x_e + kDepth * (std::tan(kTheta) - 1.0 / std::tan(kTheta)) / 3.0;
   const Vec3 f(0.0, 0.0, kK * kDepth / 2.0);
   const Vec3 tau = (Vec3(x_cp, centre.y(), 0.0) - centre).cross(f);
   const Wrench& w = tap.ticks.back().displayed_W;
   EXPECT_NEAR((w.f - f).norm(), 0.0, 1e-6 * f.norm()) << w.f.transpose();
-  EXPECT_NEAR((w.tau - tau).norm(), 0.0, 1e-6 * tau.norm()) << w.tau.transpose() << " vs "
-                                                             << tau.transpose();
+  EXPECT_NEAR((w.tau - tau).norm(), 0.0, 1e-6 * tau.norm())
+      << w.tau.transpose() << " vs " << tau.transpose();
 }
 
 // Two 0.5 kg cubes stacked on the floor, the pointer far away: at rest each contact carries the
@@ -139,8 +138,8 @@ TEST(ContactVolume, StackRestsAtItsWeightsOverK) {
          <body name="high" pos="0 0 {}"><freejoint/><geom type="box" size="{} {} {}" mass="{}"/></body>)",
       kHalf, kHalf, kHalf, kHalf, kMass, 3 * kHalf, kHalf, kHalf, kHalf, kMass);
   const Tap tap = RunPenalty(PenaltyWorld(cubes + PointerBox(0.02, 0.02, 0.02)),
-                      Pose{Vec3(1.0, 1.0, 0.5), Quat::Identity()},
-                      PenaltySettings(3.0, 30.0, 0.5), {"low", "high"});
+                             Pose{Vec3(1.0, 1.0, 0.5), Quat::Identity()},
+                             PenaltySettings(3.0, 30.0, 0.5), {"low", "high"});
   const std::vector<Vec3>& rest = tap.positions.back();
   const double sink_low = 2.0 * kMass * kG / kK, sink_high = kMass * kG / kK;
   constexpr double kTol = 1e-5;  // m: 0.2 % of the 4.9 mm sinks
@@ -159,13 +158,14 @@ TEST(ContactVolume, StackRestsAtItsWeightsOverK) {
 double SlideAcceleration(double tan_alpha, double* drift) {
   constexpr double kMass = 0.5, kHalf = 0.05, kHalfZ = 0.02, kMu = 0.5;
   world::World world = PenaltyWorld(
-      fmt::format(R"(<body name="cube" pos="0 0 {}"><freejoint/><geom type="box" size="{} {} {}" mass="{}"/></body>)",
-                  kHalfZ - kMass * kG / kK, kHalf, kHalf, kHalfZ, kMass) +
+      fmt::format(
+          R"(<body name="cube" pos="0 0 {}"><freejoint/><geom type="box" size="{} {} {}" mass="{}"/></body>)",
+          kHalfZ - kMass * kG / kK, kHalf, kHalf, kHalfZ, kMass) +
       PointerBox(0.02, 0.02, 0.02));
   const double alpha = std::atan(tan_alpha);
   world.set_gravity(Vec3(kG * std::sin(alpha), 0.0, -kG * std::cos(alpha)));
   const Tap tap = RunPenalty(std::move(world), Pose{Vec3(1.0, 1.0, 0.5), Quat::Identity()},
-                      PenaltySettings(2.0, 30.0, kMu), {"cube"});
+                             PenaltySettings(2.0, 30.0, kMu), {"cube"});
   // x(t) at t = 1, 1.5, 2 s: a = (x(2) − 2 x(1.5) + x(1)) / 0.5².
   auto x_at = [&](double t) {
     for (std::size_t i = 0; i < tap.times.size(); ++i) {
@@ -191,7 +191,7 @@ TEST(ContactVolume, FrictionHoldsBelowMuNAndSlidesAboveIt) {
 TEST(ContactVolume, WorldWithMujocoContactsIsRefused) {
   try {
     (void)RunPenalty(PenaltyWorld(PointerBox(0.02, 0.02, 0.02), false), Pose{},
-              PenaltySettings(0.01, 0.0, 0.0));
+                     PenaltySettings(0.01, 0.0, 0.0));
     FAIL() << "a world with MuJoCo's contacts was accepted";
   } catch (const SceneError& e) {
     EXPECT_NE(std::string(e.what()).find("penalty_contacts"), std::string::npos) << e.what();

@@ -29,6 +29,7 @@ class ForceRecorder final : public physics::Recorder {
   void OnTick(const ir::TickRecord& t) override { forces.push_back(t.displayed_W.f.x()); }
 
   void OnStep(const physics::StepRecord&, const world::World&) override {}
+
   std::vector<double> forces;
 };
 
@@ -122,7 +123,9 @@ TEST(EmbeddedTest, GainSetFromAnotherThreadReachesTheHapticLoop) {
   };
   int i = 0;
   for (; i < 600; ++i) max_before = std::max(max_before, tick(i));
-  std::thread ui([&] { engine->SetDisplayGain(0.0); });
+  std::thread ui([&] {
+    engine->SetDisplayGain(0.0);
+  });
   ui.join();
   for (; i < 900; ++i) max_after = std::max(max_after, tick(i));
   const RunStats stats = engine->Stop();
@@ -133,8 +136,11 @@ TEST(EmbeddedTest, GainSetFromAnotherThreadReachesTheHapticLoop) {
 
 TEST(EmbeddedTest, StartNeedsAnExternalDevice) {
   auto engine = T41Engine(T41Settings("impulse"));
-  EXPECT_THAT([&] { engine->Start(); }, ::testing::ThrowsMessage<InvalidArgument>(
-                                            ::testing::HasSubstr("external")));
+  EXPECT_THAT(
+      [&] {
+        engine->Start();
+      },
+      ::testing::ThrowsMessage<InvalidArgument>(::testing::HasSubstr("external")));
 }
 
 }  // namespace

@@ -14,33 +14,49 @@ using ::testing::HasSubstr;
 using ::testing::ThrowsMessage;
 
 TEST(EngineErrorsTest, UnknownMethodListsKnownOnes) {
-  EXPECT_THAT([] { T41Engine(T41Settings("teleport")); },
-              ThrowsMessage<InvalidArgument>(HasSubstr("impulse")));
+  EXPECT_THAT(
+      [] {
+        T41Engine(T41Settings("teleport"));
+      },
+      ThrowsMessage<InvalidArgument>(HasSubstr("impulse")));
 }
 
 TEST(EngineErrorsTest, PhysicsStepNotMultipleOfHapticTickIsRejected) {
   settings::EngineSettings s = T41Settings("impulse");
   s.physics_dt = 0.0505;
-  EXPECT_THAT([&] { T41Engine(s); }, ThrowsMessage<InvalidArgument>(HasSubstr("physics_dt")));
+  EXPECT_THAT(
+      [&] {
+        T41Engine(s);
+      },
+      ThrowsMessage<InvalidArgument>(HasSubstr("physics_dt")));
 }
 
 TEST(EngineErrorsTest, ContactTorqueModelRefusesTheThesisOnlyKeys) {
   settings::EngineSettings s = T41Settings("impulse");
   s.rendering.torque_model = settings::TorqueModel::kContact;
   s.rendering.rot_damping = 0.1;
-  EXPECT_THAT([&] { T41Engine(s); },
-              ThrowsMessage<InvalidArgument>(HasSubstr("rendering.rot_damping = 0.1")));
+  EXPECT_THAT(
+      [&] {
+        T41Engine(s);
+      },
+      ThrowsMessage<InvalidArgument>(HasSubstr("rendering.rot_damping = 0.1")));
   s.rendering.rot_damping = 0.0;
   s.rendering.rotation_weight = Vec3::Constant(1.0);
-  EXPECT_THAT([&] { T41Engine(s); },
-              ThrowsMessage<InvalidArgument>(HasSubstr("rendering.rotation_weight")));
+  EXPECT_THAT(
+      [&] {
+        T41Engine(s);
+      },
+      ThrowsMessage<InvalidArgument>(HasSubstr("rendering.rotation_weight")));
 }
 
 TEST(EngineErrorsTest, WatchdogShorterThanPhysicsStepIsRejected) {
   settings::EngineSettings s = T41Settings("impulse");
   s.safety.watchdog_timeout = 0.06;
-  EXPECT_THAT([&] { T41Engine(s); },
-              ThrowsMessage<InvalidArgument>(HasSubstr("safety.watchdog_timeout")));
+  EXPECT_THAT(
+      [&] {
+        T41Engine(s);
+      },
+      ThrowsMessage<InvalidArgument>(HasSubstr("safety.watchdog_timeout")));
 }
 
 TEST(EngineErrorsTest, PointerWithoutSphereNeedsRadius) {
@@ -51,7 +67,9 @@ TEST(EngineErrorsTest, PointerWithoutSphereNeedsRadius) {
       <body name="pointer" mocap="true"><geom type="box" size="0.01 0.01 0.01"/></body>
     </worldbody></mujoco>)");
   EXPECT_THAT(
-      [&] { Engine(std::move(w), device::MakeFixedDevice(Pose{}), device::Calibration{}, s); },
+      [&] {
+        Engine(std::move(w), device::MakeFixedDevice(Pose{}), device::Calibration{}, s);
+      },
       ThrowsMessage<SceneError>(HasSubstr("pointer.radius")));
 }
 

@@ -10,7 +10,9 @@ namespace {
 // Relative tolerance for momentum identities that hold up to floating-point summation.
 constexpr double kMomentumTol = 1e-9;
 
-int CubeBody(const Engine& engine) { return engine.world().FindBody("cube"); }
+int CubeBody(const Engine& engine) {
+  return engine.world().FindBody("cube");
+}
 
 double CubeVelocityX(const Engine& engine) {
   return engine.world().body_state(CubeBody(engine)).V_WCm.v.x();

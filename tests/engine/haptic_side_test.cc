@@ -98,8 +98,7 @@ TEST(HapticSideTest, ProxyPoseIsThePointerPoseForMethodsWithoutAProxy) {
   for (const auto& [method, summary] : ListMethods()) {
     // proxy-6dof and local-dynamics-6dof have a proxy; virtual-coupling reports its tool pose
     // (and needs a free tool).
-    if (method == "proxy-6dof" || method == "local-dynamics-6dof" ||
-        method == "virtual-coupling") {
+    if (method == "proxy-6dof" || method == "local-dynamics-6dof" || method == "virtual-coupling") {
       continue;
     }
     SCOPED_TRACE(method);

@@ -130,10 +130,13 @@ TEST_P(RowOfCubesTest, FeltMassIsTheWholeRowAndTheGlobalRowMovesAlong) {
     LocalDynamicsOptions options;
     options.correction = model;
     RegisterMethod(name, "test", [options](const physics::MethodContext& c) {
-      return Method{"local-dynamics", false, std::make_unique<LocalDynamicsPhysics>(c, options),
-                    haptic::MakeLocalDynamicsHaptic(c.pointer_radius, c.settings->rendering.stiffness,
-                                                    c.settings->rendering.damping),
-                    {"local_dynamics.local_body_fault"}};
+      return Method{
+          "local-dynamics",
+          false,
+          std::make_unique<LocalDynamicsPhysics>(c, options),
+          haptic::MakeLocalDynamicsHaptic(c.pointer_radius, c.settings->rendering.stiffness,
+                                          c.settings->rendering.damping),
+          {"local_dynamics.local_body_fault"}};
     });
     settings::EngineSettings settings = LocalSettings(kDuration);
     settings.method = name;
@@ -162,6 +165,7 @@ class NeighborCounter final : public physics::Recorder {
     ++steps;
     if (step.neighbors > 0) ++with_neighbor;
   }
+
   int steps = 0, with_neighbor = 0;
 };
 
@@ -177,9 +181,10 @@ TEST_P(RestTest, PointerNearButNotTouchingFeelsNothing) {
   const double x = -0.05 - 0.02 - kGap;  // face at −0.05, pointer radius 0.02
   device::Specifications specs;
   specs.max_force = 100.0;
-  auto device = device::MakeScriptedDevice({{0.0, Pose{Vec3(x, -0.04, 0.05), Quat::Identity()}},
-                                            {duration, Pose{Vec3(x, 0.04, 0.05), Quat::Identity()}}},
-                                           specs);
+  auto device =
+      device::MakeScriptedDevice({{0.0, Pose{Vec3(x, -0.04, 0.05), Quat::Identity()}},
+                                  {duration, Pose{Vec3(x, 0.04, 0.05), Quat::Identity()}}},
+                                 specs);
   settings::EngineSettings settings = LocalSettings(duration, GetParam());
   ASSERT_GT(settings.rendering.neighbor_margin, kGap);
   Engine engine(world::World::LoadString(kCubeOnFloor), std::move(device), device::Calibration{},

@@ -59,10 +59,10 @@ Squeeze RunSqueeze(const std::string& method, double physics_dt, double duration
   std::vector<std::unique_ptr<device::Device>> devices;
   devices.push_back(device::MakeFixedDevice(Pose{Vec3(-0.057, 0, 0), Quat::Identity()}));
   devices.push_back(device::MakeFixedDevice(Pose{Vec3(0.059, 0, 0), Quat::Identity()}));
-  Engine engine(world::World::LoadString(
-                    kSqueezeXml, world::LoadOptions{.pointer_body = "f0",
-                                                    .more_pointer_bodies = {"f1"}}),
-                std::move(devices), std::vector<device::Calibration>(2), s);
+  Engine engine(
+      world::World::LoadString(
+          kSqueezeXml, world::LoadOptions{.pointer_body = "f0", .more_pointer_bodies = {"f1"}}),
+      std::move(devices), std::vector<device::Calibration>(2), s);
   TickLog log;
   Squeeze out;
   out.stats = engine.Run(&log);

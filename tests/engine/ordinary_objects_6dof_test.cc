@@ -40,6 +40,7 @@ class ObjectRecorder final : public physics::Recorder {
     states.push_back(world.body_state(object));
     times.push_back(step.t);
   }
+
   int object = -1;
   std::vector<Vec3> forces;
   std::vector<double> times;
@@ -52,9 +53,9 @@ struct PushRun {
 };
 
 PushRun Push(const std::string& scene, const std::string& method, const std::string& model) {
-  const session::Session session = session::LoadSession(
-      std::string(MRH_SOURCE_DIR) + "/scenes/" + scene + ".json",
-      {"method=" + method, "rendering.torque_model=" + model});
+  const session::Session session =
+      session::LoadSession(std::string(MRH_SOURCE_DIR) + "/scenes/" + scene + ".json",
+                           {"method=" + method, "rendering.torque_model=" + model});
   PushRun run;
   run.stats = session::MakeEngine(session)->Run(&run.record);
   return run;
@@ -141,8 +142,7 @@ std::string MethodTestName(const ::testing::TestParamInfo<std::string>& param) {
 // world's 20 ms state. proxy-6dof's steady push force at 20 ms is ~3× Coulomb's (its own open
 // fault, as on a square box push), so it is held to the no-throw and turning bars only.
 INSTANTIATE_TEST_SUITE_P(SixDof, OrdinaryObjectsTest,
-                         ::testing::Values("local-dynamics-6dof", "proxy-6dof"),
-                         MethodTestName);
+                         ::testing::Values("local-dynamics-6dof", "proxy-6dof"), MethodTestName);
 
 TEST(OrdinaryObjectsThesisModelTest, ThesisModelSpinsTheCylinderTheContactModelDoesNot) {
   // The bars above can fail: eq. 3.8's couple, given to a cylinder through its contact line,

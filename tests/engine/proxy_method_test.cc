@@ -1,8 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
 // The proxy-6dof method through the engine: forces, reactions one step late, RT, closed loop.
-#include "haptic/proxy_haptic.h"
-#include "mrh/physics/methods.h"
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -12,11 +9,13 @@
 #include <vector>
 
 #include "engine/engine_impl.h"
+#include "haptic/proxy_haptic.h"
+#include "haptic_alloc_loop.h"
 #include "mrh/core/error.h"
 #include "mrh/device/simulated.h"
 #include "mrh/engine/engine.h"
+#include "mrh/physics/methods.h"
 #include "mrh/world/world.h"
-#include "haptic_alloc_loop.h"
 
 namespace mrh::engine::testing {
 namespace {
@@ -215,7 +214,8 @@ TEST_P(ProxyAllocationTest, HapticTicksNeverAllocateWithFrictionAndAMovingBox) {
   auto device = device::MakeScriptedDevice(
       Keys({{0.0, At(0.0, 0, kHalf - 0.002)}, {1.0, At(0.16, 0.01, kHalf - 0.002)}}));
   internal::EngineState state(std::move(w), std::move(device), device::Calibration{}, s);
-  const auto* method = dynamic_cast<const haptic::internal::ProxyHaptic*>(state.method.haptic.get());
+  const auto* method =
+      dynamic_cast<const haptic::internal::ProxyHaptic*>(state.method.haptic.get());
   ASSERT_NE(method, nullptr);
   int sliding = 0;
   int box_pairs = 0;

@@ -30,8 +30,8 @@ std::vector<std::string> MethodNames() {
 // "method" or "method:local_model" as session overrides.
 std::vector<std::string> Overrides(const std::string& param) {
   const std::size_t colon = param.find(':');
-  std::vector<std::string> out{"method=" + param.substr(0, colon), "mode=realtime",
-                               "duration=2.5", "realtime_priority=false",
+  std::vector<std::string> out{"method=" + param.substr(0, colon), "mode=realtime", "duration=2.5",
+                               "realtime_priority=false",
                                "pointer.radius=0.02"};  // 3-DOF methods: a sphere at the pointer
   if (colon != std::string::npos) out.push_back("rendering.local_model=" + param.substr(colon + 1));
   return out;

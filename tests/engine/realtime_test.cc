@@ -19,6 +19,7 @@ class OrderRecorder final : public physics::Recorder {
   void OnStep(const physics::StepRecord& s, const world::World&) override {
     steps.push_back(s.step);
   }
+
   std::vector<std::int64_t> ticks;
   std::vector<std::int64_t> steps;
 };

@@ -30,13 +30,14 @@ class BallRecorder final : public physics::Recorder {
     if (object < 0) object = world.FindBody("object");
     states.push_back(world.body_state(object));
   }
+
   int object = -1;
   std::vector<world::BodyState> states;
 };
 
 BallRecorder RunScene(const std::string& scene, const std::vector<std::string>& overrides) {
-  const session::Session session = session::LoadSession(
-      std::string(MRH_SOURCE_DIR) + "/scenes/" + scene + ".json", overrides);
+  const session::Session session =
+      session::LoadSession(std::string(MRH_SOURCE_DIR) + "/scenes/" + scene + ".json", overrides);
   BallRecorder record;
   session::MakeEngine(session)->Run(&record);
   return record;

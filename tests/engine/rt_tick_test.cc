@@ -36,14 +36,18 @@ TEST(RtTickTest, HapticTicksNeverAllocateInContact) {
 class FaultyDevice final : public device::Device {
  public:
   explicit FaultyDevice(double bad_after) : bad_after_(bad_after) {}
+
   const device::Specifications& specifications() const override { return specs_; }
+
   device::DeviceState Read(double t) noexcept override {
     device::DeviceState s;
     s.t = t;
     if (t >= bad_after_) s.X_DT.p.x() = std::numeric_limits<double>::quiet_NaN();
     return s;
   }
+
   void SetWrench(const Wrench& w) noexcept override { last_ = w; }
+
   Wrench last_;
 
  private:

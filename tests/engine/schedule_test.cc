@@ -20,7 +20,9 @@ struct ProbeLog {
 class ProbePhysics final : public physics::MethodPhysics {
  public:
   explicit ProbePhysics(ProbeLog* log) : log_(log) {}
+
   void PhysicsStart(const ir::HapticReport&, ir::PhysicsSnapshot* out) override { out->step = -1; }
+
   void PhysicsStep(const ir::HapticReport& report, ir::PhysicsSnapshot*) override {
     log_->step_input_period.push_back(report.period);
   }
@@ -32,12 +34,14 @@ class ProbePhysics final : public physics::MethodPhysics {
 class ProbeHaptic final : public haptic::MethodHaptic {
  public:
   explicit ProbeHaptic(ProbeLog* log) : log_(log) {}
+
   void Adopt(const ir::PhysicsSnapshot& snapshot) noexcept override { step_ = snapshot.step; }
 
   void HapticTick(const haptic::TickInput& in, haptic::TickOutput*) noexcept override {
     log_->tick_snapshot.push_back(step_);
     log_->tick_j.push_back(in.j);
   }
+
   void EndPeriod(ir::HapticReport*) noexcept override {}
 
  private:
@@ -50,11 +54,13 @@ ProbeLog* g_log = nullptr;
 TEST(ScheduleTest, PeriodKRendersStepKMinus1AndStepKConsumesPeriodKMinus1) {
   ProbeLog log;
   g_log = &log;
-  RegisterMethod("probe", "test probe",
-                 [](const physics::MethodContext&) {
-                   return Method{"probe", false, std::make_unique<ProbePhysics>(g_log),
-                                 std::make_unique<ProbeHaptic>(g_log), {}};
-                 });
+  RegisterMethod("probe", "test probe", [](const physics::MethodContext&) {
+    return Method{"probe",
+                  false,
+                  std::make_unique<ProbePhysics>(g_log),
+                  std::make_unique<ProbeHaptic>(g_log),
+                  {}};
+  });
   settings::EngineSettings s = T41Settings("probe");
   s.physics_dt = 0.005;
   s.duration = 0.05;  // 10 periods of n = 5 ticks

@@ -2,6 +2,8 @@
 // Virtual coupling (B3, Colgate et al. 1995): the tool's inertia is felt in free motion (−m_t ẍ_t
 // against the tool's linear steady state), and pressed into a floor the force settles at the
 // spring's.
+#include "mrh/render/virtual_coupling.h"
+
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -17,17 +19,16 @@
 #include "mrh/device/simulated.h"
 #include "mrh/engine/engine.h"
 #include "mrh/physics/methods.h"
-#include "mrh/render/virtual_coupling.h"
 #include "mrh/world/world.h"
 
 namespace mrh::engine {
 namespace {
 
-constexpr double kMass = 0.5;    // tool mass (kg)
-constexpr double kHalf = 0.05;   // tool box half side (m)
-constexpr double kK = 1000.0;    // coupling spring (N/m)
-constexpr double kB = 10.0;      // coupling damper (N·s/m)
-constexpr double kDt = 1e-3;     // haptic = physics period (s)
+constexpr double kMass = 0.5;   // tool mass (kg)
+constexpr double kHalf = 0.05;  // tool box half side (m)
+constexpr double kK = 1000.0;   // coupling spring (N/m)
+constexpr double kB = 10.0;     // coupling damper (N·s/m)
+constexpr double kDt = 1e-3;    // haptic = physics period (s)
 
 // Under gravity: a floor plane and a box pointer (mocap in the file; the method makes it free).
 constexpr char kScene[] = R"(<mujoco>
@@ -48,7 +49,9 @@ struct TempScene {
              (stem + "_" + std::to_string(::getpid()) + ".xml")) {
     std::ofstream(path) << xml;
   }
+
   ~TempScene() { std::filesystem::remove(path); }
+
   TempScene(const TempScene&) = delete;
   TempScene& operator=(const TempScene&) = delete;
   std::filesystem::path path;
@@ -99,7 +102,8 @@ TEST(VirtualCoupling, FreeMotionDisplaysTheToolInertia) {
   std::vector<device::Keyframe> keyframes;
   for (int i = 0; i <= static_cast<int>(kDuration / kDt) + 1; ++i) {
     const double t = i * kDt;
-    keyframes.push_back({t, Pose{Vec3(kAmplitude * std::sin(omega * t), 0.0, 0.5), Quat::Identity()}});
+    keyframes.push_back(
+        {t, Pose{Vec3(kAmplitude * std::sin(omega * t), 0.0, 0.5), Quat::Identity()}});
   }
   const std::vector<ir::TickRecord> ticks = RunCoupled(keyframes, kDuration);
   // Linear steady state of m ẍ_t = k (x_h − x_t) + b (ẋ_h − ẋ_t) for x_h = A sin ωt:
@@ -113,8 +117,8 @@ TEST(VirtualCoupling, FreeMotionDisplaysTheToolInertia) {
   int n = 0;
   for (const ir::TickRecord& tick : ticks) {
     if (tick.t < 1.0 - 1e-9) continue;
-    measured += tick.displayed_W.f.x() * std::complex<double>(std::sin(omega * tick.t),
-                                                              std::cos(omega * tick.t));
+    measured += tick.displayed_W.f.x() *
+                std::complex<double>(std::sin(omega * tick.t), std::cos(omega * tick.t));
     ++n;
   }
   ASSERT_GT(n, 900);
@@ -176,12 +180,11 @@ RunStats RunLightTool(const settings::RenderingSettings& rendering) {
   device::Specifications specs;
   specs.max_force = 1000.0;
   Engine engine(world::World::LoadFile(file.path, world::LoadOptions{.pointer_body = "pointer",
-                                                                .dynamic_pointer = true}),
-                device::MakeScriptedDevice(
-                    {{0.0, Pose{Vec3(0.0, 0.0, 0.1), Quat::Identity()}},
-                     {0.3, Pose{Vec3(0.0, 0.0, 0.005), Quat::Identity()}},
-                     {1.0, Pose{Vec3(0.05, 0.0, 0.005), Quat::Identity()}}},
-                    specs),
+                                                                     .dynamic_pointer = true}),
+                device::MakeScriptedDevice({{0.0, Pose{Vec3(0.0, 0.0, 0.1), Quat::Identity()}},
+                                            {0.3, Pose{Vec3(0.0, 0.0, 0.005), Quat::Identity()}},
+                                            {1.0, Pose{Vec3(0.05, 0.0, 0.005), Quat::Identity()}}},
+                                           specs),
                 device::Calibration{}, s);
   return engine.Run(nullptr);
 }
@@ -198,9 +201,8 @@ TEST(VirtualCoupling, UnsetRotationalGainsFollowTheToolInertia) {
   world::World world = world::World::LoadFile(
       file.path, world::LoadOptions{.pointer_body = "pointer", .dynamic_pointer = true});
   settings::EngineSettings s = CouplingSettings(1.0);
-  const physics::MethodContext context{.world = &world,
-                                       .settings = &s,
-                                       .pointer_body = world.FindBody("pointer")};
+  const physics::MethodContext context{
+      .world = &world, .settings = &s, .pointer_body = world.FindBody("pointer")};
   const render::CouplingGains g = physics::ResolveCouplingGains(context);
   EXPECT_EQ(g.k, kK);
   EXPECT_EQ(g.b, kB);

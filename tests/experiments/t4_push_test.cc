@@ -15,9 +15,9 @@ namespace mrh::experiments::internal {
 namespace {
 
 // The acceptance bars.
-constexpr double kMeanTolerance = 0.05;   // relative to single-rate's mean |f|
-constexpr double kSdRatio = 2.0;          // × single-rate's standard deviation ...
-constexpr double kSdFloor = 0.02;         // ... or this share of its mean, whichever is larger
+constexpr double kMeanTolerance = 0.05;      // relative to single-rate's mean |f|
+constexpr double kSdRatio = 2.0;             // × single-rate's standard deviation ...
+constexpr double kSdFloor = 0.02;            // ... or this share of its mean, whichever is larger
 constexpr double kPositionTolerance = 0.02;  // m, box COM 4 s after the touch
 
 struct Bars {
@@ -56,22 +56,36 @@ void ExpectBars(const std::string& name) {
   EXPECT_TRUE(b.position) << name << ": box " << (r.position - ref.position).norm() << " m off";
 }
 
-TEST(T4PushTest, OneBoxLocalDynamicsFeelsLikeSingleRate) { ExpectBars("box"); }
+TEST(T4PushTest, OneBoxLocalDynamicsFeelsLikeSingleRate) {
+  ExpectBars("box");
+}
 
-TEST(T4PushTest, HeavyBoxLocalDynamicsFeelsLikeSingleRate) { ExpectBars("heavy"); }
+TEST(T4PushTest, HeavyBoxLocalDynamicsFeelsLikeSingleRate) {
+  ExpectBars("heavy");
+}
 
-TEST(T4PushTest, WallLocalDynamicsFeelsLikeSingleRate) { ExpectBars("wall"); }
+TEST(T4PushTest, WallLocalDynamicsFeelsLikeSingleRate) {
+  ExpectBars("wall");
+}
 
-TEST(T4PushTest, RowOfThreeLocalDynamicsFeelsLikeSingleRate) { ExpectBars("row"); }
+TEST(T4PushTest, RowOfThreeLocalDynamicsFeelsLikeSingleRate) {
+  ExpectBars("row");
+}
 
 // The row with the pointer 10 µm to the side: neither reference nor local model is sensitive.
-TEST(T4PushTest, OffsetRowLocalDynamicsFeelsLikeSingleRate) { ExpectBars("row_y+10um"); }
+TEST(T4PushTest, OffsetRowLocalDynamicsFeelsLikeSingleRate) {
+  ExpectBars("row_y+10um");
+}
 
 // The row of three between rails.
-TEST(T4PushTest, GuidedRowLocalDynamicsFeelsLikeSingleRate) { ExpectBars("row_guided"); }
+TEST(T4PushTest, GuidedRowLocalDynamicsFeelsLikeSingleRate) {
+  ExpectBars("row_guided");
+}
 
 // A push near the top edge that tips the box over.
-TEST(T4PushTest, TippingBoxLocalDynamicsFeelsLikeSingleRate) { ExpectBars("tip"); }
+TEST(T4PushTest, TippingBoxLocalDynamicsFeelsLikeSingleRate) {
+  ExpectBars("tip");
+}
 
 // Why the scenes use the elliptic cone: on MuJoCo's default pyramidal cone a straight push is
 // unstable. Single-rate itself, with the pointer moved 10 µm sideways, turns the box away and

@@ -22,11 +22,11 @@ namespace {
 using testing::At;
 using testing::BoxMeshShape;
 using testing::BoxShape;
-using testing::EllipsoidShape;
 using testing::CapsuleShape;
 using testing::CylinderShape;
 using ::testing::DoubleNear;
 using ::testing::Each;
+using testing::EllipsoidShape;
 using testing::GenericRotation;
 using testing::IsNear;
 using testing::PlaneShape;

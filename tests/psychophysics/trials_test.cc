@@ -90,8 +90,9 @@ TEST(TrialsTest, BadFilesNameTheLineAndTheColumn) {
 // Data from another tool holds only what the fit needs, in any order.
 TEST(TrialsTest, FiveEssentialColumnsAreEnough) {
   const fs::path dir = TempDir("mrh_trials_five_");
-  std::ofstream(dir / "t.csv") << "comparison_mass,subject,comparison_heavier,method,standard_mass\n"
-                                  "45,P1,0,impulse,60\n75,P1,1,impulse,60\n";
+  std::ofstream(dir / "t.csv")
+      << "comparison_mass,subject,comparison_heavier,method,standard_mass\n"
+         "45,P1,0,impulse,60\n75,P1,1,impulse,60\n";
   const std::vector<TrialRow> rows = ReadTrials(dir / "t.csv");
   ASSERT_EQ(rows.size(), 2u);
   EXPECT_EQ(rows[1].subject, "P1");

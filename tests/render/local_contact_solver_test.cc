@@ -47,7 +47,8 @@ ir::LocalContactModel BoxOnFloor(bool pyramidal, const Vec3& h = Vec3::Constant(
   return m;
 }
 
-// The box's horizontal COM speed after settling 0.3 s and then `push_s` seconds of force F at its COM.
+// The box's horizontal COM speed after settling 0.3 s and then `push_s` seconds of force F at its
+// COM.
 double SpeedAfterPush(bool pyramidal, const Vec3& F, double push_s) {
   LocalContactSolver solver;
   solver.Adopt(BoxOnFloor(pyramidal));

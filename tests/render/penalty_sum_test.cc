@@ -14,10 +14,10 @@
 namespace mrh::render {
 namespace {
 
-constexpr double kK = 9000.0;     // N/m (T3.1's k_t)
-constexpr double kHalf = 0.1;     // half side of the 0.2 m cube pointer (m)
-constexpr double kDepth = 1e-3;   // m
-constexpr double kDt = 1e-3;      // s
+constexpr double kK = 9000.0;    // N/m (T3.1's k_t)
+constexpr double kHalf = 0.1;    // half side of the 0.2 m cube pointer (m)
+constexpr double kDepth = 1e-3;  // m
+constexpr double kDt = 1e-3;     // s
 
 std::vector<Vec3> CubeCorners() {
   std::vector<Vec3> corners;

@@ -10,8 +10,8 @@ namespace mrh::render {
 namespace {
 
 // The coupled axis iterated as the schedule runs it: x_{k+1} − 2x_k + x_{k−1} =
-// −a x_{k−1} − c (x_{k−1} − x_{k−2}), from a unit displacement at rest. Returns the largest |x| over
-// the last 100 of `steps` ticks, or the first |x| above 1e100.
+// −a x_{k−1} − c (x_{k−1} − x_{k−2}), from a unit displacement at rest. Returns the largest |x|
+// over the last 100 of `steps` ticks, or the first |x| above 1e100.
 double TailAmplitude(double a, double c, int steps) {
   double x2 = 1.0, x1 = 1.0, x0 = 1.0;  // x_{k−2}, x_{k−1}, x_k
   double tail = 0.0;

@@ -145,8 +145,8 @@ TEST(CsvRecorderTest, BodyRowsMatchWorldStateForEachMovingBody) {
 // groups differ exactly where a user would be misled.
 TEST(CsvRecorderTest, BodyColumnsAreTheSceneBodyFrameAndCentreOfMassIsSeparate) {
   const TempDir dir;
-  world::World world = world::World::LoadFile(std::filesystem::path(MRH_SOURCE_DIR) / "scenes" /
-                                          "compound_mug.xml");
+  world::World world =
+      world::World::LoadFile(std::filesystem::path(MRH_SOURCE_DIR) / "scenes" / "compound_mug.xml");
   CsvRecorder recorder(dir.path());
   recorder.OnStep(physics::StepRecord{}, world);
   recorder.Close();

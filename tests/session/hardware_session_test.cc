@@ -170,9 +170,12 @@ TEST(HardwareSessionTest, RealDevicesRunInRealTimeAndRefuseLockstep) {
     EXPECT_EQ(Parse(WithDevice(device)).engine.mode, settings::Mode::kRealtime) << type;
     const std::string lockstep =
         R"({"scene": "scene.xml", "mode": "lockstep", "device": )" + device + "}";
-    EXPECT_THAT([&] { (void)Parse(lockstep); },
-                ThrowsInvalid(std::string("session.json: mode: \"lockstep\" with the real device \"") +
-                              type + "\""))
+    EXPECT_THAT(
+        [&] {
+          (void)Parse(lockstep);
+        },
+        ThrowsInvalid(std::string("session.json: mode: \"lockstep\" with the real device \"") +
+                      type + "\""))
         << type;
   }
   // Simulated devices keep the default, lockstep.

@@ -43,7 +43,8 @@ TEST(SessionKeysTest, UnknownNestedKeyIsNamedByItsFullDottedPath) {
           "session.json: rendering.stifness: unknown key; expected one of: stiffness, "
           "damping, neighbor_distance, neighbor_margin, curved_segments, rot_stiffness, "
           "rot_damping, rotation_weight_scale, "
-          "friction, torque_model, proxy_solver, max_iterations, solver_tolerance, proxy_reaction, perturbation, "
+          "friction, torque_model, proxy_solver, max_iterations, solver_tolerance, proxy_reaction, "
+          "perturbation, "
           "perturbation_force, local_model, coupling_stiffness, coupling_damping, "
           "coupling_rot_stiffness, coupling_rot_damping, tool_mass, "
           "rotation_weight, tool_inertia (did you mean \"stiffness\"?)"));
@@ -154,7 +155,8 @@ TEST(SessionKeysTest, BlockGivenAsNumberListsItsKeys) {
       ThrowsInvalidExactly(
           "session.json: rendering: found a number (5); expected an object with keys: "
           "stiffness, damping, neighbor_distance, neighbor_margin, curved_segments, rot_stiffness, "
-          "rot_damping, rotation_weight_scale, friction, torque_model, proxy_solver, max_iterations, "
+          "rot_damping, rotation_weight_scale, friction, torque_model, proxy_solver, "
+          "max_iterations, "
           "solver_tolerance, proxy_reaction, perturbation, perturbation_force, local_model, "
           "coupling_stiffness, "
           "coupling_damping, coupling_rot_stiffness, coupling_rot_damping, tool_mass, "

@@ -128,7 +128,8 @@ TEST(OverridesTest, UnknownKeyFromAnOverrideSaysItCameFromSet) {
           "session.json: rendering.stifness: unknown key (from --set "
           "rendering.stifness=5); expected one of: stiffness, damping, neighbor_distance, "
           "neighbor_margin, curved_segments, rot_stiffness, rot_damping, rotation_weight_scale, "
-          "friction, torque_model, proxy_solver, max_iterations, solver_tolerance, proxy_reaction, perturbation, "
+          "friction, torque_model, proxy_solver, max_iterations, solver_tolerance, proxy_reaction, "
+          "perturbation, "
           "perturbation_force, local_model, coupling_stiffness, coupling_damping, "
           "coupling_rot_stiffness, coupling_rot_damping, tool_mass, "
           "rotation_weight, tool_inertia (did you mean \"stiffness\"?)"));
@@ -170,7 +171,8 @@ TEST(OverridesTest, ErrorInAnotherKeyDoesNotBlameTheOverride) {
           "session.json: rendering.stifness: unknown key; expected one of: stiffness, "
           "damping, neighbor_distance, neighbor_margin, curved_segments, rot_stiffness, "
           "rot_damping, rotation_weight_scale, "
-          "friction, torque_model, proxy_solver, max_iterations, solver_tolerance, proxy_reaction, perturbation, "
+          "friction, torque_model, proxy_solver, max_iterations, solver_tolerance, proxy_reaction, "
+          "perturbation, "
           "perturbation_force, local_model, coupling_stiffness, coupling_damping, "
           "coupling_rot_stiffness, coupling_rot_damping, tool_mass, "
           "rotation_weight, tool_inertia (did you mean \"stiffness\"?)"));

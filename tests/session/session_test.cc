@@ -284,20 +284,32 @@ TEST(SessionTest, ProxyAndLocalDynamicsKeysAreParsed) {
 }
 
 TEST(SessionTest, FractionalIterationCountIsAnErrorNamingTheKey) {
-  EXPECT_THAT([] { Parse(Minimal(R"("rendering": {"max_iterations": 20.5})")); },
-              ThrowsInvalid("rendering.max_iterations: found"));
+  EXPECT_THAT(
+      [] {
+        Parse(Minimal(R"("rendering": {"max_iterations": 20.5})"));
+      },
+      ThrowsInvalid("rendering.max_iterations: found"));
 }
 
 TEST(SessionTest, RotationWeightNeedsThreePositiveNumbers) {
-  EXPECT_THAT([] { Parse(Minimal(R"("rendering": {"rotation_weight": [1, 2]})")); },
-              ThrowsInvalid("rendering.rotation_weight"));
-  EXPECT_THAT([] { Parse(Minimal(R"("rendering": {"rotation_weight": [1, 0, 2]})")); },
-              ThrowsInvalid("rendering.rotation_weight = [1, 0, 2] m^2; expected three finite"));
+  EXPECT_THAT(
+      [] {
+        Parse(Minimal(R"("rendering": {"rotation_weight": [1, 2]})"));
+      },
+      ThrowsInvalid("rendering.rotation_weight"));
+  EXPECT_THAT(
+      [] {
+        Parse(Minimal(R"("rendering": {"rotation_weight": [1, 0, 2]})"));
+      },
+      ThrowsInvalid("rendering.rotation_weight = [1, 0, 2] m^2; expected three finite"));
 }
 
 TEST(SessionTest, TooFewCurvedSegmentsIsAnError) {
-  EXPECT_THAT([] { Parse(Minimal(R"("rendering": {"curved_segments": 4})")); },
-              ThrowsInvalid("rendering.curved_segments = 4; expected a whole number in [6, 1024]"));
+  EXPECT_THAT(
+      [] {
+        Parse(Minimal(R"("rendering": {"curved_segments": 4})"));
+      },
+      ThrowsInvalid("rendering.curved_segments = 4; expected a whole number in [6, 1024]"));
 }
 
 }  // namespace

@@ -23,10 +23,12 @@ class HashingRecorder final : public physics::Recorder {
     for (int i = 0; i < 3; ++i) Add(t.rendered_W.f[i]);
     for (int i = 0; i < 3; ++i) Add(t.displayed_W.f[i]);
   }
+
   void OnStep(const physics::StepRecord&, const world::World& world) override {
     for (double q : world.qpos()) Add(q);
     for (double v : world.qvel()) Add(v);
   }
+
   std::uint64_t hash() const { return hash_; }
 
  private:
@@ -38,6 +40,7 @@ class HashingRecorder final : public physics::Recorder {
       hash_ *= 0x100000001b3ull;
     }
   }
+
   std::uint64_t hash_ = 0xcbf29ce484222325ull;
 };
 

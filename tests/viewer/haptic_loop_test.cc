@@ -94,14 +94,18 @@ class HapticLoopTest : public ::testing::Test {
   void PauseAndSettle() {
     loop_.set_paused(true);
     const std::int64_t held = loop_.held_periods();
-    ASSERT_TRUE(WaitFor([&] { return loop_.held_periods() > held + 1; }));
+    ASSERT_TRUE(WaitFor([&] {
+      return loop_.held_periods() > held + 1;
+    }));
   }
 
   // Waits kWatchPeriods held periods and returns the ticks run meanwhile.
   std::int64_t TicksWhileWatching() {
     const std::int64_t ticks = loop_.ticks();
     const std::int64_t held = loop_.held_periods();
-    EXPECT_TRUE(WaitFor([&] { return loop_.held_periods() >= held + kWatchPeriods; }));
+    EXPECT_TRUE(WaitFor([&] {
+      return loop_.held_periods() >= held + kWatchPeriods;
+    }));
     return loop_.ticks() - ticks;
   }
 
@@ -111,7 +115,9 @@ class HapticLoopTest : public ::testing::Test {
 };
 
 TEST_F(HapticLoopTest, TicksTheEngineOnVirtualTime) {
-  ASSERT_TRUE(WaitFor([&] { return loop_.ticks() >= 20; }));
+  ASSERT_TRUE(WaitFor([&] {
+    return loop_.ticks() >= 20;
+  }));
   // The device is read at t = ticks · dt, whatever the wall clock did.
   PauseAndSettle();
   const auto ticks = static_cast<double>(loop_.ticks());
@@ -119,7 +125,9 @@ TEST_F(HapticLoopTest, TicksTheEngineOnVirtualTime) {
 }
 
 TEST_F(HapticLoopTest, PauseStopsTheTicks) {
-  ASSERT_TRUE(WaitFor([&] { return loop_.ticks() >= 5; }));
+  ASSERT_TRUE(WaitFor([&] {
+    return loop_.ticks() >= 5;
+  }));
   PauseAndSettle();
   EXPECT_TRUE(loop_.paused());
   EXPECT_EQ(TicksWhileWatching(), 0);
@@ -129,7 +137,9 @@ TEST_F(HapticLoopTest, StepRunsExactlyTheRequestedTicksThenHolds) {
   PauseAndSettle();
   const std::int64_t before = loop_.ticks();
   loop_.StepTicks(7);
-  ASSERT_TRUE(WaitFor([&] { return loop_.ticks() >= before + 7; }));
+  ASSERT_TRUE(WaitFor([&] {
+    return loop_.ticks() >= before + 7;
+  }));
   EXPECT_EQ(TicksWhileWatching(), 0);
   EXPECT_EQ(loop_.ticks(), before + 7);
 }
@@ -138,7 +148,9 @@ TEST_F(HapticLoopTest, ResumeRunsAgain) {
   PauseAndSettle();
   loop_.set_paused(false);
   const std::int64_t before = loop_.ticks();
-  EXPECT_TRUE(WaitFor([&] { return loop_.ticks() >= before + 20; }));
+  EXPECT_TRUE(WaitFor([&] {
+    return loop_.ticks() >= before + 20;
+  }));
   EXPECT_FALSE(loop_.paused());
 }
 
@@ -159,10 +171,14 @@ TEST_F(HapticLoopTest, StepRequestsWhileRunningAreIgnored) {
 // `mrh view --at T` holds the loop at tick T / dt + 1: it must stop exactly there, with the
 // device last read at virtual time T, and stay held.
 TEST_F(HapticLoopTest, HoldAtTickStopsExactlyAtThatTickAndStays) {
-  ASSERT_TRUE(WaitFor([&] { return loop_.ticks() >= 5; }));
+  ASSERT_TRUE(WaitFor([&] {
+    return loop_.ticks() >= 5;
+  }));
   const std::int64_t hold = loop_.ticks() + 200;
   loop_.HoldAtTick(hold);
-  ASSERT_TRUE(WaitFor([&] { return loop_.holding(); }));
+  ASSERT_TRUE(WaitFor([&] {
+    return loop_.holding();
+  }));
   EXPECT_EQ(TicksWhileWatching(), 0);
   EXPECT_EQ(loop_.ticks(), hold);
   EXPECT_NEAR(source_.last_t(), static_cast<double>(hold - 1) * kDt, 1e-9);
@@ -171,7 +187,9 @@ TEST_F(HapticLoopTest, HoldAtTickStopsExactlyAtThatTickAndStays) {
 
 TEST_F(HapticLoopTest, StatsCountTicksAndReportTheWindowRate) {
   // One full window (kWindow ticks) gives a rate; under load it may be below 1 kHz, never 0.
-  ASSERT_TRUE(WaitFor([&] { return loop_.ReadStats().rate_hz > 0.0; }));
+  ASSERT_TRUE(WaitFor([&] {
+    return loop_.ReadStats().rate_hz > 0.0;
+  }));
   const LoopStats stats = loop_.ReadStats();
   EXPECT_GE(stats.ticks, static_cast<std::int64_t>(HapticLoop::kWindow));
   EXPECT_GT(stats.rate_hz, 0.0);

@@ -18,7 +18,8 @@ using ::testing::HasSubstr;
 using testing::kNoPointer;
 
 // `count` 10 cm boxes (friction, condim 3 unless `condim` says otherwise) in layers of
-// `per_layer` (rows of 10, 2 cm gaps) stacked on a floor, 1 mm apart vertically; `extra` goes into <mujoco>.
+// `per_layer` (rows of 10, 2 cm gaps) stacked on a floor, 1 mm apart vertically; `extra` goes into
+// <mujoco>.
 std::string BoxPile(int count, const std::string& extra = "", int condim = 3, int per_layer = 50) {
   std::string bodies;
   for (int i = 0; i < count; ++i) {
@@ -54,12 +55,12 @@ TEST(ModelSizeTest, ThousandBoxesWithPyramidalFrictionLoadAndStep) {
 // small for 30 boxes' contacts, a one-line error that names the scene and the key to change.
 TEST(ModelSizeTest, SceneMemoryWinsAndTooSmallIsAOneLineError) {
   World w = World::LoadString(BoxPile(30, "<size memory=\"200K\"/>"), kNoPointer, "small.xml");
-  EXPECT_THAT([&] {
-    for (int i = 0; i < 10; ++i) w.Step();  // the boxes land within a few steps
-  },
-              ::testing::ThrowsMessage<RuntimeError>(
-                  AllOf(HasSubstr("small.xml"), HasSubstr("<size memory"),
-                        ::testing::Not(HasSubstr("\n")))));
+  EXPECT_THAT(
+      [&] {
+        for (int i = 0; i < 10; ++i) w.Step();  // the boxes land within a few steps
+      },
+      ::testing::ThrowsMessage<RuntimeError>(AllOf(
+          HasSubstr("small.xml"), HasSubstr("<size memory"), ::testing::Not(HasSubstr("\n")))));
 }
 
 TEST(ModelSizeTest, SizeInACommentIsNotTheScenes) {

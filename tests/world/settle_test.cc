@@ -30,11 +30,11 @@ std::string OnBoxTable(const std::string& object, double dt) {
 }
 
 struct Rest {
-  double speed = 0.0;       // m/s, COM
-  double spin = 0.0;        // rad/s
-  double drift = 0.0;       // m, horizontal COM displacement since the start
-  double max_spin = 0.0;    // rad/s, over the whole run
-  double q_w = 1.0;         // w of the final orientation quaternion (1: as it started upright)
+  double speed = 0.0;     // m/s, COM
+  double spin = 0.0;      // rad/s
+  double drift = 0.0;     // m, horizontal COM displacement since the start
+  double max_spin = 0.0;  // rad/s, over the whole run
+  double q_w = 1.0;       // w of the final orientation quaternion (1: as it started upright)
 };
 
 // Steps `w` for `seconds` and reports the motion of `body` at the end.
@@ -70,9 +70,9 @@ const std::string kMesh =
     "<geom type=\"mesh\" mesh=\"hexprism\" mass=\"0.3\"/></body>";
 
 // "At rest": speeds far below any a push would give, and no drift beyond a millimetre.
-constexpr double kRestSpeed = 1e-3;   // m/s
-constexpr double kRestSpin = 1e-2;    // rad/s
-constexpr double kRestDrift = 1e-3;   // m
+constexpr double kRestSpeed = 1e-3;  // m/s
+constexpr double kRestSpin = 1e-2;   // rad/s
+constexpr double kRestDrift = 1e-3;  // m
 
 class SettleTest : public ::testing::TestWithParam<double> {};
 

@@ -14,8 +14,8 @@ namespace mrh::internal {
 }  // namespace mrh::internal
 
 /// Always-on check for conditions whose failure would make the output unsafe.
-#define MRH_DEMAND(condition)                                 \
-  do {                                                        \
+#define MRH_DEMAND(condition)                                       \
+  do {                                                              \
     if (!(condition)) ::mrh::internal::AssertionFailed(#condition); \
   } while (false)
 

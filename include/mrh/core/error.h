@@ -32,6 +32,7 @@ inline std::string PrintableMessage(const std::string& text) {
 class Error : public std::runtime_error {
  public:
   explicit Error(const std::string& message) : std::runtime_error(PrintableMessage(message)) {}
+
   explicit Error(const char* message) : Error(std::string(message)) {}
 };
 

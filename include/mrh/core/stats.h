@@ -16,9 +16,10 @@ namespace mrh {
 /// Returns 0 for no samples. Takes `values` by value (it partially sorts the copy).
 inline double Percentile(std::vector<double> values, double p) {
   if (values.empty()) return 0.0;
-  const double rank = std::ceil(std::clamp(p, 0.0, 100.0) / 100.0 *
-                                static_cast<double>(values.size()));
-  const std::size_t i = std::min(values.size() - 1, rank < 1.0 ? 0 : static_cast<std::size_t>(rank) - 1);
+  const double rank =
+      std::ceil(std::clamp(p, 0.0, 100.0) / 100.0 * static_cast<double>(values.size()));
+  const std::size_t i =
+      std::min(values.size() - 1, rank < 1.0 ? 0 : static_cast<std::size_t>(rank) - 1);
   std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(i), values.end());
   return values[i];
 }

@@ -20,13 +20,14 @@ class TripleBuffer {
   TripleBuffer(const TripleBuffer&) = delete;
   TripleBuffer& operator=(const TripleBuffer&) = delete;
 
-  /// Writer: the private slot to fill. Its contents are stale (an older value); overwrite all of it.
+  /// Writer: the private slot to fill. Its contents are stale (an older value); overwrite all of
+  /// it.
   T& write_slot() noexcept { return slots_[write_]; }
 
   /// Writer: makes the write slot the newest value and takes a fresh private slot.
   void Publish() noexcept {
-    const std::uint8_t prev = middle_.exchange(static_cast<std::uint8_t>(write_ | kFresh),
-                                               std::memory_order_acq_rel);
+    const std::uint8_t prev =
+        middle_.exchange(static_cast<std::uint8_t>(write_ | kFresh), std::memory_order_acq_rel);
     write_ = prev & kIndexMask;
   }
 

@@ -35,17 +35,19 @@ void RequireIntInRange(long long value, long long min, long long max, std::strin
 
 // Device data, the same rules for every device type and source (session keys, trajectory CSV,
 // replayed ticks.csv, `mrh ir --pose`); docs/session-format.md, "Ranges".
-inline constexpr double kMaxDevicePosition = 1e3;        ///< m, per component
-inline constexpr double kMinQuaternionNorm = 1e-6;       ///< below: a typo, not a rotation
-inline constexpr double kMaxQuaternionComponent = 1e6;   ///< above: overflow when normalising
-inline constexpr double kMaxKeyframeTime = 1e6;          ///< s, |t|
-inline constexpr double kMinKeyframeSpacing = 1e-6;      ///< s between successive keyframes
+inline constexpr double kMaxDevicePosition = 1e3;       ///< m, per component
+inline constexpr double kMinQuaternionNorm = 1e-6;      ///< below: a typo, not a rotation
+inline constexpr double kMaxQuaternionComponent = 1e6;  ///< above: overflow when normalising
+inline constexpr double kMaxKeyframeTime = 1e6;         ///< s, |t|
+inline constexpr double kMinKeyframeSpacing = 1e-6;     ///< s between successive keyframes
 
 /// A rule a value breaks: what is wrong ("position x = 1e+308 m") and what is expected.
 struct Problem {
   std::string what;
   std::string expected;
+
   explicit operator bool() const { return !what.empty(); }
+
   /// "<what>; expected <expected>".
   std::string Text() const { return what + "; expected " + expected; }
 };

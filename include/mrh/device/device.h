@@ -12,9 +12,9 @@ namespace mrh::device {
 /// What a device can do. Limits are enforced by the SafetyFilter before SetWrench.
 struct Specifications {
   std::string model = "simulated";
-  double max_force = 20.0;         ///< N
-  double max_torque = 1.0;         ///< N·m
-  double max_stiffness = 5000.0;   ///< N/m, the largest linear stiffness it renders stably
+  double max_force = 20.0;        ///< N
+  double max_torque = 1.0;        ///< N·m
+  double max_stiffness = 5000.0;  ///< N/m, the largest linear stiffness it renders stably
   Vec3 workspace_min = Vec3::Constant(-1.0);  ///< m, device frame
   Vec3 workspace_max = Vec3::Constant(1.0);   ///< m, device frame
   bool has_torque = true;
@@ -22,10 +22,10 @@ struct Specifications {
 
 /// One reading of the device, in the device frame D.
 struct DeviceState {
-  double t = 0.0;                ///< s, the device clock at the reading
-  Pose X_DT;                     ///< tool (grip) pose in the device frame
-  Twist V_DT;                    ///< tool velocity (device frame)
-  std::uint32_t buttons = 0;     ///< bit i = button i pressed
+  double t = 0.0;             ///< s, the device clock at the reading
+  Pose X_DT;                  ///< tool (grip) pose in the device frame
+  Twist V_DT;                 ///< tool velocity (device frame)
+  std::uint32_t buttons = 0;  ///< bit i = button i pressed
 };
 
 /// Faults a device counted itself (hardware and network devices; simulated ones count none).
@@ -50,6 +50,7 @@ class Device {
 
   /// Prepares the device. @throws mrh::Error if it cannot be used.
   virtual void Open() {}
+
   /// Releases the device; a real device must output zero first.
   virtual void Close() {}
 

@@ -56,6 +56,7 @@ class SafetyFilter {
 
   /// From now on every output is zero. RT-safe.
   void Stop() noexcept { stopped_ = true; }
+
   bool stopped() const noexcept { return stopped_; }
 
  private:

@@ -31,12 +31,12 @@ std::vector<Keyframe> LoadKeyframesCsv(const std::filesystem::path& path);
 
 /// Parameters of the simulated hand.
 struct HandSettings {
-  double mass = 0.5;               ///< kg, effective mass of hand + grip
-  double stiffness = 300.0;        ///< N/m, pull toward the scripted target
-  double damping = 20.0;           ///< N·s/m
-  double inertia = 5e-4;           ///< kg·m² (isotropic)
-  double rot_stiffness = 2.0;      ///< N·m/rad
-  double rot_damping = 0.05;       ///< N·m·s/rad
+  double mass = 0.5;           ///< kg, effective mass of hand + grip
+  double stiffness = 300.0;    ///< N/m, pull toward the scripted target
+  double damping = 20.0;       ///< N·s/m
+  double inertia = 5e-4;       ///< kg·m² (isotropic)
+  double rot_stiffness = 2.0;  ///< N·m/rad
+  double rot_damping = 0.05;   ///< N·m·s/rad
   /// @throws mrh::InvalidArgument naming the key if a value is not finite and > 0.
   void Validate() const;
 };

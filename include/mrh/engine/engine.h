@@ -27,14 +27,14 @@ namespace mrh::engine {
 
 /// One pointer's share of a run with several pointers (RunStats::pointers).
 struct PointerRunStats {
-  std::string body;                          ///< the pointer's mocap body
-  double max_force = 0.0;                    ///< N, displayed
-  double max_torque = 0.0;                   ///< N·m, displayed
-  double mean_force = 0.0;                   ///< N, mean |displayed force| over the ticks
+  std::string body;         ///< the pointer's mocap body
+  double max_force = 0.0;   ///< N, displayed
+  double max_torque = 0.0;  ///< N·m, displayed
+  double mean_force = 0.0;  ///< N, mean |displayed force| over the ticks
   std::int64_t force_clamped = 0, torque_clamped = 0, watchdog_ticks = 0;
   std::int64_t fault_nonfinite_wrench = 0, fault_nonfinite_device = 0;
-  Wrench final_wrench;                       ///< world frame
-  device::DeviceCounters device;             ///< this pointer's device's counters
+  Wrench final_wrench;            ///< world frame
+  device::DeviceCounters device;  ///< this pointer's device's counters
 };
 
 /// What a run did. Filled by Engine::Run.
@@ -45,17 +45,17 @@ struct RunStats {
   double sim_time = 0.0;                     ///< simulated time covered (s)
   double wall_time = 0.0;                    ///< s
   std::int64_t ticks = 0, steps = 0;
-  double haptic_rate_hz = 0.0;               ///< achieved (ticks / wall time in real time)
+  double haptic_rate_hz = 0.0;  ///< achieved (ticks / wall time in real time)
   double physics_rate_hz = 0.0;
-  std::int64_t overruns = 0;                 ///< real time: ticks that started a period late
+  std::int64_t overruns = 0;  ///< real time: ticks that started a period late
   double jitter_p50_us = 0.0, jitter_p99_us = 0.0, jitter_max_us = 0.0;  ///< |period − dt|
   double step_ms_p50 = 0.0, step_ms_p99 = 0.0, step_ms_max = 0.0;
-  double max_force = 0.0;                    ///< N, displayed
-  double max_torque = 0.0;                   ///< N·m, displayed
+  double max_force = 0.0;   ///< N, displayed
+  double max_torque = 0.0;  ///< N·m, displayed
   std::int64_t fault_nonfinite_wrench = 0, fault_nonfinite_device = 0;
   std::int64_t force_clamped = 0, torque_clamped = 0, watchdog_ticks = 0;
   std::int64_t dropped_tick_records = 0, dropped_reports = 0;
-  std::uint32_t ir_status = 0;               ///< ir::StatusBits seen
+  std::uint32_t ir_status = 0;  ///< ir::StatusBits seen
   /// The last wrench sent to the device (world frame, N and N·m): zero when the run ended with
   /// the stop (`stopped`), which commands zero whatever was rendered last.
   Wrench final_wrench;
@@ -66,7 +66,7 @@ struct RunStats {
   /// The physics phases (MuJoCo step, IR build, local-model export, sync) summed over the run
   /// (ms, wall clock); per step in StepRecord / steps.csv.
   physics::PhaseTimes phase_ms;
-  bool realtime_priority = false;            ///< SCHED_FIFO + mlockall granted
+  bool realtime_priority = false;  ///< SCHED_FIFO + mlockall granted
   /// The device's own counters at the end of the run (vendor errors, network packets).
   device::DeviceCounters device;
   std::vector<physics::BodyImpulseTotal> impulses;

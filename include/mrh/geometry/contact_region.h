@@ -33,12 +33,12 @@ enum class RegionStatus {
 /// Plane + contact points of one pointer/object pair, world frame (thesis §3.2.1).
 struct ContactRegion {
   RegionStatus status = RegionStatus::kSeparated;
-  double distance = 0.0;          ///< signed distance (m), < 0 penetrating
-  Vec3 n_W = Vec3::UnitZ();       ///< unit plane normal, object → pointer
-  Vec3 c_W = Vec3::Zero();        ///< plane point: the object-side witness point
-  std::vector<Vec3> points_W;     ///< contact points (region vertices below the plane, or the
-                                  ///< pointer-side closest point in a fallback)
-  std::vector<double> depths;     ///< n·(c − p) per point (m); >= 0 below the plane
+  double distance = 0.0;       ///< signed distance (m), < 0 penetrating
+  Vec3 n_W = Vec3::UnitZ();    ///< unit plane normal, object → pointer
+  Vec3 c_W = Vec3::Zero();     ///< plane point: the object-side witness point
+  std::vector<Vec3> points_W;  ///< contact points (region vertices below the plane, or the
+                               ///< pointer-side closest point in a fallback)
+  std::vector<double> depths;  ///< n·(c − p) per point (m); >= 0 below the plane
 };
 
 /// Vertices of the intersection of halfspaces (one frame) around `interior`, which must lie

@@ -32,7 +32,9 @@ class ConvexPolyhedron {
   static ConvexPolyhedron FromPoints(std::span<const Vec3> points);
 
   const std::vector<Vec3>& vertices() const { return vertices_; }
+
   const std::vector<Halfspace>& faces() const { return faces_; }
+
   /// True for a plane (no vertices; the only face is z <= 0).
   bool unbounded() const { return vertices_.empty(); }
 

@@ -34,8 +34,9 @@ struct HapticCounters {
   std::array<std::int64_t, 32> method_status_ticks{};
 };
 
-/// The haptic thread's side of a run: everything one haptic tick touches. All buffers are sized in the constructor; Tick() is
-/// RT-safe. Single-threaded: only the haptic thread (or the lockstep loop) calls Tick().
+/// The haptic thread's side of a run: everything one haptic tick touches. All buffers are sized in
+/// the constructor; Tick() is RT-safe. Single-threaded: only the haptic thread (or the lockstep
+/// loop) calls Tick().
 class HapticSide {
  public:
   struct Exchange {
@@ -66,6 +67,7 @@ class HapticSide {
   void SetDisplayGain(double gain) noexcept {
     display_gain_.store(gain, std::memory_order_relaxed);
   }
+
   double display_gain() const noexcept { return display_gain_.load(std::memory_order_relaxed); }
 
  private:

@@ -35,7 +35,7 @@ struct TickOutput {
   /// Proxy pose (world frame). The engine sets it to the pointer pose TickInput::X_WP before
   /// the call; a method with a proxy (proxy-6dof) overwrites it, the others leave it.
   Pose X_WQ;
-  int contacts = 0;               ///< active contacts this tick
+  int contacts = 0;  ///< active contacts this tick
   /// Method status bits: their meaning is the method's own (named by engine::Method::
   /// status_bits); the haptic side records them per tick and counts every bit.
   std::uint32_t status = 0;

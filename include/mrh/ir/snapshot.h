@@ -2,11 +2,9 @@
 // Intermediate representations exchanged between the physics and haptic threads (fixed capacity).
 #pragma once
 
-#include <array>
-
-#include <cstdint>
-
 #include <Eigen/Core>
+#include <array>
+#include <cstdint>
 
 #include "mrh/core/fixed_vector.h"
 #include "mrh/core/spatial.h"
@@ -28,31 +26,31 @@ using Mat63 = Eigen::Matrix<double, 6, 3>;
 /// Status bits carried by snapshots and reports.
 enum StatusBits : std::uint32_t {
   kStatusOk = 0,
-  kStatusBodiesFull = 1u << 0,    ///< more neighbor bodies than kMaxNeighborBodies
-  kStatusContactsFull = 1u << 1,  ///< more contacts than kMaxPointContacts
-  kStatusReportDropped = 1u << 2, ///< the haptic→physics ring was full
-  kStatusPairsFull = 1u << 3,     ///< more geometric pairs than kMaxGeometricPairs
-  kStatusPointsFull = 1u << 4,    ///< more contact points than kMaxPairPoints
+  kStatusBodiesFull = 1u << 0,      ///< more neighbor bodies than kMaxNeighborBodies
+  kStatusContactsFull = 1u << 1,    ///< more contacts than kMaxPointContacts
+  kStatusReportDropped = 1u << 2,   ///< the haptic→physics ring was full
+  kStatusPairsFull = 1u << 3,       ///< more geometric pairs than kMaxGeometricPairs
+  kStatusPointsFull = 1u << 4,      ///< more contact points than kMaxPairPoints
   kStatusRegionFallback = 1u << 5,  ///< a penetration region failed; closest point sent instead
 };
 
 /// A neighbor body as the haptic thread sees it over one period: its pose before and after the
 /// physics step that produced the snapshot (for interpolation) and its velocity after it.
 struct BodyMotion {
-  int body = -1;                ///< world body id
-  Pose X_WB_prev;               ///< body pose at the start of the physics step
-  Pose X_WB;                    ///< body pose at the end of the physics step
-  Vec3 p_BCm = Vec3::Zero();    ///< centre of mass in the body frame (m)
-  Twist V_WCm;                  ///< COM velocity at the end of the step (world frame)
-  bool is_static = false;       ///< a static body takes no reaction
+  int body = -1;              ///< world body id
+  Pose X_WB_prev;             ///< body pose at the start of the physics step
+  Pose X_WB;                  ///< body pose at the end of the physics step
+  Vec3 p_BCm = Vec3::Zero();  ///< centre of mass in the body frame (m)
+  Twist V_WCm;                ///< COM velocity at the end of the step (world frame)
+  bool is_static = false;     ///< a static body takes no reaction
 
   // Dynamic IR (method local-dynamics, thesis §4.2.2, §4.4.2); unused by the other methods.
-  bool has_dynamics = false;    ///< A, b and dV_n below are valid
+  bool has_dynamics = false;  ///< A, b and dV_n below are valid
   /// Accelerance A (eq. 4.10): COM acceleration (linear rows 0–2, m/s² per N; angular rows 3–5,
   /// rad/s² per N) per unit force applied at the contact point p_BA, world frame.
   Mat63 A = Mat63::Zero();
-  Vec6 b = Vec6::Zero();        ///< bias acceleration (linear; angular), world frame
-  Vec3 p_BA = Vec3::Zero();     ///< point where the test forces acted, body frame (m)
+  Vec6 b = Vec6::Zero();     ///< bias acceleration (linear; angular), world frame
+  Vec3 p_BA = Vec3::Zero();  ///< point where the test forces acted, body frame (m)
   /// Velocity correction of eq. 4.18 (third term, already × Δt^G), added once at tick j = 0.
   Twist dV_n;
   /// True when the body was a neighbor in the previous step too (its local state continues);
@@ -63,11 +61,11 @@ struct BodyMotion {
 /// Adachi's plane + point IR for a 3-DOF pointer (thesis §4.2.1): a plane fixed on the object
 /// through its closest point, with a world normal pointing from the object toward the pointer.
 struct PointContact {
-  int motion = -1;              ///< index into PhysicsSnapshot::bodies
-  int geom = -1;                ///< world geom id (for diagnostics)
-  Vec3 p_BC = Vec3::Zero();     ///< plane point on the object, body frame (m)
-  Vec3 n_W = Vec3::UnitZ();     ///< unit plane normal, object → pointer, world frame
-  double distance = 0.0;        ///< signed pointer–object distance when built (m)
+  int motion = -1;           ///< index into PhysicsSnapshot::bodies
+  int geom = -1;             ///< world geom id (for diagnostics)
+  Vec3 p_BC = Vec3::Zero();  ///< plane point on the object, body frame (m)
+  Vec3 n_W = Vec3::UnitZ();  ///< unit plane normal, object → pointer, world frame
+  double distance = 0.0;     ///< signed pointer–object distance when built (m)
   /// Round objects: r > 0 when the object's geom is a sphere or a capsule, whose surface is the
   /// points within r of the segment core_B[0]–core_B[1] (body frame; one point for a sphere). A
   /// local simulation that turns the body re-derives the plane each tick from the core point
@@ -75,7 +73,7 @@ struct PointContact {
   /// turned normal would drive the roll.
   double r = 0.0;
   std::array<Vec3, 2> core_B{Vec3::Zero(), Vec3::Zero()};
-  ContactMaterial material;     ///< the geom's haptic material (none: rendering.*)
+  ContactMaterial material;  ///< the geom's haptic material (none: rendering.*)
 };
 
 /// One pointer-geom/object-geom pair of the geometric IR (thesis §3.2.1): a plane fixed on the
@@ -88,14 +86,14 @@ enum class NormalFrame : std::uint8_t {
 };
 
 struct GeometricPair {
-  int motion = -1;              ///< index into PhysicsSnapshot::bodies (the object's body)
-  int object_geom = -1;         ///< world geom id of the object side
-  int pointer_geom = -1;        ///< world geom id of the pointer side
-  Vec3 n_W = Vec3::UnitZ();     ///< unit plane normal at the end of the step, object → pointer
-  Vec3 p_BC = Vec3::Zero();     ///< plane point c (object witness), object body frame (m)
-  int first_point = 0;          ///< first index into PhysicsSnapshot::points
-  int num_points = 0;           ///< number of contact points of this pair
-  double distance = 0.0;        ///< signed pointer–object distance when built (m)
+  int motion = -1;           ///< index into PhysicsSnapshot::bodies (the object's body)
+  int object_geom = -1;      ///< world geom id of the object side
+  int pointer_geom = -1;     ///< world geom id of the pointer side
+  Vec3 n_W = Vec3::UnitZ();  ///< unit plane normal at the end of the step, object → pointer
+  Vec3 p_BC = Vec3::Zero();  ///< plane point c (object witness), object body frame (m)
+  int first_point = 0;       ///< first index into PhysicsSnapshot::points
+  int num_points = 0;        ///< number of contact points of this pair
+  double distance = 0.0;     ///< signed pointer–object distance when built (m)
   /// true: points are penetration-region vertices below the plane; false: the fallback (not
   /// penetrating, touching, or region failed): the pointer-side closest point only.
   bool penetrating = false;
@@ -110,28 +108,28 @@ struct GeometricPair {
   /// made without the builder): n_W, held in the object's frame.
   NormalFrame normal_frame = NormalFrame::kObject;
   Vec3 n_F = Vec3::Zero();
-  ContactMaterial material;     ///< the object geom's haptic material (none: rendering.*)
+  ContactMaterial material;  ///< the object geom's haptic material (none: rendering.*)
 };
 
 /// A contact point of a geometric pair, fixed on the pointer.
 struct PairPoint {
-  Vec3 p_PV = Vec3::Zero();     ///< position in the pointer body frame (m)
-  double depth = 0.0;           ///< depth below the pair's plane when built (m, >= 0 if below)
+  Vec3 p_PV = Vec3::Zero();  ///< position in the pointer body frame (m)
+  double depth = 0.0;        ///< depth below the pair's plane when built (m, >= 0 if below)
 };
 
 /// The local-simulation state of a neighbor at the end of a haptic period (eq. 4.16–4.17).
 struct LocalBodyState {
-  int body = -1;                ///< world body id
-  Pose X_WB;                    ///< body pose
-  Twist V_WCm;                  ///< COM velocity, world frame
+  int body = -1;  ///< world body id
+  Pose X_WB;      ///< body pose
+  Twist V_WCm;    ///< COM velocity, world frame
 };
 
 /// Everything physics step k hands to haptic period k+1 (the timing rule in
 /// docs/architecture.md). Immutable once published.
 struct PhysicsSnapshot {
-  std::int64_t step = -1;       ///< physics step index k; -1 before the first step
-  double t = 0.0;               ///< simulation time at the end of the step (s)
-  double physics_dt = 0.0;      ///< s
+  std::int64_t step = -1;   ///< physics step index k; -1 before the first step
+  double t = 0.0;           ///< simulation time at the end of the step (s)
+  double physics_dt = 0.0;  ///< s
   FixedVector<BodyMotion, kMaxNeighborBodies> bodies;
   FixedVector<PointContact, kMaxPointContacts> contacts;
   FixedVector<GeometricPair, kMaxGeometricPairs> pairs;
@@ -148,19 +146,19 @@ struct PhysicsSnapshot {
 
 /// Reaction impulse a haptic period delivered to one body (world frame).
 struct BodyImpulse {
-  int body = -1;                ///< world body id
-  Vec3 linear = Vec3::Zero();   ///< ∫ f dt (N·s)
-  Vec3 angular = Vec3::Zero();  ///< ∫ (p − p_Cm) × f dt about the body's COM (N·m·s)
+  int body = -1;                   ///< world body id
+  Vec3 linear = Vec3::Zero();      ///< ∫ f dt (N·s)
+  Vec3 angular = Vec3::Zero();     ///< ∫ (p − p_Cm) × f dt about the body's COM (N·m·s)
   Vec3 last_force = Vec3::Zero();  ///< reaction force at the period's last tick (N)
 };
 
 /// Everything haptic period k hands to physics step k+1 (the timing rule in docs/architecture.md).
 struct HapticReport {
-  std::int64_t period = -1;     ///< haptic period index
-  std::int64_t ticks = 0;       ///< ticks in this period
-  double t = 0.0;               ///< time of the period's last tick (s)
-  Pose X_WP;                    ///< pointer pose at the last tick (world)
-  Twist V_WP;                   ///< pointer velocity at the last tick (world)
+  std::int64_t period = -1;  ///< haptic period index
+  std::int64_t ticks = 0;    ///< ticks in this period
+  double t = 0.0;            ///< time of the period's last tick (s)
+  Pose X_WP;                 ///< pointer pose at the last tick (world)
+  Twist V_WP;                ///< pointer velocity at the last tick (world)
   FixedVector<BodyImpulse, kMaxNeighborBodies> impulses;
   /// Local-simulation states at the period's last tick (local-dynamics only).
   FixedVector<LocalBodyState, kMaxNeighborBodies> local_states;
@@ -171,8 +169,7 @@ struct HapticReport {
   /// RT-safe.
   void MergeLater(const HapticReport& later) noexcept;
   /// Adds an impulse for `body` (creating its entry if needed). RT-safe.
-  void AddImpulse(int body, const Vec3& linear, const Vec3& angular,
-                  const Vec3& force) noexcept;
+  void AddImpulse(int body, const Vec3& linear, const Vec3& angular, const Vec3& force) noexcept;
 };
 
 }  // namespace mrh::ir

@@ -18,8 +18,8 @@ namespace mrh::physics {
 
 /// One pointer of a several-pointer run, for the methods that support them.
 struct PointerContext {
-  int body = -1;                                  ///< world body id of the mocap pointer
-  double radius = 0.0;                            ///< m (3-DOF methods)
+  int body = -1;                                           ///< world body id of the mocap pointer
+  double radius = 0.0;                                     ///< m (3-DOF methods)
   const settings::RenderingSettings* rendering = nullptr;  ///< the pointer's own gains
 };
 
@@ -28,7 +28,7 @@ struct MethodContext {
   world::World* world = nullptr;  ///< owned by the engine; used only by the physics half
   const settings::EngineSettings* settings = nullptr;
   int pointer_body = -1;
-  double pointer_radius = 0.0;    ///< m (3-DOF methods); 0 when neither session nor scene gives it
+  double pointer_radius = 0.0;  ///< m (3-DOF methods); 0 when neither session nor scene gives it
   /// N, the most force one contact pair of a 6-DOF proxy may carry: the device's max_force
   /// (what the user can be shown). Infinite: unbounded.
   double max_pair_force = std::numeric_limits<double>::infinity();
@@ -80,6 +80,7 @@ class MethodPhysics {
                                     std::span<ir::PhysicsSnapshot* const> out) {
     PhysicsStart(*initial[0], out[0]);
   }
+
   virtual void PhysicsStepPointers(std::span<const ir::HapticReport* const> reports,
                                    std::span<ir::PhysicsSnapshot* const> out) {
     PhysicsStep(*reports[0], out[0]);

@@ -37,9 +37,9 @@ struct PhysicsStats {
 class PhysicsSide {
  public:
   struct Exchange {
-    TripleBuffer<ir::PhysicsSnapshot>* snapshots;   ///< physics → haptic
-    SpscRing<ir::HapticReport>* reports;            ///< haptic → physics
-    SpscRing<ir::TickRecord>* tick_records;         ///< haptic → recorder
+    TripleBuffer<ir::PhysicsSnapshot>* snapshots;  ///< physics → haptic
+    SpscRing<ir::HapticReport>* reports;           ///< haptic → physics
+    SpscRing<ir::TickRecord>* tick_records;        ///< haptic → recorder
     /// Several pointers: pointers 1, 2, ...'s own snapshot buffers and report rings
     /// (pointer 0 uses the two above). Empty with one pointer.
     std::vector<TripleBuffer<ir::PhysicsSnapshot>*> more_snapshots = {};

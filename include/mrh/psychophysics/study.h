@@ -89,8 +89,8 @@ class Apparatus {
 
 /// Where a run writes and who it is for.
 struct RunSettings {
-  std::string subject;                          ///< non-empty, no comma, quote or line break
-  std::filesystem::path out;                    ///< created; holds trials.csv and stimuli/
+  std::string subject;                              ///< non-empty, no comma, quote or line break
+  std::filesystem::path out;                        ///< created; holds trials.csv and stimuli/
   settings::Mode mode = settings::Mode::kRealtime;  ///< of every stimulus
   /// fsync trials.csv after each row (people: yes; simulated observers, who answer a thousand
   /// trials a second, only flush).

@@ -13,7 +13,7 @@ namespace mrh::render {
 
 /// Settings of the local contact solve.
 struct LocalContactSolverSettings {
-  int iterations = 30;       ///< projected Gauss–Seidel sweeps per tick at most (>= 1)
+  int iterations = 30;  ///< projected Gauss–Seidel sweeps per tick at most (>= 1)
   /// Stop when no sweep changed a contact's relative velocity by more than this (m/s): an
   /// impulse change over the row's effective mass. 1e-6 m/s is 1 nm of motion per tick.
   double tolerance = 1e-6;
@@ -57,7 +57,10 @@ class LocalContactSolver {
   void Restart(const ir::LocalContactModel& model) noexcept;
 
   /// Drops every body (e.g. a method that stopped using the model). RT-safe.
-  void Clear() noexcept { count_ = 0; rows_count_ = 0; }
+  void Clear() noexcept {
+    count_ = 0;
+    rows_count_ = 0;
+  }
 
   std::size_t size() const noexcept { return count_; }
 
@@ -68,7 +71,9 @@ class LocalContactSolver {
 
   /// Body pose, COM and COM twist of local body i (world). RT-safe.
   Pose X_WB(std::size_t i) const noexcept;
+
   const Vec3& p_WCm(std::size_t i) const noexcept { return bodies_[i].p; }
+
   Twist V_WCm(std::size_t i) const noexcept { return Twist{bodies_[i].v, bodies_[i].w}; }
 
   /// Velocity of local body i's material point at p_W (world). RT-safe.
@@ -78,6 +83,7 @@ class LocalContactSolver {
 
   /// Adds force f_W (N, world) at p_W (m, world) on local body i for the next Step(). RT-safe.
   void AddForce(std::size_t i, const Vec3& f_W, const Vec3& p_W) noexcept;
+
   /// Adds a pure moment tau_W (N·m, world) on local body i for the next Step(). RT-safe.
   void AddTorque(std::size_t i, const Vec3& tau_W) noexcept {
     bodies_[i].pushed = true;
@@ -113,6 +119,7 @@ class LocalContactSolver {
     Vec3 tau = Vec3::Zero();      // about the COM
     bool pushed = false;          // AddForce was called since the latest Adopt
   };
+
   struct Row {
     ir::LocalContactRow c;
     // This tick: world normal and tangents, lever arms, inverse effective masses, target.
@@ -122,7 +129,7 @@ class LocalContactSolver {
     std::array<double, 3> inv_w{};   // 1 / (A_jj + R): A_jj the row's inverse effective mass
     std::array<double, 3> target{};  // velocity (m/s) the row drives to (less R λ when soft)
     double R = 0.0;                  // soft regularisation (1/kg; 0: hard)
-    double a12 = 0.0;   // the friction rows' coupling d1·(A d2) in A (1/kg): the disc's block
+    double a12 = 0.0;  // the friction rows' coupling d1·(A d2) in A (1/kg): the disc's block
     // The disc's block M = A_tt + R I (kg): its diagonal 1 / inv_w[1], 1 / inv_w[2] (0 where
     // inv_w is 0) and determinant m11 m22 − a12², which every sweep of the tick uses.
     double m11 = 0.0;

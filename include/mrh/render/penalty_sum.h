@@ -41,8 +41,8 @@ struct PenaltySumOutput {
   /// (zero for a static pair or one without penetrating points). Summed over all pairs (static
   /// ones included) that is minus the rendered force; the moments are taken about each COM.
   FixedVector<ProxyPairReaction, ir::kMaxGeometricPairs> reactions;
-  int contacts = 0;            ///< penetrating points
-  std::uint32_t status = 0;    ///< kProxyStatusBadInput on non-finite input (zero wrench)
+  int contacts = 0;          ///< penetrating points
+  std::uint32_t status = 0;  ///< kProxyStatusBadInput on non-finite input (zero wrench)
 };
 
 /// The pure wrench law of B5 with no damping: f = Σᵢ k δᵢ nᵢ, τ = Σᵢ rᵢ × (k δᵢ nᵢ) over the

@@ -50,8 +50,8 @@ struct SphereContact {
 /// radius r in m) against the plane (point p_WO moving with v_WO, unit normal n_W) by corrected
 /// eq. 4.11. The pointer's contact point is p_WP − r n. RT-safe.
 inline SphereContact TouchSpherePlane(const Vec3& p_WO, const Vec3& v_WO, const Vec3& n_W,
-                                      const Vec3& p_WP, const Twist& V_WP, double radius,
-                                      double k, double d) noexcept {
+                                      const Vec3& p_WP, const Twist& V_WP, double radius, double k,
+                                      double d) noexcept {
   SphereContact c;
   c.state.p_WO = p_WO;
   c.state.n_W = n_W;

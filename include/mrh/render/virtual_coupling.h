@@ -38,13 +38,15 @@ inline Wrench CouplingWrench(const Pose& X_Wh, const Twist& V_Wh, const Pose& X_
 /// Why this loop: the wrench rendered in tick k comes from the tool state the previous step
 /// published, and it reaches the tool in the step after that (one tick late, as every
 /// method's report), while MuJoCo integrates semi-implicitly. With the device held still,
-/// x_{k+1} − 2x_k + x_{k−1} = −a x_{k−1} − c (x_{k−1} − x_{k−2}), whose characteristic polynomial is
-/// z³ − 2z² + (1 + a + c) z − c. The loop is stable when every root has |z| < 1 (a = c = 0 gives 1:
-/// the uncoupled tool drifts). Undamped coupling is never stable here (|z|² = 1 + a), and too much
-/// damping is not either (c ≳ 1). RT-safe (no allocation), but meant for setup.
+/// x_{k+1} − 2x_k + x_{k−1} = −a x_{k−1} − c (x_{k−1} − x_{k−2}), whose characteristic polynomial
+/// is z³ − 2z² + (1 + a + c) z − c. The loop is stable when every root has |z| < 1 (a = c = 0 gives
+/// 1: the uncoupled tool drifts). Undamped coupling is never stable here (|z|² = 1 + a), and too
+/// much damping is not either (c ≳ 1). RT-safe (no allocation), but meant for setup.
 inline double CouplingGrowthPerTick(double a, double c) noexcept {
   using C = std::complex<double>;
-  const auto p = [a, c](C z) { return ((z - 2.0) * z + (1.0 + a + c)) * z - c; };
+  const auto p = [a, c](C z) {
+    return ((z - 2.0) * z + (1.0 + a + c)) * z - c;
+  };
   // Durand–Kerner iteration from the usual non-symmetric start.
   std::array<C, 3> z{C(1.0, 0.0), C(0.4, 0.9), C(0.4, 0.9) * C(0.4, 0.9)};
   for (int iteration = 0; iteration < 200; ++iteration) {

@@ -17,7 +17,7 @@ namespace mrh::report {
 /// frame, the contact count and the tick's device::SafetyBits (4 = force clamped, 8 = torque
 /// clamped). `safety` is last so that readers indexing the first fifteen columns keep working.
 inline constexpr std::array<std::string_view, 16> kTickColumns = {
-    "t",  "px", "py", "pz", "qw", "qx",       "qy",    "qz",
+    "t",  "px", "py", "pz", "qw", "qx", "qy",       "qz",
     "fx", "fy", "fz", "tx", "ty", "tz", "contacts", "safety"};
 
 /// The columns of bodies.csv, in file order: time at the end of the step (s), body name, body

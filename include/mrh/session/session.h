@@ -18,6 +18,7 @@
 namespace mrh::world {
 class World;
 }
+
 namespace mrh::engine {
 class Engine;
 }
@@ -29,13 +30,13 @@ struct DeviceConfig {
   std::string type = "fixed";  ///< fixed | scripted | hand | replay | external | forcedimension
                                ///< | openhaptics | udp
   std::string model;           ///< device.model ("" = none): defaults for the limits
-  Pose pose;                                ///< fixed: the held pose
-  std::vector<device::Keyframe> keyframes;  ///< scripted / hand: inline keyframes
-  std::filesystem::path trajectory;         ///< scripted / hand: CSV of keyframes (resolved)
-  std::filesystem::path replay;             ///< replay: a ticks.csv (resolved)
-  device::HandSettings hand;                ///< hand: the simulated user's parameters
-  device::Specifications specs;             ///< max_force, max_torque, ... overrides
-  device::Calibration calibration;          ///< device → world
+  Pose pose;                   ///< fixed: the held pose
+  std::vector<device::Keyframe> keyframes;        ///< scripted / hand: inline keyframes
+  std::filesystem::path trajectory;               ///< scripted / hand: CSV of keyframes (resolved)
+  std::filesystem::path replay;                   ///< replay: a ticks.csv (resolved)
+  device::HandSettings hand;                      ///< hand: the simulated user's parameters
+  device::Specifications specs;                   ///< max_force, max_torque, ... overrides
+  device::Calibration calibration;                ///< device → world
   device::ForceDimensionSettings forcedimension;  ///< forcedimension: device.library, device.id
   device::OpenHapticsSettings openhaptics;        ///< openhaptics: device.library, device.name
   device::UdpSettings udp;                        ///< udp: device.bind, timeout, fade
@@ -50,10 +51,10 @@ struct DeviceConfig {
 inline constexpr const char* kDefaultSessionMethod = "local-dynamics";
 
 struct Session {
-  std::filesystem::path file;               ///< the session file ("<string>" if parsed from text)
-  std::filesystem::path scene;              ///< MJCF path, resolved against the session's folder
-  std::string keyframe;                     ///< MJCF keyframe applied at start (may be empty)
-  std::optional<Vec3> gravity;              ///< m/s², overrides the scene's
+  std::filesystem::path file;   ///< the session file ("<string>" if parsed from text)
+  std::filesystem::path scene;  ///< MJCF path, resolved against the session's folder
+  std::string keyframe;         ///< MJCF keyframe applied at start (may be empty)
+  std::optional<Vec3> gravity;  ///< m/s², overrides the scene's
   settings::EngineSettings engine;
   DeviceConfig device;
   /// Several pointers (session key `pointers`): each pointer's device, in the order

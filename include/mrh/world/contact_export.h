@@ -59,13 +59,13 @@ class ContactExporter {
   World* world_;
   double margin_;
   bool whole_world_;
-  std::vector<double> saved_margin_;  // per geom
-  std::vector<double> margins_;       // per geom, this export (GeomMargin)
-  std::vector<int> saved_filter_;     // per geom: contype, conaffinity
+  std::vector<double> saved_margin_;       // per geom
+  std::vector<double> margins_;            // per geom, this export (GeomMargin)
+  std::vector<int> saved_filter_;          // per geom: contype, conaffinity
   std::vector<double> saved_body_margin_;  // per body: MuJoCo's body_margin (broadphase bound)
-  std::vector<char> near_;            // per world body: its neighbourhood takes part in Collide
-  std::vector<int> near_bodies_;      // the bodies with near_ set
-  std::vector<int> local_index_;      // per world body: index into out->bodies, or -1
+  std::vector<char> near_;        // per world body: its neighbourhood takes part in Collide
+  std::vector<int> near_bodies_;  // the bodies with near_ set
+  std::vector<int> local_index_;  // per world body: index into out->bodies, or -1
 };
 
 }  // namespace mrh::world

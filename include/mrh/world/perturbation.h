@@ -84,13 +84,13 @@ struct GroupResponse {
 
 /// What a Perturber did since construction.
 struct PerturberCounters {
-  std::int64_t begins = 0;             ///< Begin() calls
-  std::int64_t zero_force_runs = 0;    ///< ZeroForceRun() calls
-  std::int64_t force_runs = 0;         ///< ForceRun() calls (3 per Measure())
+  std::int64_t begins = 0;           ///< Begin() calls
+  std::int64_t zero_force_runs = 0;  ///< ZeroForceRun() calls
+  std::int64_t force_runs = 0;       ///< ForceRun() calls (3 per Measure())
   /// runs (of both kinds) on the forward-skipped base: mj_forwardSkip, or the island solve
   std::int64_t forward_skip_runs = 0;
-  std::int64_t full_step_runs = 0;     ///< runs (of both kinds) done with a full step
-  std::int64_t run_ns = 0;             ///< wall time inside the runs (ns), for cost measurements
+  std::int64_t full_step_runs = 0;  ///< runs (of both kinds) done with a full step
+  std::int64_t run_ns = 0;          ///< wall time inside the runs (ns), for cost measurements
   /// MuJoCo constraint-solver iterations (mjData::solver_iter) of the zero-force runs and of the
   /// test-force runs, summed, and the most one test-force run used: the runs' cost in units of
   /// the global step's solve, independent of wall-clock noise.
@@ -212,7 +212,7 @@ class Perturber {
   std::vector<int> bodies_;
   std::vector<Twist> start_;
   std::vector<Twist> zero_;
-  std::vector<double> warmstart_;  // qacc_warmstart of the saved state
+  std::vector<double> warmstart_;      // qacc_warmstart of the saved state
   std::vector<double> zero_solution_;  // qacc of the zero-force run (TestRunWarmStart)
   std::vector<double> zero_smooth_;    // qacc_smooth of the forward-skipped zero-force run
   std::vector<std::uint64_t> base_contacts_;

@@ -42,10 +42,10 @@ struct LoadOptions {
 struct GeomInfo {
   int id = -1;
   int body = -1;
-  std::string name;               ///< may be empty
-  geometry::Shape shape;          ///< convex shape in the geom frame G
-  Pose X_BG;                      ///< geom frame in its body frame
-  bool collides = true;           ///< MuJoCo contype/conaffinity allow contacts
+  std::string name;       ///< may be empty
+  geometry::Shape shape;  ///< convex shape in the geom frame G
+  Pose X_BG;              ///< geom frame in its body frame
+  bool collides = true;   ///< MuJoCo contype/conaffinity allow contacts
   /// Name of the MJCF material the geom uses (its `material` attribute); empty if none. It
   /// selects the geom's haptic material (session key `materials`).
   std::string material;
@@ -60,14 +60,14 @@ struct BodyInfo {
   Vec3 p_BCm = Vec3::Zero();      ///< centre of mass in the body frame (m)
   bool is_static = true;          ///< world body or welded to it (no degrees of freedom)
   bool is_mocap = false;
-  std::vector<int> geoms;         ///< ids into World::geom()
+  std::vector<int> geoms;  ///< ids into World::geom()
 };
 
 /// Kinematic state of a body, world frame.
 struct BodyState {
-  Pose X_WB;                      ///< body frame pose
-  Vec3 p_WCm = Vec3::Zero();      ///< centre of mass (m)
-  Twist V_WCm;                    ///< COM linear velocity and angular velocity (world frame)
+  Pose X_WB;                  ///< body frame pose
+  Vec3 p_WCm = Vec3::Zero();  ///< centre of mass (m)
+  Twist V_WCm;                ///< COM linear velocity and angular velocity (world frame)
 };
 
 /// Preallocated copy of the minimal simulation state (time, qpos, qvel, act, warm start, ctrl,
