@@ -11,9 +11,10 @@ set(MRH_MUJOCO_LIBRARY_NAME libmujoco.so.${MRH_MUJOCO_VERSION})
 
 get_property(mrh_modules GLOBAL PROPERTY MRH_MODULES)
 
-# The modules apart from the library (experiments, psychophysics) stay out of the package.
+# The modules apart from the library (experiments, psychophysics) and the viewer, which the
+# package does not ship a library for, stay out of it: every installed header has its library.
 install(DIRECTORY include/mrh DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
-        PATTERN experiments EXCLUDE PATTERN psychophysics EXCLUDE)
+        PATTERN experiments EXCLUDE PATTERN psychophysics EXCLUDE PATTERN viewer EXCLUDE)
 install(TARGETS mrhaptics ${mrh_modules} EXPORT mrhapticsTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}

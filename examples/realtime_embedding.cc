@@ -26,6 +26,12 @@
 
 namespace {
 
+// One line on stderr; a bad session or scene exits 2, any other failure 1.
+int Fail(const std::exception& e, int code) {
+  std::fprintf(stderr, "realtime_embedding: error: %s\n", e.what());
+  return code;
+}
+
 using Clock = std::chrono::steady_clock;
 
 // The grip's path in the device frame: 8 mm toward -x and back over two seconds, so the pointer
@@ -64,6 +70,34 @@ void RenderLoop(mrh::engine::Engine& engine, int body, const std::string& name,
   }
 }
 
+// Your user interface: halves the force the user feels one second in.
+void UserInterface(mrh::engine::Engine& engine) {
+  std::this_thread::sleep_for(std::chrono::seconds(1));
+  engine.SetDisplayGain(0.5);
+  std::printf("ui: display gain %.2f\n", engine.display_gain());
+}
+
+// Your servo loop: one tick per haptic_dt against absolute deadlines (no drift, no bursts).
+// Returns the largest force displayed (N); `late` counts ticks started more than a period late.
+double ServoLoop(mrh::engine::Engine& engine, const mrh::settings::EngineSettings& settings,
+                 int* late) {
+  const double dt = settings.haptic_dt;
+  const auto period =
+      std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(dt));
+  const int ticks = static_cast<int>(std::lround(settings.duration / dt));
+  double max_force = 0.0;
+  const Clock::time_point start = Clock::now();
+  for (int i = 0; i < ticks; ++i) {
+    const Clock::time_point deadline = start + i * period;
+    if (Clock::now() > deadline + period) ++*late;
+    std::this_thread::sleep_until(deadline);
+    const mrh::Wrench w = engine.Tick(i * dt, Grip(i * dt));  // read your device here
+    // Command w.f (N) and w.tau (N·m) to your device here.
+    max_force = std::max(max_force, w.f.norm());
+  }
+  return max_force;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -83,48 +117,25 @@ int main(int argc, char** argv) {
       RenderLoop(*engine, body, name, done);
     });
     engine->Start();
-
-    // Your user interface: halves the force the user feels one second in.
     std::thread ui([&] {
-      std::this_thread::sleep_for(std::chrono::seconds(1));
-      engine->SetDisplayGain(0.5);
-      std::printf("ui: display gain %.2f\n", engine->display_gain());
+      UserInterface(*engine);
     });
-
-    // The servo loop: one tick per haptic_dt against absolute deadlines (no drift, no bursts).
-    const double dt = session.engine.haptic_dt;
-    const auto period =
-        std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(dt));
-    const int ticks = static_cast<int>(std::lround(session.engine.duration / dt));
-    double max_force = 0.0;
     int late = 0;
-    const Clock::time_point start = Clock::now();
-    for (int i = 0; i < ticks; ++i) {
-      const Clock::time_point deadline = start + i * period;
-      if (Clock::now() > deadline + period) ++late;
-      std::this_thread::sleep_until(deadline);
-      const mrh::Wrench w = engine->Tick(i * dt, Grip(i * dt));  // read your device here
-      // Command w.f (N) and w.tau (N·m) to your device here.
-      max_force = std::max(max_force, w.f.norm());
-    }
+    const double max_force = ServoLoop(*engine, session.engine, &late);
     const mrh::engine::RunStats stats = engine->Stop();
     ui.join();
     done.store(true, std::memory_order_release);
     renderer.join();
-    std::printf(
-        "%lld ticks in %.2f s wall (%d late by more than a period), %lld physics steps, "
-        "max displayed force %.3f N\n",
-        static_cast<long long>(stats.ticks), stats.wall_time, late,
-        static_cast<long long>(stats.steps), max_force);
+    std::printf("%lld ticks in %.2f s wall (%d late by more than a period), %lld physics steps, ",
+                static_cast<long long>(stats.ticks), stats.wall_time, late,
+                static_cast<long long>(stats.steps));
+    std::printf("max displayed force %.3f N\n", max_force);
     return 0;
   } catch (const mrh::InvalidArgument& e) {
-    std::fprintf(stderr, "realtime_embedding: error: %s\n", e.what());
-    return 2;
+    return Fail(e, 2);
   } catch (const mrh::SceneError& e) {
-    std::fprintf(stderr, "realtime_embedding: error: %s\n", e.what());
-    return 2;
+    return Fail(e, 2);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "realtime_embedding: error: %s\n", e.what());
-    return 1;
+    return Fail(e, 1);
   }
 }

@@ -13,6 +13,16 @@
 #include "mrh/engine/engine.h"
 #include "mrh/session/session.h"
 
+namespace {
+
+// One line on stderr; a bad session or scene exits 2, any other failure 1.
+int Fail(const std::exception& e, int code) {
+  std::fprintf(stderr, "servo_loop: error: %s\n", e.what());
+  return code;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   if (argc != 2) {
     std::fprintf(stderr, "usage: servo_loop SESSION.json\n");
@@ -44,13 +54,10 @@ int main(int argc, char** argv) {
     }
     return 0;
   } catch (const mrh::InvalidArgument& e) {
-    std::fprintf(stderr, "servo_loop: error: %s\n", e.what());
-    return 2;
+    return Fail(e, 2);
   } catch (const mrh::SceneError& e) {
-    std::fprintf(stderr, "servo_loop: error: %s\n", e.what());
-    return 2;
+    return Fail(e, 2);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "servo_loop: error: %s\n", e.what());
-    return 1;
+    return Fail(e, 1);
   }
 }
