@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "d2_impl.h"
 #include "experiments_impl.h"
 #include "mrh/core/error.h"
 
@@ -71,6 +72,11 @@ constexpr Entry kExperiments[] = {
      "demo D1: a simulated hand sweeps through 80 boxes, spheres, capsules and meshes on a table "
      "in real time (local-dynamics): haptic rate, overruns, step times, peak memory; --full: 60 s",
      internal::RunD1, internal::RunD1Full},
+    {"d2",
+     "demo D2: a desk lamp, a door, a drawer and a lever (hinge and slide joints) pushed at "
+     "0.05 m/s: local-dynamics and local-dynamics-6dof at 20 ms vs single-rate at 1 ms; "
+     "--full: also at 40 ms",
+     internal::RunD2, internal::RunD2Full},
     {"d3",
      "demo D3: taps on aluminium, wood and rubber at three speeds; the contact transient's f, B "
      "and a*v fitted back, and each material's stiffness at rest",
