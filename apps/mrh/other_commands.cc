@@ -126,6 +126,9 @@ int ValidateCommand(const ValidateOptions& o) {
   for (const std::string& warning : engine->world().LoadWarnings()) {
     fmt::print(stderr, "mrh: warning: {}\n", warning);
   }
+  for (const std::string& warning : engine->setup_warnings()) {
+    fmt::print(stderr, "mrh: warning: {}\n", warning);
+  }
   fmt::print("ok: {} (method {}, scene {}, {} bodies)\n", o.session.string(), s.engine.method,
              s.scene.lexically_proximate(fs::current_path()).string(), bodies);
   return kExitOk;

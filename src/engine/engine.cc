@@ -287,6 +287,10 @@ const world::World& Engine::world() const {
   return impl_->state->world;
 }
 
+std::vector<std::string> Engine::setup_warnings() const {
+  return impl_->state->method.physics->setup_warnings();
+}
+
 const settings::EngineSettings& Engine::settings() const {
   return impl_->state->settings;
 }

@@ -121,7 +121,7 @@ Method ContactVolume(const physics::MethodContext& c) {
                 {}};
 }
 
-// rendering.local_model picks the local model: "contact" (default; free-jointed scenes only)
+// rendering.local_model picks the local model: "contact" (default; free bodies and mechanisms)
 // or the thesis' "perturbation".
 Method LocalDynamics(const physics::MethodContext& c) {
   const settings::RenderingSettings& r = c.settings->rendering;

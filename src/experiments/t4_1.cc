@@ -99,6 +99,8 @@ session::Session CaseSession(const std::string& method, const Case& c,
                              const std::filesystem::path& dir) {
   session::Session s = session::LoadSession(ScenesDir() / "t4_1_impulse.json");
   s.engine.method = method;
+  // T4.1 reproduces the thesis' table: local-dynamics with the thesis' perturbation model.
+  s.engine.rendering.local_model = settings::LocalModel::kPerturbation;
   if (c.mass == kMass && c.speed == kSpeed) return s;
   const std::filesystem::path file = ScenesDir() / "t4_1.xml";
   constexpr std::string_view kWhy =
@@ -157,9 +159,7 @@ MethodResult RunCase(const session::Session& session, const Case& c,
 // The accelerance local-dynamics measures for the free cube at t = 0, through the public Method
 // interface: one physics step from the initial state, read the snapshot's A.
 ir::Mat63 MeasureAccelerance() {
-  session::Session s = CaseSession("local-dynamics", Case{}, {});
-  // the thesis' A (the contact model has none)
-  s.engine.rendering.local_model = settings::LocalModel::kPerturbation;
+  session::Session s = CaseSession("local-dynamics", Case{}, {});  // the thesis' A
   world::World world = session::LoadWorld(s);
   world.set_timestep(s.engine.physics_dt);
   physics::MethodContext context{.world = &world,

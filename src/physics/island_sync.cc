@@ -45,7 +45,7 @@ void IslandSync::Overwrite(const ir::HapticReport& report) {
       continue;
     }
     owned_.push_back(state.body);
-    if (world_->SetBodyState(state.body, state.X_WB, state.V_WCm)) {
+    if (Write(state, report.local_states, 0.0)) {
       ++counters_.overwrites;
       written_.push_back(state);
     } else {
@@ -57,11 +57,26 @@ void IslandSync::Overwrite(const ir::HapticReport& report) {
 }
 
 void IslandSync::HoldOwned(double coast_s) {
-  for (const ir::LocalBodyState& s : written_) {
-    const Pose X_WB =
-        coast_s == 0.0 ? s.X_WB : Coast(s.X_WB, world_->body(s.body).p_BCm, s.V_WCm, coast_s);
-    (void)world_->SetBodyState(s.body, X_WB, s.V_WCm);
+  for (const ir::LocalBodyState& s : written_) (void)Write(s, written_, coast_s);
+}
+
+bool IslandSync::Write(const ir::LocalBodyState& state, std::span<const ir::LocalBodyState> states,
+                       double coast_s) {
+  const world::BodyInfo& info = world_->body(state.body);
+  const Pose X_WB =
+      coast_s == 0.0 ? state.X_WB : Coast(state.X_WB, info.p_BCm, state.V_WCm, coast_s);
+  if (info.free) return world_->SetBodyState(state.body, X_WB, state.V_WCm);
+  const auto parent = std::find_if(states.begin(), states.end(), [&](const ir::LocalBodyState& s) {
+    return s.body == info.parent;
+  });
+  if (parent == states.end()) {
+    const world::BodyState p = world_->body_state(info.parent);
+    return world_->SetBodyStateInParent(state.body, X_WB, state.V_WCm, p.X_WB, p.V_WCm);
   }
+  const Pose X_WP =
+      coast_s == 0.0 ? parent->X_WB
+                     : Coast(parent->X_WB, world_->body(info.parent).p_BCm, parent->V_WCm, coast_s);
+  return world_->SetBodyStateInParent(state.body, X_WB, state.V_WCm, X_WP, parent->V_WCm);
 }
 
 std::uint32_t IslandSync::Export(world::ContactExporter& exporter, std::span<const int> seeds,

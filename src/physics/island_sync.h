@@ -16,6 +16,9 @@ class World;
 
 namespace mrh::physics::internal {
 
+/// The island methods' contact export margin (m, world::ContactExporter).
+inline constexpr double kIslandMargin = 0.005;
+
 /// Counters of an island method's physics half (physics thread; read them after the run).
 struct IslandCounters {
   std::int64_t steps = 0;       ///< physics steps
@@ -62,6 +65,12 @@ class IslandSync {
   const IslandCounters& counters() const { return counters_; }
 
  private:
+  // Writes an island body's local state into the world: a free body's as is, a mechanism
+  // body's as its joint's coordinates relative to its parent's state in `states` (or the
+  // world's, for a parent the island does not hold). Coasts both by `coast_s` first.
+  bool Write(const ir::LocalBodyState& state, std::span<const ir::LocalBodyState> states,
+             double coast_s);
+
   world::World* world_;
   double physics_dt_;
   std::vector<int> sent_last_, sent_before_;  // island bodies of the latest two snapshots

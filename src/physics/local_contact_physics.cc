@@ -14,7 +14,7 @@ LocalContactPhysics::LocalContactPhysics(const MethodContext& context)
     : world_(context.world),
       pointer_body_(context.pointer_body),
       physics_dt_(context.settings->physics_dt),
-      exporter_(context.world),
+      exporter_(context.world, kIslandMargin, false, true),
       sync_(context.world, context.settings->physics_dt) {
   builder_.emplace(*world_, pointer_body_, PointerRadiusFor3Dof(context),
                    context.settings->rendering);
@@ -152,26 +152,12 @@ void LocalContactPhysics::Export(ir::PhysicsSnapshot* out) {
   out->status |= sync_.Export(exporter_, seeds_, motions_, out);
 }
 
-// The contact model simulates free-jointed bodies only: a scene with any other moving body
-// (e.g. T4.1's slide-jointed cube) keeps the thesis' perturbation model.
-namespace {
-bool AllMovingBodiesFree(world::World& world) {
-  const world::ContactExporter probe(&world);
-  for (int b = 1; b < world.num_bodies(); ++b) {
-    const world::BodyInfo& info = world.body(b);
-    if (!info.is_static && !info.is_mocap && !probe.IsFreeBody(b)) return false;
-  }
-  return true;
-}
-}  // namespace
-
 }  // namespace mrh::physics::internal
 
 namespace mrh::physics {
 
 bool UsesContactLocalModel(const MethodContext& context) {
-  return context.settings->rendering.local_model != settings::LocalModel::kPerturbation &&
-         internal::AllMovingBodiesFree(*context.world);
+  return context.settings->rendering.local_model != settings::LocalModel::kPerturbation;
 }
 
 }  // namespace mrh::physics

@@ -45,6 +45,8 @@ class LocalContactPhysics final : public MethodPhysics {
   void PhysicsStepPointers(std::span<const ir::HapticReport* const> reports,
                            std::span<ir::PhysicsSnapshot* const> out) override;
 
+  std::vector<std::string> setup_warnings() const override { return exporter_.warnings(); }
+
   PhaseTimes last_phases() const noexcept override { return phases_; }
 
   const LocalContactCounters& counters() const { return sync_.counters(); }

@@ -15,7 +15,7 @@ LocalDynamics6dofPhysics::LocalDynamics6dofPhysics(const MethodContext& context)
     : world_(context.world),
       pointer_body_(context.pointer_body),
       physics_dt_(context.settings->physics_dt),
-      exporter_(context.world),
+      exporter_(context.world, kIslandMargin, false, true),
       sync_(context.world, context.settings->physics_dt) {
   builder_.emplace(*world_, pointer_body_, context.settings->rendering);
   const auto capacity = static_cast<std::size_t>(world_->num_bodies());
@@ -130,7 +130,8 @@ void LocalDynamics6dofPhysics::BuildPointers(std::span<const ir::HapticReport* c
   ShareUnion(out);
 }
 
-// Seeds: every dynamic body with a geometric pair (the pointer may touch it this period).
+// Seeds: every island body (free, or of a mechanism) with a geometric pair (the pointer may touch
+// it this period).
 void LocalDynamics6dofPhysics::Export(ir::PhysicsSnapshot* out) {
   seeds_.clear();
   motions_.clear();
@@ -145,7 +146,7 @@ void LocalDynamics6dofPhysics::AddSeeds(const ir::PhysicsSnapshot& pairs,
     if (pair.motion < 0 || static_cast<std::size_t>(pair.motion) >= bodies.bodies.size()) continue;
     const ir::BodyMotion& m = bodies.bodies[static_cast<std::size_t>(pair.motion)];
     if (m.is_static || std::find(seeds_.begin(), seeds_.end(), m.body) != seeds_.end() ||
-        !exporter_.IsFreeBody(m.body)) {
+        !exporter_.IsIslandBody(m.body)) {
       continue;
     }
     seeds_.push_back(m.body);

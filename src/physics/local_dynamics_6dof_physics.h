@@ -47,6 +47,8 @@ class LocalDynamics6dofPhysics final : public MethodPhysics {
                            std::span<ir::PhysicsSnapshot* const> out) override;
 
   /// sync_ms: (0); world_step_ms: (1); ir_ms: (2); model_ms: (3).
+  std::vector<std::string> setup_warnings() const override { return exporter_.warnings(); }
+
   PhaseTimes last_phases() const noexcept override { return phases_; }
 
   const LocalDynamics6dofCounters& counters() const { return sync_.counters(); }

@@ -183,6 +183,7 @@ void PhysicsSide::Finish(PhysicsStats* stats) {
   stats->ir_status = ir_status_;
   stats->phase_total = phase_total_;
   for (const std::string& line : world_->LoadWarnings()) stats->warnings.push_back(line);
+  for (std::string& line : method_->setup_warnings()) stats->warnings.push_back(std::move(line));
   for (std::string& line : world_->SimulatorWarnings()) {
     stats->warnings.push_back(std::move(line));
   }

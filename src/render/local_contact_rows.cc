@@ -5,16 +5,13 @@
 #include <cmath>
 
 #include "mrh/render/local_contact_solver.h"
+#include "soft_constraint.h"
 
 namespace mrh::render {
 namespace {
 
-// Two unit tangents completing the unit normal n to a right-handed frame.
-void Tangents(const Vec3& n, Vec3* t1, Vec3* t2) {
-  const Vec3 axis = std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
-  *t1 = n.cross(axis).normalized();
-  *t2 = n.cross(*t1);
-}
+using internal::Impedance;
+using internal::Tangents;
 
 // The friction directions of a row with normal n. Disc: any two tangents. Pyramid: MuJoCo's
 // set |f_t1| + |f_t2| <= mu f_n about its contact frame (t1 = the exported tangent t rotated
@@ -50,20 +47,6 @@ Vec3 EllipsoidSupport(const Vec3& p, const Quat& q_W, const Vec3& c, const Vec3&
   const double norm = eu.norm();
   const Vec3 x_G = norm > 0.0 ? Vec3(e.cwiseProduct(eu) / norm) : Vec3::Zero();
   return p + q_W * (s - c) + q_WG * x_G;
-}
-
-// MuJoCo's impedance d(|r|) of solimp (dmin, dmax, width, midpoint, power).
-double Impedance(const double* solimp, double depth) {
-  const double dmin = solimp[0], dmax = solimp[1], width = solimp[2];
-  const double mid = solimp[3], power = solimp[4];
-  if (!(width > 0.0) || depth >= width) return std::clamp(dmax, 1e-4, 0.9999);
-  const double x = std::max(0.0, depth / width);
-  double y = x;
-  if (power > 1.0) {
-    y = x <= mid ? std::pow(x, power) / std::pow(mid, power - 1.0)
-                 : 1.0 - std::pow(1.0 - x, power) / std::pow(1.0 - mid, power - 1.0);
-  }
-  return std::clamp(dmin + y * (dmax - dmin), 1e-4, 0.9999);
 }
 
 }  // namespace
@@ -150,16 +133,8 @@ void LocalContactSolver::SetTargets(Row& r, double gap, double dt) const noexcep
   r.R = 0.0;
   r.target = {gap >= 0.0 ? -gap / dt : -settings_.baumgarte * gap / dt, 0.0, 0.0};
   if (settings_.soft_contacts && gap < 0.0) {
-    const double dmax = std::clamp(r.c.solimp[1], 1e-4, 0.9999);
     double k = 0.0, b = 0.0;
-    if (r.c.solref[0] > 0.0) {
-      const double tc = std::max(r.c.solref[0], 2.0 * dt);
-      b = 2.0 / (dmax * tc);
-      k = 1.0 / (dmax * dmax * tc * tc * r.c.solref[1] * r.c.solref[1]);
-    } else {
-      k = -r.c.solref[0] / (dmax * dmax);
-      b = -r.c.solref[1] / dmax;
-    }
+    internal::SpringDamper(r.c.solref, r.c.solimp, dt, &k, &b);
     const double imp = Impedance(r.c.solimp, -gap);
     const Body& A = bodies_[static_cast<std::size_t>(r.c.a)];
     const double diag =

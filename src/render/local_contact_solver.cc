@@ -148,6 +148,7 @@ void LocalContactSolver::AdoptModel(const ir::LocalContactModel& model,
     WarmStart(r, rows_count_++);
   }
   HoldRestingPenetration();
+  AdoptJoints(model);
   gravity_ = model.gravity;
   active_ = 0;
 }
@@ -342,17 +343,27 @@ bool LocalContactSolver::Finish(double dt) noexcept {
 }
 
 bool LocalContactSolver::Step(double dt) noexcept {
+  AddJointSprings();
   Integrate(dt);
   PrepareRows(dt);
+  PrepareJointRows(dt);
   // Symmetric Gauss–Seidel: the sweep direction alternates, so the order of the rows biases
-  // no direction (a box pushed straight stays straight).
+  // no direction (a box pushed straight stays straight). The joints' rows come first in a
+  // forward sweep and last in a backward one.
   sweeps_ = 0;
   for (int it = 0; it < settings_.iterations; ++it) {
     ++sweeps_;
+    const bool forward = it % 2 == 0;
     double change = 0.0;
+    for (std::size_t i = 0; forward && i < jrows_count_; ++i) {
+      change = std::max(change, SolveJointRow(jrows_[i]));
+    }
     for (std::size_t i = 0; i < rows_count_; ++i) {
-      const std::size_t k = (it % 2 == 0) ? i : rows_count_ - 1 - i;
-      change = std::max(change, SolveRow(rows_[k], it % 2 != 0));
+      const std::size_t k = forward ? i : rows_count_ - 1 - i;
+      change = std::max(change, SolveRow(rows_[k], !forward));
+    }
+    for (std::size_t i = 0; !forward && i < jrows_count_; ++i) {
+      change = std::max(change, SolveJointRow(jrows_[jrows_count_ - 1 - i]));
     }
     if (change <= settings_.tolerance) break;
   }

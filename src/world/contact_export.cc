@@ -23,8 +23,8 @@ constexpr double kNearSlack = 1e-6;
 
 }  // namespace
 
-ContactExporter::ContactExporter(World* world, double margin, bool whole_world)
-    : world_(world), margin_(margin), whole_world_(whole_world) {
+ContactExporter::ContactExporter(World* world, double margin, bool whole_world, bool articulated)
+    : world_(world), margin_(margin), whole_world_(whole_world), articulated_(articulated) {
   if (!(margin >= 0.0)) throw InvalidArgument("contact export margin must be >= 0");
   saved_margin_.resize(static_cast<std::size_t>(world->num_geoms()));
   margins_.resize(static_cast<std::size_t>(world->num_geoms()));
@@ -33,6 +33,12 @@ ContactExporter::ContactExporter(World* world, double margin, bool whole_world)
   local_index_.assign(static_cast<std::size_t>(world->num_bodies()), -1);
   near_.assign(static_cast<std::size_t>(world->num_bodies()), 0);
   near_bodies_.reserve(static_cast<std::size_t>(world->num_bodies()));
+  mechanism_.assign(static_cast<std::size_t>(world->num_bodies()), 0);
+  if (articulated_) ClassifyBodies();
+}
+
+bool ContactExporter::IsIslandBody(int body) const {
+  return IsFreeBody(body) || (body > 0 && mechanism_[static_cast<std::size_t>(body)] != 0);
 }
 
 bool ContactExporter::IsFreeBody(int body) const {
@@ -52,6 +58,7 @@ double ContactExporter::GeomMargin(int g) const {
   const mjData& d = *w.data;
   const int body = m.geom_bodyid[g];
   double margin = std::max(m.geom_margin[g], margin_);
+  if (mechanism_[static_cast<std::size_t>(body)] != 0) return JointedMargin(g, margin);
   if (!IsFreeBody(body)) return margin;
   const mjtNum* qvel = d.qvel + m.jnt_dofadr[m.body_jntadr[body]];
   const double v = std::sqrt(qvel[0] * qvel[0] + qvel[1] * qvel[1] + qvel[2] * qvel[2]);
@@ -125,7 +132,7 @@ void ContactExporter::CloseNear() {
   for (std::size_t i = 0; i < near_bodies_.size(); ++i) {
     const int body = near_bodies_[i];
     for (int other = 1; other < m.nbody; ++other) {
-      if (near_[static_cast<std::size_t>(other)] || !IsFreeBody(other)) continue;
+      if (near_[static_cast<std::size_t>(other)] || !IsIslandBody(other)) continue;
       bool reaches = false;
       for (int g = m.body_geomadr[body]; g < m.body_geomadr[body] + m.body_geomnum[body]; ++g) {
         for (int h = m.body_geomadr[other]; h < m.body_geomadr[other] + m.body_geomnum[other];
@@ -159,8 +166,13 @@ void ContactExporter::RestoreFilters() {
   }
 }
 
-bool ContactExporter::AddBody(int body, int motion, ir::LocalContactModel* out) {
-  if (local_index_[static_cast<std::size_t>(body)] >= 0) return true;
+bool ContactExporter::AddOne(int body, int motion, ir::LocalContactModel* out) {
+  const int index = local_index_[static_cast<std::size_t>(body)];
+  if (index >= 0) {
+    ir::LocalIslandBody& b = out->bodies[static_cast<std::size_t>(index)];
+    if (b.motion < 0) b.motion = motion;
+    return true;
+  }
   const BodyInfo& info = world_->body(body);
   const BodyState state = world_->body_state(body);
   ir::LocalIslandBody b;
@@ -191,7 +203,7 @@ std::uint32_t ContactExporter::GrowIsland(ir::LocalContactModel* out) {
       const bool in2 = local_index_[static_cast<std::size_t>(b2)] >= 0;
       if (in1 == in2) continue;
       const int other = in1 ? b2 : b1;
-      if (!IsFreeBody(other)) continue;
+      if (!IsIslandBody(other)) continue;
       if (!AddBody(other, -1, out)) return ir::kStatusBodiesFull;
       grew = true;
     }
@@ -214,7 +226,7 @@ std::uint32_t ContactExporter::Export(std::span<const int> seeds, std::span<cons
     ClearIsland(out);
     status = ir::kStatusOk;
     for (std::size_t i = 0; i < seeds.size(); ++i) {
-      if (!IsFreeBody(seeds[i])) continue;
+      if (!IsIslandBody(seeds[i])) continue;
       if (!AddBody(seeds[i], motions[i], out)) status |= ir::kStatusBodiesFull;
     }
     status |= GrowIsland(out);
@@ -226,6 +238,8 @@ std::uint32_t ContactExporter::Export(std::span<const int> seeds, std::span<cons
     for (const ir::LocalIslandBody& b : out->bodies) AddNear(b.body);
   }
   status |= AddRows(out);
+  out->joints.Clear();
+  if (articulated_) status |= AddJoints(out);
   for (const ir::LocalIslandBody& b : out->bodies) {
     local_index_[static_cast<std::size_t>(b.body)] = -1;
   }
@@ -236,7 +250,7 @@ std::uint32_t ContactExporter::Export(std::span<const int> seeds, std::span<cons
 
 void ContactExporter::SetNear(std::span<const int> seeds) {
   for (const int body : seeds) {
-    if (IsFreeBody(body)) AddNear(body);
+    if (IsIslandBody(body)) AddNear(body);
   }
 }
 

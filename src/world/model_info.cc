@@ -126,6 +126,8 @@ BodyInfo DescribeBody(const mjModel& m, int b) {
   info.p_BCm = ToVec3(m.body_ipos + 3 * b);
   info.is_mocap = m.body_mocapid[b] >= 0;
   info.is_static = HasNoDofs(m, b);
+  info.parent = b > 0 ? m.body_parentid[b] : -1;
+  info.free = m.body_jntnum[b] == 1 && m.jnt_type[m.body_jntadr[b]] == mjJNT_FREE;
   for (int g = 0; g < m.body_geomnum[b]; ++g) info.geoms.push_back(m.body_geomadr[b] + g);
   return info;
 }

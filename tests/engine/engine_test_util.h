@@ -29,6 +29,8 @@ inline settings::EngineSettings T41Settings(const std::string& method) {
   s.pointer.radius = 0.02;
   s.rendering.stiffness = 1000.0;
   s.rendering.damping = 0.0;
+  // T4.1 measures the thesis' perturbation model (local-dynamics' other local model).
+  s.rendering.local_model = settings::LocalModel::kPerturbation;
   s.safety.ramp = false;
   s.realtime_priority = false;
   return s;

@@ -150,6 +150,9 @@ class Engine {
   double display_gain() const;
 
   const world::World& world() const;
+  /// What the method does not simulate as a user would expect, found at setup (e.g. a
+  /// mechanism the local simulation cannot take); RunStats::warnings repeats them.
+  std::vector<std::string> setup_warnings() const;
   const settings::EngineSettings& settings() const;
   double pointer_radius() const;
   /// Number of pointers (1 unless settings.pointers lists several) and their body names.

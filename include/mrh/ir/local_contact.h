@@ -11,8 +11,9 @@
 namespace mrh::ir {
 
 /// Bodies of the local island (the pointer's dynamic neighbors plus every dynamic body they
-/// touch, transitively) and their contact rows. Overflow: further bodies are treated as static
-/// and kStatusBodiesFull / kStatusContactsFull is set in the snapshot.
+/// touch, transitively, each with the whole mechanism it belongs to) and their contact rows.
+/// Overflow: further bodies are treated as static and kStatusBodiesFull / kStatusContactsFull is
+/// set in the snapshot.
 inline constexpr std::size_t kMaxLocalBodies = 32;
 inline constexpr std::size_t kMaxLocalContacts = 192;
 
@@ -77,12 +78,54 @@ struct LocalContactRow {
   Quat q_B = Quat::Identity();
 };
 
+/// Joints of the island's mechanisms: one per jointed island body (its joint to its parent).
+inline constexpr std::size_t kMaxLocalJoints = kMaxLocalBodies;
+
+/// What a local joint lets the child do relative to its parent. kWeld: nothing (a body with no
+/// joint of its own riding on a moving parent).
+enum class LocalJointType : std::uint8_t { kHinge, kSlide, kBall, kWeld };
+
+/// The joint of island body `child` to `parent` (another island body, or the static world when
+/// parent < 0), with MuJoCo's definitions: the joint frame J is fixed on both bodies; at the
+/// reference coordinate qpos0 the two copies coincide, X_WP·X_PJ = X_WC·X_CJ. A hinge rotates
+/// the child's copy about `axis` (J's frame) through J's origin by q − qpos0 (rad); a slide
+/// translates it along `axis` by q − qpos0 (m); a ball turns it by the unit quaternion q (its
+/// qpos0 is the identity). Passive terms act on the joint's coordinates: stiffness k (N·m/rad or
+/// N/m) towards the spring reference, damping (N·m·s/rad or N·s/m), frictionloss (N·m or N,
+/// the largest dry-friction load), armature (kg·m² or kg, added to the coordinate's inertia);
+/// limits on [range[0], range[1]] (hinge, slide) with MuJoCo's soft limit.
+struct LocalJoint {
+  LocalJointType type = LocalJointType::kHinge;
+  int child = -1;             ///< index into LocalContactModel::bodies
+  int parent = -1;            ///< index into LocalContactModel::bodies, -1: static (X_PJ in world)
+  int joint = -1;             ///< world joint id (-1: kWeld)
+  Pose X_PJ;                  ///< joint frame on the parent (parent body frame, or world)
+  Pose X_CJ;                  ///< joint frame on the child (child body frame)
+  Vec3 axis = Vec3::UnitZ();  ///< unit axis in J (hinge, slide)
+  double qpos0 = 0.0;         ///< reference coordinate (hinge, slide)
+  double spring_ref = 0.0;    ///< spring reference coordinate (hinge, slide)
+  Quat spring_q = Quat::Identity();  ///< spring reference orientation (ball)
+  double stiffness = 0.0;
+  double damping = 0.0;
+  double frictionloss = 0.0;
+  double armature = 0.0;
+  bool limited = false;
+  double range[2] = {0.0, 0.0};
+  double margin = 0.0;  ///< the limit acts within this distance of the range (rad or m)
+  double solref_limit[2] = {0.02, 1.0};
+  double solimp_limit[5] = {0.9, 0.95, 0.001, 0.5, 2.0};
+  double solref_friction[2] = {0.02, 1.0};
+  double solimp_friction[5] = {0.9, 0.95, 0.001, 0.5, 2.0};
+};
+
 /// Everything the contact local model needs for one period (physics → haptic, in the snapshot).
 struct LocalContactModel {
   bool valid = false;           ///< false: the method does not use the contact model
   Vec3 gravity = Vec3::Zero();  ///< m/s², world
   FixedVector<LocalIslandBody, kMaxLocalBodies> bodies;
   FixedVector<LocalContactRow, kMaxLocalContacts> contacts;
+  /// Parents before children (a joint's parent, if an island body, has a lower index).
+  FixedVector<LocalJoint, kMaxLocalJoints> joints;
 };
 
 }  // namespace mrh::ir

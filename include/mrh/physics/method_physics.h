@@ -5,6 +5,7 @@
 #include <chrono>
 #include <limits>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "mrh/ir/snapshot.h"
@@ -94,6 +95,11 @@ class MethodPhysics {
   /// "local"); nullptr (default): the step applied the report's impulses. PhysicsSide's totals
   /// (RunStats::impulses) count these.
   virtual const ir::HapticReport* applied_reaction() const noexcept { return nullptr; }
+
+  /// What the method does not simulate as a user would expect, found at setup (e.g. a
+  /// mechanism the local simulation cannot take), one line each; PhysicsSide copies them into
+  /// the run's warnings (summary.json). Default: none.
+  virtual std::vector<std::string> setup_warnings() const { return {}; }
 };
 
 }  // namespace mrh::physics

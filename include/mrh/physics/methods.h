@@ -49,9 +49,9 @@ std::unique_ptr<MethodPhysics> MakeLocalContactPhysics(const MethodContext& cont
 /// model. @throws mrh::SceneError from the geometric IR builder. Not RT-safe.
 std::unique_ptr<MethodPhysics> MakeLocalDynamics6dofPhysics(const MethodContext& context);
 
-/// True when `local-dynamics` runs the contact model: rendering.local_model is "contact" and
-/// every moving body is free-jointed (a scene with a slide- or hinge-jointed body, e.g. T4.1's
-/// cube, keeps the thesis' perturbation model).
+/// True when `local-dynamics` runs the contact model: rendering.local_model is "contact". It
+/// simulates free bodies and mechanisms (hinge, slide, ball joints); a mechanism it cannot take
+/// is named in MethodPhysics::setup_warnings() and left to the world.
 bool UsesContactLocalModel(const MethodContext& context);
 
 /// The rotation weight R_w (m², world frame) proxy-6dof uses for `rendering` (thesis §3.4.1):

@@ -28,7 +28,10 @@ struct LocalContactSolverSettings {
 };
 
 /// The island of ir::LocalContactModel as a small rigid-body simulation: per tick, semi-implicit
-/// Euler with gravity, the forces added by AddForce() (the pointer's reaction, eq. 4.12) and the
+/// Euler with gravity, joint springs, the forces added by AddForce() (the pointer's reaction,
+/// eq. 4.12), the impulses of the island's joints (ir::LocalJoint as rows between maximal
+/// coordinates: bilateral position rows with a Baumgarte term, implicit damping, armature,
+/// dry friction and soft limits on the joint coordinate) and the
 /// contact impulses of a projected Gauss–Seidel solve of the island's contact rows (velocity
 /// level: non-penetration with a speculative term for open contacts, λ_n >= 0, friction in the
 /// scene's cone — MuJoCo's pyramid |λ_t1| + |λ_t2| <= μ λ_n about the contact frame, or the
@@ -60,6 +63,8 @@ class LocalContactSolver {
   void Clear() noexcept {
     count_ = 0;
     rows_count_ = 0;
+    joints_count_ = 0;
+    jrows_count_ = 0;
   }
 
   std::size_t size() const noexcept { return count_; }
@@ -93,6 +98,12 @@ class LocalContactSolver {
   /// Advances one tick of dt (s). Returns false if a state became non-finite: that body is
   /// then kept at its pose with zero twist. RT-safe.
   [[nodiscard]] bool Step(double dt) noexcept;
+
+  /// Joint coordinate of the island's joint j at the local poses (hinge rad, slide m; ball and
+  /// weld 0), as MuJoCo's qpos would read. RT-safe.
+  double JointPosition(std::size_t j) const noexcept;
+
+  std::size_t joint_count() const noexcept { return joints_count_; }
 
   /// Contact rows that carried a normal impulse in the latest Step(). RT-safe.
   int active_contacts() const noexcept { return active_; }
@@ -146,6 +157,39 @@ class LocalContactSolver {
     std::array<Vec3, 3> mB{};
   };
 
+  // One scalar row of a joint: relative velocity d·(v_A − v_B) + jA·ω_A − jB·ω_B of child A
+  // over parent B (static when b < 0); d is zero for an angular row. λ lives in joint_lambda_
+  // [slot] (warm start across ticks and periods), bounded by [lo, hi].
+  struct JointRow {
+    int a = -1;
+    int b = -1;
+    int slot = 0;
+    Vec3 d = Vec3::Zero();
+    Vec3 jA = Vec3::Zero();
+    Vec3 jB = Vec3::Zero();
+    Vec3 mA = Vec3::Zero();  // I_A⁻¹ jA
+    Vec3 mB = Vec3::Zero();
+    double inv_w = 0.0;  // 1 / (A_jj + R)
+    double target = 0.0;
+    double R = 0.0;
+    double lo = 0.0;
+    double hi = 0.0;
+  };
+
+  // A joint's frames and coordinate at this tick's poses (world).
+  struct JointPlacement {
+    Vec3 pC = Vec3::Zero();       // anchor on the child
+    Vec3 pP = Vec3::Zero();       // anchor on the parent
+    Quat qC = Quat::Identity();   // child's copy of the joint frame
+    Quat qP = Quat::Identity();   // parent's copy
+    Vec3 axis = Vec3::UnitZ();    // the parent's copy of the axis
+    Quat rel = Quat::Identity();  // qP⁻¹ qC, w >= 0
+    double q = 0.0;               // hinge angle or slide position, qpos units
+  };
+
+  // Rows one joint may take: 3 linear, 3 angular, 3 damping, 3 armature, 3 friction, 2 limits.
+  static constexpr std::size_t kJointSlots = 17;
+
   // A previous period's row impulses, kept to warm-start the same contact in the next period.
   struct WarmRow {
     int a_body = -1;
@@ -175,6 +219,21 @@ class LocalContactSolver {
   double SolveRow(Row& r, bool reverse) noexcept;
   double SolveFrictionBox(Row& r, double limit, bool reverse) noexcept;
   bool Finish(double dt) noexcept;
+  void AdoptJoints(const ir::LocalContactModel& model) noexcept;
+  JointPlacement PlaceJoint(const ir::LocalJoint& j) const noexcept;
+  void AddJointSprings() noexcept;
+  void PrepareJointRows(double dt) noexcept;
+  void AddPositionRows(const ir::LocalJoint& j, const JointPlacement& x, int base,
+                       double dt) noexcept;
+  void AddDofRows(const ir::LocalJoint& j, const JointPlacement& x, int base, double dt) noexcept;
+  void AddLimitRows(const ir::LocalJoint& j, const JointPlacement& x, int base, double dt) noexcept;
+  JointRow& AddLinearRow(const ir::LocalJoint& j, int slot, const Vec3& d, const Vec3& p_A,
+                         const Vec3& p_B) noexcept;
+  JointRow& AddAngularRow(const ir::LocalJoint& j, int slot, const Vec3& e) noexcept;
+  void FinishJointRow(JointRow& r, double R) noexcept;
+  double JointRowVelocity(const JointRow& r, bool start) const noexcept;
+  void ApplyJointImpulse(JointRow& r, double dl) noexcept;
+  double SolveJointRow(JointRow& r) noexcept;
 
   LocalContactSolverSettings settings_;
   std::array<Body, ir::kMaxLocalBodies> bodies_{};
@@ -184,6 +243,11 @@ class LocalContactSolver {
   std::size_t rows_count_ = 0;
   std::array<WarmRow, ir::kMaxLocalContacts> warm_{};
   std::size_t warm_count_ = 0;
+  std::array<ir::LocalJoint, ir::kMaxLocalJoints> joints_{};
+  std::size_t joints_count_ = 0;
+  std::array<JointRow, ir::kMaxLocalJoints * kJointSlots> jrows_{};
+  std::size_t jrows_count_ = 0;
+  std::array<double, ir::kMaxLocalJoints * kJointSlots> joint_lambda_{};
   int sweeps_ = 0;
   Vec3 gravity_ = Vec3::Zero();
   int active_ = 0;

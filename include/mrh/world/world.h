@@ -60,6 +60,8 @@ struct BodyInfo {
   Vec3 p_BCm = Vec3::Zero();      ///< centre of mass in the body frame (m)
   bool is_static = true;          ///< world body or welded to it (no degrees of freedom)
   bool is_mocap = false;
+  int parent = -1;         ///< parent body id (0: the world body; -1 for the world body itself)
+  bool free = false;       ///< moves on one free joint (its state is its own, not its parent's)
   std::vector<int> geoms;  ///< ids into World::geom()
 };
 
@@ -140,6 +142,22 @@ class World {
   /// (used by synchronization with a local simulation). Returns false if the body's joints
   /// cannot represent it exactly.
   bool SetBodyState(int body, const Pose& X_WB, const Twist& V_WCm);
+
+  /// Sets the one hinge, slide or ball joint of `body` (nothing for a body without joints) to
+  /// the coordinates of the body's pose and twist relative to its parent, the parent given at
+  /// pose X_WParent with COM twist V_WParentCm (e.g. from the same local simulation): the
+  /// hinge angle of the relative rotation about the axis, the slide displacement along it, the
+  /// ball's relative orientation, and the relative velocity along the coordinates. Components
+  /// the joint cannot represent (a local simulation's joint drift) are dropped. Returns false
+  /// for other joint configurations or non-finite input, leaving the state untouched.
+  bool SetBodyStateInParent(int body, const Pose& X_WB, const Twist& V_WCm, const Pose& X_WParent,
+                            const Twist& V_WParentCm);
+
+  /// Number of joints, a joint's id by name (-1: none) and its position coordinate (hinge rad,
+  /// slide m; the first coordinate of a ball or free joint).
+  int num_joints() const;
+  int FindJoint(const std::string& name) const;
+  double joint_position(int joint) const;
 
   BodyState body_state(int body) const;
   /// World pose of a geom.
