@@ -349,23 +349,21 @@ bool LocalContactSolver::Step(double dt) noexcept {
   PrepareJointRows(dt);
   // Symmetric Gauss–Seidel: the sweep direction alternates, so the order of the rows biases
   // no direction (a box pushed straight stays straight). The joints' rows come first in a
-  // forward sweep and last in a backward one: the position block, then the scalar rows.
+  // forward sweep and last in a backward one.
   sweeps_ = 0;
   for (int it = 0; it < settings_.iterations; ++it) {
     ++sweeps_;
     const bool forward = it % 2 == 0;
     double change = 0.0;
-    if (forward && jrows_count_ > 0) {
-      change = SolveJointBlock();
-      change = std::max(change, SolveScalarJointRows(true));
+    for (std::size_t i = 0; forward && i < jrows_count_; ++i) {
+      change = std::max(change, SolveJointRow(jrows_[i]));
     }
     for (std::size_t i = 0; i < rows_count_; ++i) {
       const std::size_t k = forward ? i : rows_count_ - 1 - i;
       change = std::max(change, SolveRow(rows_[k], !forward));
     }
-    if (!forward && jrows_count_ > 0) {
-      change = std::max(change, SolveScalarJointRows(false));
-      change = std::max(change, SolveJointBlock());
+    for (std::size_t i = 0; !forward && i < jrows_count_; ++i) {
+      change = std::max(change, SolveJointRow(jrows_[jrows_count_ - 1 - i]));
     }
     if (change <= settings_.tolerance) break;
   }

@@ -19,9 +19,6 @@ using ir::LocalJointType;
 // diverged, while 0.01–0.05 give the same d2 results.
 constexpr double kJointBaumgarte = 0.02;
 constexpr double kInf = std::numeric_limits<double>::infinity();
-// A limit's row is made only within this distance of its end (rad or m) plus four ticks of the
-// coordinate's speed: farther, its speculative row could not act this tick.
-constexpr double kLimitWindow = 0.01;
 
 // Slots of a joint's rows in joint_lambda_ (per joint, LocalContactSolver::kJointSlots).
 constexpr int kLinearSlot = 0;
@@ -140,31 +137,28 @@ void LocalContactSolver::PrepareJointRows(double dt) noexcept {
     const double l = joint_lambda_[static_cast<std::size_t>(r.slot)];
     if (l != 0.0) ApplyJointImpulse(r, l);
   }
-  PrepareJointBlock();
-}
-
-// A position row of the block: driven to remove kJointBaumgarte of its error `error` per tick.
-void LocalContactSolver::FinishPositionRow(JointRow& r, double error, double dt) noexcept {
-  r.target = -kJointBaumgarte / dt * error;
-  r.block = true;
-  FinishJointRow(r, 0.0);
 }
 
 // The bilateral rows that hold the two copies of the joint frame together where the joint does
-// not let them move: the anchor (a slide's across its axis only), then the orientation.
+// not let them move, each driven to remove kJointBaumgarte of its error per tick.
 void LocalContactSolver::AddPositionRows(const ir::LocalJoint& j, const JointPlacement& x, int base,
                                          double dt) noexcept {
-  const Vec3 e = x.pC - x.pP;
+  const double gain = kJointBaumgarte / dt;
   if (j.type == LocalJointType::kSlide) {
     Vec3 t[2];
     internal::Tangents(x.axis, &t[0], &t[1]);
+    const Vec3 e = x.pC - x.pP;
     for (int k = 0; k < 2; ++k) {
-      FinishPositionRow(AddLinearRow(j, base + kLinearSlot + k, t[k], x.pC, x.pC), t[k].dot(e), dt);
+      JointRow& r = AddLinearRow(j, base + kLinearSlot + k, t[k], x.pC, x.pC);
+      r.target = -gain * t[k].dot(e);
+      FinishJointRow(r, 0.0);
     }
   } else {
+    const Vec3 e = x.pC - x.pP;
     for (int k = 0; k < 3; ++k) {
-      FinishPositionRow(AddLinearRow(j, base + kLinearSlot + k, Vec3::Unit(k), x.pC, x.pP), e[k],
-                        dt);
+      JointRow& r = AddLinearRow(j, base + kLinearSlot + k, Vec3::Unit(k), x.pC, x.pP);
+      r.target = -gain * e[k];
+      FinishJointRow(r, 0.0);
     }
   }
   if (j.type == LocalJointType::kBall) return;
@@ -173,13 +167,17 @@ void LocalContactSolver::AddPositionRows(const ir::LocalJoint& j, const JointPla
     Vec3 t[2];
     internal::Tangents(x.axis, &t[0], &t[1]);
     for (int k = 0; k < 2; ++k) {
-      FinishPositionRow(AddAngularRow(j, base + kAngularSlot + k, t[k]), t[k].dot(phi), dt);
+      JointRow& r = AddAngularRow(j, base + kAngularSlot + k, t[k]);
+      r.target = -gain * t[k].dot(phi);
+      FinishJointRow(r, 0.0);
     }
     return;
   }
   const Vec3 phi = x.qP * RotationVector(x.rel);  // slide, weld: no relative rotation
   for (int k = 0; k < 3; ++k) {
-    FinishPositionRow(AddAngularRow(j, base + kAngularSlot + k, Vec3::Unit(k)), phi[k], dt);
+    JointRow& r = AddAngularRow(j, base + kAngularSlot + k, Vec3::Unit(k));
+    r.target = -gain * phi[k];
+    FinishJointRow(r, 0.0);
   }
 }
 
@@ -196,15 +194,10 @@ void LocalContactSolver::AddDofRows(const ir::LocalJoint& j, const JointPlacemen
       return AddAngularRow(j, slot,
                            j.type == LocalJointType::kBall ? Vec3(x.qC * Vec3::Unit(k)) : x.axis);
     };
-    if (j.damping > 0.0) {
-      JointRow& r = add(base + kDampingSlot + k);
-      r.block = true;
-      FinishJointRow(r, 1.0 / (j.damping * dt));
-    }
+    if (j.damping > 0.0) FinishJointRow(add(base + kDampingSlot + k), 1.0 / (j.damping * dt));
     if (j.armature > 0.0) {
       JointRow& r = add(base + kArmatureSlot + k);
       r.target = JointRowVelocity(r, true);
-      r.block = true;
       FinishJointRow(r, 1.0 / j.armature);
     }
     if (j.frictionloss > 0.0) {
@@ -233,11 +226,6 @@ void LocalContactSolver::AddLimitRows(const ir::LocalJoint& j, const JointPlacem
     JointRow& r = j.type == LocalJointType::kSlide
                       ? AddLinearRow(j, base + kLimitSlot + side, dir, x.pC, x.pC)
                       : AddAngularRow(j, base + kLimitSlot + side, dir);
-    const double v0 = JointRowVelocity(r, true);
-    if (gap > kLimitWindow + 4.0 * dt * std::abs(v0)) {
-      --jrows_count_;  // far from this end: no row (it could not act this tick)
-      continue;
-    }
     r.lo = 0.0;
     r.hi = kInf;
     double R = 0.0;
@@ -246,6 +234,7 @@ void LocalContactSolver::AddLimitRows(const ir::LocalJoint& j, const JointPlacem
       double stiff = 0.0, damp = 0.0;
       internal::SpringDamper(j.solref_limit, j.solimp_limit, dt, &stiff, &damp);
       const double imp = internal::Impedance(j.solimp_limit, -gap);
+      const double v0 = JointRowVelocity(r, true);
       r.target = v0 + dt * (-damp * v0 - stiff * imp * gap);
       R = std::max(1e-15, (1.0 - imp) / imp * r.inv_w);
     }

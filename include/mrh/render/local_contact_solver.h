@@ -3,7 +3,6 @@
 // at the haptic rate with its own contacts (normal + Coulomb friction cone) under gravity.
 #pragma once
 
-#include <Eigen/Cholesky>
 #include <array>
 #include <cstddef>
 
@@ -175,7 +174,6 @@ class LocalContactSolver {
     double R = 0.0;
     double lo = 0.0;
     double hi = 0.0;
-    bool block = false;  // a position row solved with the others in one block (SolveJointBlock)
   };
 
   // A joint's frames and coordinate at this tick's poses (world).
@@ -233,14 +231,9 @@ class LocalContactSolver {
                          const Vec3& p_B) noexcept;
   JointRow& AddAngularRow(const ir::LocalJoint& j, int slot, const Vec3& e) noexcept;
   void FinishJointRow(JointRow& r, double R) noexcept;
-  void FinishPositionRow(JointRow& r, double error, double dt) noexcept;
   double JointRowVelocity(const JointRow& r, bool start) const noexcept;
   void ApplyJointImpulse(JointRow& r, double dl) noexcept;
   double SolveJointRow(JointRow& r) noexcept;
-  void PrepareJointBlock() noexcept;
-  double BlockCoupling(const JointRow& ri, const JointRow& rj) const noexcept;
-  double SolveJointBlock() noexcept;
-  double SolveScalarJointRows(bool forward) noexcept;
 
   LocalContactSolverSettings settings_;
   std::array<Body, ir::kMaxLocalBodies> bodies_{};
@@ -255,19 +248,6 @@ class LocalContactSolver {
   std::array<JointRow, ir::kMaxLocalJoints * kJointSlots> jrows_{};
   std::size_t jrows_count_ = 0;
   std::array<double, ir::kMaxLocalJoints * kJointSlots> joint_lambda_{};
-  // The joints' position rows as one block: a chain's joint rows couple through every link, so
-  // scalar Gauss–Seidel converges slowly on them (a 6-link chain lying in a plane: ~0.9985 per
-  // sweep); each sweep solves the block exactly instead, with its Delassus matrix J M⁻¹ Jᵀ
-  // factored once per tick. Rows beyond the capacity stay scalar.
-  static constexpr int kMaxBlockRows = 96;
-  using BlockMatrix =
-      Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxBlockRows, kMaxBlockRows>;
-  using BlockVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxBlockRows, 1>;
-  std::array<int, kMaxBlockRows> block_rows_{};  // indices into jrows_
-  int block_count_ = 0;
-  BlockMatrix block_D_;
-  Eigen::LLT<BlockMatrix> block_llt_;
-  BlockVector block_b_;
   int sweeps_ = 0;
   Vec3 gravity_ = Vec3::Zero();
   int active_ = 0;
