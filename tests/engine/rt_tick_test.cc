@@ -8,6 +8,7 @@
 #include "engine/engine_impl.h"
 #include "engine_test_util.h"
 #include "haptic_alloc_loop.h"
+#include "mrh/device/simulated.h"
 
 namespace mrh::engine::testing {
 namespace {
@@ -29,6 +30,30 @@ TEST(RtTickTest, HapticTicksNeverAllocateInContact) {
     const int periods = static_cast<int>(1.5 / state.settings.physics_dt);
     EXPECT_EQ(HapticAllocations(state, periods), 0) << method;
     EXPECT_GT(state.haptic->counters().max_force, 1.0) << method << ": contact never happened";
+  }
+}
+
+// A mechanism in the island (scenes/chain6_boxes.xml: a 6-link hinged chain with springs,
+// damping, armature, dry friction and limits among 8 free boxes), its tip pushed into the
+// boxes: the joint rows allocate nothing either.
+TEST(RtTickTest, HapticTicksWithAMechanismInTheIslandNeverAllocate) {
+  for (const char* method : {"local-dynamics", "local-dynamics-6dof"}) {
+    settings::EngineSettings s;
+    s.method = method;
+    s.physics_dt = 0.02;
+    s.duration = 1.0;
+    s.pointer.radius = 0.015;
+    s.rendering.stiffness = 1200.0;
+    s.rendering.damping = 3.0;
+    s.safety.ramp = false;
+    s.realtime_priority = false;
+    auto device = device::MakeScriptedDevice(
+        {device::Keyframe{0.0, Pose{Vec3(0.62, 0.04, 0.02), Quat::Identity()}},
+         device::Keyframe{1.0, Pose{Vec3(0.62, -0.01, 0.02), Quat::Identity()}}});
+    EngineState state(world::World::LoadFile(MRH_SOURCE_DIR "/scenes/chain6_boxes.xml"),
+                      std::move(device), device::Calibration{}, s);
+    EXPECT_EQ(HapticAllocations(state, 50), 0) << method;
+    EXPECT_GT(state.haptic->counters().max_force, 0.1) << method << ": contact never happened";
   }
 }
 
