@@ -139,6 +139,29 @@ void LocalContactSolver::PrepareJointRows(double dt) noexcept {
   }
 }
 
+// The directions across slide joint i's axis that its body may not translate along (t, up to
+// two; returned: how many). A translating body's slides are consecutive joints of one child:
+// the first takes the directions across all their axes (2, 1 or 0 for one, two or three
+// slides); a later one returns -1.
+int LocalContactSolver::SlideCrossDirections(int i, const JointPlacement& x,
+                                             Vec3* t) const noexcept {
+  const auto n = static_cast<std::size_t>(i);
+  const ir::LocalJoint& j = joints_[n];
+  const auto same_body = [&](std::size_t k) {
+    return joints_[k].child == j.child && joints_[k].type == LocalJointType::kSlide;
+  };
+  if (n > 0 && same_body(n - 1)) return -1;
+  std::size_t count = 1;
+  while (n + count < joints_count_ && same_body(n + count) && count < 3) ++count;
+  if (count == 1) {
+    internal::Tangents(x.axis, &t[0], &t[1]);
+    return 2;
+  }
+  if (count == 3) return 0;
+  t[0] = x.axis.cross(x.qP * joints_[n + 1].axis).normalized();
+  return 1;
+}
+
 // The bilateral rows that hold the two copies of the joint frame together where the joint does
 // not let them move, each driven to remove kJointBaumgarte of its error per tick.
 void LocalContactSolver::AddPositionRows(const ir::LocalJoint& j, const JointPlacement& x, int base,
@@ -146,9 +169,10 @@ void LocalContactSolver::AddPositionRows(const ir::LocalJoint& j, const JointPla
   const double gain = kJointBaumgarte / dt;
   if (j.type == LocalJointType::kSlide) {
     Vec3 t[2];
-    internal::Tangents(x.axis, &t[0], &t[1]);
+    const int across = SlideCrossDirections(base / static_cast<int>(kJointSlots), x, t);
+    if (across < 0) return;  // a translating body's later slide: its first one holds the body
     const Vec3 e = x.pC - x.pP;
-    for (int k = 0; k < 2; ++k) {
+    for (int k = 0; k < across; ++k) {
       JointRow& r = AddLinearRow(j, base + kLinearSlot + k, t[k], x.pC, x.pC);
       r.target = -gain * t[k].dot(e);
       FinishJointRow(r, 0.0);

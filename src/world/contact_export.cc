@@ -262,6 +262,7 @@ void ContactExporter::AddNear(int body) {
 
 // Forgets the island's bodies (local_index_) and empties the model.
 void ContactExporter::ClearIsland(ir::LocalContactModel* out) {
+  island_joints_ = 0;
   for (const ir::LocalIslandBody& b : out->bodies) {
     local_index_[static_cast<std::size_t>(b.body)] = -1;
   }

@@ -52,11 +52,32 @@ void FillJoint(const mjModel& m, int jnt, ir::LocalJoint* out) {
   std::copy_n(m.dof_solimp + mjNIMP * v, 5, j.solimp_friction);
 }
 
+// True if `body`'s joints are two or three slides along orthogonal axes (a translating body:
+// each coordinate is the displacement along its own axis).
+bool OrthogonalSlides(const mjModel& m, int body) {
+  const int first = m.body_jntadr[body];
+  const int count = m.body_jntnum[body];
+  if (count < 2 || count > 3) return false;
+  for (int a = first; a < first + count; ++a) {
+    if (m.jnt_type[a] != mjJNT_SLIDE) return false;
+    for (int b = first; b < a; ++b) {
+      const Vec3 u = ToVec3(m.jnt_axis + 3 * a).normalized();
+      if (std::abs(u.dot(ToVec3(m.jnt_axis + 3 * b).normalized())) > 1e-9) return false;
+    }
+  }
+  return true;
+}
+
+// The island joints body `body` needs: one per joint, one (a weld) for none.
+int JointsOf(const mjModel& m, int body) {
+  return std::max(1, static_cast<int>(m.body_jntnum[body]));
+}
+
 }  // namespace
 
 // Why the local simulation cannot take moving body `body` ("" if it can): one hinge, slide or
-// ball joint (a ball without limits), or none on a moving parent, is what the island's joint
-// rows model; a free body is simulated as before.
+// ball joint (a ball without limits), two or three orthogonal slides, or none on a moving parent,
+// is what the island's joint rows model; a free body is simulated as before.
 std::string ContactExporter::Unsupported(int body) const {
   const mjModel& m = *world_->impl_->model;
   const std::string name = internal::Describe(m, mjOBJ_BODY, body);
@@ -65,10 +86,10 @@ std::string ContactExporter::Unsupported(int body) const {
     return "body " + name + ": its parent " + internal::Describe(m, mjOBJ_BODY, parent) +
            " is a mocap body";
   }
-  if (m.body_jntnum[body] > 1) {
+  if (m.body_jntnum[body] > 1 && !OrthogonalSlides(m, body)) {
     return "body " + name + ": " + std::to_string(m.body_jntnum[body]) + " joints (joint " +
            internal::Describe(m, mjOBJ_JOINT, m.body_jntadr[body]) +
-           " and more); one joint per body is simulated";
+           " and more); one joint per body, or up to three orthogonal slides, is simulated";
   }
   if (m.body_jntnum[body] == 0) return "";
   const int joint = m.body_jntadr[body];
@@ -107,12 +128,21 @@ bool ContactExporter::AddBody(int body, int motion, ir::LocalContactModel* out) 
   if (mechanism_[static_cast<std::size_t>(body)] == 0) return AddOne(body, motion, out);
   const mjModel& m = *world_->impl_->model;
   const int root = m.body_rootid[body];
-  std::size_t missing = 0;
+  std::size_t missing = 0, joints = 0;
   for (int b = root; b < m.nbody; ++b) {
-    missing += m.body_rootid[b] == root && mechanism_[static_cast<std::size_t>(b)] != 0 &&
-               local_index_[static_cast<std::size_t>(b)] < 0;
+    if (m.body_rootid[b] != root || mechanism_[static_cast<std::size_t>(b)] == 0 ||
+        local_index_[static_cast<std::size_t>(b)] >= 0) {
+      continue;
+    }
+    ++missing;
+    if (!IsFreeBody(b)) joints += static_cast<std::size_t>(JointsOf(m, b));
   }
-  if (out->bodies.size() + missing > ir::kMaxLocalBodies) return false;
+  // The whole tree with its joints, or nothing: a body without its joint rows would fly free.
+  if (out->bodies.size() + missing > ir::kMaxLocalBodies ||
+      island_joints_ + joints > ir::kMaxLocalJoints) {
+    return false;
+  }
+  island_joints_ += joints;
   for (int b = root; b < m.nbody; ++b) {
     if (m.body_rootid[b] != root || mechanism_[static_cast<std::size_t>(b)] == 0) continue;
     if (!AddOne(b, b == body ? motion : -1, out)) return false;
@@ -144,10 +174,12 @@ std::uint32_t ContactExporter::AddJoints(ir::LocalContactModel* out) const {
     j.parent = local_index_[static_cast<std::size_t>(parent)];
     j.type = ir::LocalJointType::kWeld;
     const Pose X_PB{ToVec3(m.body_pos + 3 * body), ModelQuat(m.body_quat + 4 * body)};
-    if (m.body_jntnum[body] == 1) FillJoint(m, m.body_jntadr[body], &j);
-    j.X_PJ = X_PB * j.X_CJ;
-    if (j.parent < 0) j.X_PJ = world_->body_state(parent).X_WB * j.X_PJ;
-    if (!out->joints.PushBack(j)) return ir::kStatusBodiesFull;
+    for (int k = 0; k < JointsOf(m, body); ++k) {  // a translating body's slides: consecutive
+      if (m.body_jntnum[body] > 0) FillJoint(m, m.body_jntadr[body] + k, &j);
+      j.X_PJ = X_PB * j.X_CJ;
+      if (j.parent < 0) j.X_PJ = world_->body_state(parent).X_WB * j.X_PJ;
+      if (!out->joints.PushBack(j)) return ir::kStatusBodiesFull;
+    }
   }
   return ir::kStatusOk;
 }

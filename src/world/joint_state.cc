@@ -48,8 +48,9 @@ Relative MakeRelative(const mjModel& m, int body, const Pose& X_WB, const Twist&
   return r;
 }
 
-bool SetRelative(const mjModel& m, mjData* d, int body, const Relative& r) {
-  const int joint = m.body_jntadr[body];
+// Joint `joint`'s coordinates from the relative state. Several slides of one body each take the
+// displacement along their own axis (the anchors cancel: the body does not turn).
+bool SetRelative(const mjModel& m, mjData* d, int joint, const Relative& r) {
   const int qadr = m.jnt_qposadr[joint];
   const int vadr = m.jnt_dofadr[joint];
   Quat rel = (r.qP.conjugate() * r.qC).normalized();
@@ -93,10 +94,16 @@ bool World::SetBodyStateInParent(int body, const Pose& X_WB, const Twist& V_WCm,
   if (!IsFinite(X_WB) || !IsFinite(V_WCm) || !IsFinite(X_WParent) || !IsFinite(V_WParentCm)) {
     return false;
   }
-  if (m.body_jntnum[body] == 0) return true;  // welded: follows its parent
-  if (m.body_jntnum[body] != 1) return false;
+  const int count = m.body_jntnum[body];
+  if (count == 0) return true;  // welded: follows its parent
+  const int first = m.body_jntadr[body];
+  for (int j = first; j < first + count; ++j) {
+    if (count > 1 && m.jnt_type[j] != mjJNT_SLIDE) return false;
+  }
   const Relative r = MakeRelative(m, body, X_WB, V_WCm, X_WParent, V_WParentCm);
-  if (!SetRelative(m, impl_->data.get(), body, r)) return false;
+  for (int j = first; j < first + count; ++j) {
+    if (!SetRelative(m, impl_->data.get(), j, r)) return false;
+  }
   impl_->kinematics_stale = true;
   return true;
 }

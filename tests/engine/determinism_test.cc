@@ -60,16 +60,15 @@ TEST(DeterminismTest, LockstepTraceMatchesGoldenHash) {
   // box pushes do, so a MuJoCo upgrade may move those alone.
   EXPECT_EQ(RunAndHash("impulse"), 11173333966864450744ull);
   EXPECT_EQ(RunAndHash("single-rate"), 11100527457005068796ull);
-  // proxy-6dof's default reaction on the pushed T4.1 cube is "local" (the plain J/Δt,
-  // rendering.proxy_reaction "impulse", gives local-dynamics-6dof's hash below).
+  // proxy-6dof's default reaction on the pushed T4.1 cube is "local" (not the plain J/Δt,
+  // rendering.proxy_reaction "impulse").
   EXPECT_EQ(RunAndHash("proxy-6dof", "thesis"), 15725993211209883540ull);
   // The default torque model, "contact": the touched cube receives the proxy's contact forces.
   EXPECT_EQ(RunAndHash("proxy-6dof"), 3454479041474762608ull);
   EXPECT_EQ(RunAndHash("local-dynamics"), 15579156835783394508ull);
-  // T4.1's cube is slide-jointed, so it is not in the contact island, and the
-  // fixed device does not move, so this equals proxy-6dof's "impulse" trace; the island itself
-  // is pinned by the t3.6 face push below.
-  EXPECT_EQ(RunAndHash("local-dynamics-6dof"), 5953774388721870096ull);
+  // T4.1's cube translates on three slides: the island simulates it with its joint rows (the
+  // island of free bodies is pinned by the t3.6 face push below).
+  EXPECT_EQ(RunAndHash("local-dynamics-6dof"), 11853194188090362701ull);
   // Pins the local solver's use of the scene's friction cone (t3_6_push.xml: pyramidal), the
   // renderer's wrench on island pairs (not the force at the f_k centre of pressure), and a
   // face–face pair's normal being the object face's own (not the minimal penetration direction).

@@ -54,6 +54,27 @@ TEST(JointStateTest, CoordinatesComeBackFromTheBodiesStates) {
   }
 }
 
+// A body translating on three slides (tilted axes, moving) on a hinged parent.
+TEST(JointStateTest, ThreeSlidesComeBackFromTheBodiesStates) {
+  const char* xml = R"(<mujoco><worldbody>
+    <body name="p" pos="0 0 1"><joint axis="0 1 0"/><geom type="sphere" size="0.05"/>
+      <body name="c" pos="0.2 0 0" euler="0.3 0.2 0.1"><joint type="slide" axis="1 0 0"/>
+        <joint type="slide" axis="0 1 0"/><joint type="slide" axis="0 0 1"/>
+        <geom type="box" size="0.02 0.02 0.02"/></body></body></worldbody>
+    <keyframe><key name="k" qpos="0.4 0.01 -0.02 0.03" qvel="0.9 0.1 0.2 -0.3"/></keyframe>
+    </mujoco>)";
+  World world = World::LoadString(xml, kNoPointer);
+  world.ApplyKeyframe("k");
+  const BodyState c = world.body_state(world.FindBody("c"));
+  const BodyState p = world.body_state(world.FindBody("p"));
+  World other = World::LoadString(xml, kNoPointer);
+  ASSERT_TRUE(other.SetBodyStateInParent(other.FindBody("c"), c.X_WB, c.V_WCm, p.X_WB, p.V_WCm));
+  for (std::size_t i = 1; i < 4; ++i) {
+    EXPECT_NEAR(other.qpos()[i], world.qpos()[i], 1e-9) << "qpos " << i;
+    EXPECT_NEAR(other.qvel()[i], world.qvel()[i], 1e-9) << "qvel " << i;
+  }
+}
+
 TEST(JointStateTest, TwoJointsAndNonFiniteStatesAreRefused) {
   World world = World::LoadString(
       "<mujoco><worldbody><body name=\"x\"><joint axis=\"0 1 0\"/><joint axis=\"1 0 0\"/>"

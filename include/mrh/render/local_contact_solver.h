@@ -225,6 +225,7 @@ class LocalContactSolver {
   void PrepareJointRows(double dt) noexcept;
   void AddPositionRows(const ir::LocalJoint& j, const JointPlacement& x, int base,
                        double dt) noexcept;
+  int SlideCrossDirections(int i, const JointPlacement& x, Vec3* t) const noexcept;
   void AddDofRows(const ir::LocalJoint& j, const JointPlacement& x, int base, double dt) noexcept;
   void AddLimitRows(const ir::LocalJoint& j, const JointPlacement& x, int base, double dt) noexcept;
   JointRow& AddLinearRow(const ir::LocalJoint& j, int slot, const Vec3& d, const Vec3& p_A,

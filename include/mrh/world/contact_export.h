@@ -25,10 +25,11 @@ class ContactExporter {
   /// @param whole_world collide the whole world (the reference for tests); by default only the
   ///   geoms that may touch the island take part (the same contacts of island bodies, a
   ///   fraction of the cost in a large world).
-  /// @param articulated also simulate mechanisms: a body with one hinge, slide or ball joint (or
-  ///   none, riding on a moving parent) joins the island with every moving body of its
-  ///   kinematic tree, and the tree's joints are exported (ir::LocalJoint). A tree with a body
-  ///   of another joint configuration stays the static environment, named in warnings().
+  /// @param articulated also simulate mechanisms: a body with one hinge, slide or ball joint, two
+  ///   or three orthogonal slides, or none (riding on a moving parent) joins the island with every
+  ///   moving body of its kinematic tree, and the tree's joints are exported (ir::LocalJoint). A
+  ///   tree with a body of another joint configuration stays the static environment, named in
+  ///   warnings().
   explicit ContactExporter(World* world, double margin = 0.005, bool whole_world = false,
                            bool articulated = false);
 
@@ -86,7 +87,8 @@ class ContactExporter {
   std::vector<int> near_bodies_;  // the bodies with near_ set
   std::vector<int> local_index_;  // per world body: index into out->bodies, or -1
   bool articulated_;
-  std::vector<char> mechanism_;  // per world body: a jointed body of a supported tree
+  std::size_t island_joints_ = 0;  // joints the island's mechanisms need, this export
+  std::vector<char> mechanism_;    // per world body: a jointed body of a supported tree
   std::vector<std::string> warnings_;
 };
 

@@ -143,7 +143,8 @@ class World {
   /// cannot represent it exactly.
   bool SetBodyState(int body, const Pose& X_WB, const Twist& V_WCm);
 
-  /// Sets the one hinge, slide or ball joint of `body` (nothing for a body without joints) to
+  /// Sets the one hinge, slide or ball joint of `body` (or its several slides; nothing for a
+  /// body without joints) to
   /// the coordinates of the body's pose and twist relative to its parent, the parent given at
   /// pose X_WParent with COM twist V_WParentCm (e.g. from the same local simulation): the
   /// hinge angle of the relative rotation about the axis, the slide displacement along it, the
