@@ -19,10 +19,6 @@ constexpr double kVelocityTolerance = 1e-9;  // m/s and rad/s
 // Bodies with more slide joints than this are not handled (3 already span all translations).
 constexpr int kMaxSlides = 6;
 
-Quat ToQuat(const mjtNum* q) {
-  return Quat(q[0], q[1], q[2], q[3]).normalized();
-}
-
 // World pose of the body frame with its own joints at their reference (qpos0) values: the
 // parent's pose composed with the body's offset.
 Pose PoseBeforeJoints(const mjModel& m, const mjData& d, int body) {
@@ -103,10 +99,8 @@ bool SetHinge(const mjModel& m, mjData* d, int body, const Pose& X_WB, const Twi
       (V_WCm.w.cross(p_WCm - anchor_W) - V_WCm.v).norm() > kVelocityTolerance) {
     return false;
   }
-  // Hinge angles are not wrapped: pick the turn nearest the current angle.
   const int qadr = m.jnt_qposadr[joint];
-  const double current = d->qpos[qadr] - m.qpos0[qadr];
-  angle += 2.0 * std::numbers::pi * std::round((current - angle) / (2.0 * std::numbers::pi));
+  angle = NearestTurn(angle, d->qpos[qadr] - m.qpos0[qadr]);
   d->qpos[qadr] = m.qpos0[qadr] + angle;
   d->qvel[m.jnt_dofadr[joint]] = angle_dot;
   return true;

@@ -14,11 +14,8 @@
 namespace mrh::world {
 namespace {
 
+using internal::ToQuat;
 using internal::ToVec3;
-
-Quat ModelQuat(const mjtNum* q) {
-  return Quat(q[0], q[1], q[2], q[3]).normalized();
-}
 
 // True if a body of a moving tree has no degrees of freedom of its own (welded to its parent).
 bool Moving(const mjModel& m, int body) {
@@ -37,7 +34,7 @@ void FillJoint(const mjModel& m, int jnt, ir::LocalJoint* out) {
   j.axis = ToVec3(m.jnt_axis + 3 * jnt).normalized();
   j.qpos0 = j.type == ir::LocalJointType::kBall ? 0.0 : m.qpos0[q];
   j.spring_ref = m.qpos_spring[q];
-  if (j.type == ir::LocalJointType::kBall) j.spring_q = ModelQuat(m.qpos_spring + q);
+  if (j.type == ir::LocalJointType::kBall) j.spring_q = ToQuat(m.qpos_spring + q);
   j.stiffness = m.jnt_stiffness[jnt];
   j.damping = m.dof_damping[v];
   j.frictionloss = m.dof_frictionloss[v];
@@ -173,7 +170,7 @@ std::uint32_t ContactExporter::AddJoints(ir::LocalContactModel* out) const {
     j.child = static_cast<int>(i);
     j.parent = local_index_[static_cast<std::size_t>(parent)];
     j.type = ir::LocalJointType::kWeld;
-    const Pose X_PB{ToVec3(m.body_pos + 3 * body), ModelQuat(m.body_quat + 4 * body)};
+    const Pose X_PB{ToVec3(m.body_pos + 3 * body), ToQuat(m.body_quat + 4 * body)};
     for (int k = 0; k < JointsOf(m, body); ++k) {  // a translating body's slides: consecutive
       if (m.body_jntnum[body] > 0) FillJoint(m, m.body_jntadr[body] + k, &j);
       j.X_PJ = X_PB * j.X_CJ;

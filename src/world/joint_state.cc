@@ -13,11 +13,9 @@
 namespace mrh::world {
 namespace {
 
+using internal::NearestTurn;
+using internal::ToQuat;
 using internal::ToVec3;
-
-Quat ModelQuat(const mjtNum* q) {
-  return Quat(q[0], q[1], q[2], q[3]).normalized();
-}
 
 // The state the joint coordinates are computed from: the child's and the parent's copies of
 // the joint frame J (origin jnt_pos on the child; the body offset on the parent) and the
@@ -33,7 +31,7 @@ Relative MakeRelative(const mjModel& m, int body, const Pose& X_WB, const Twist&
   const int parent = m.body_parentid[body];
   const Vec3 anchor =
       m.body_jntnum[body] > 0 ? ToVec3(m.jnt_pos + 3 * m.body_jntadr[body]) : Vec3::Zero();
-  const Pose X_PJ = Pose{ToVec3(m.body_pos + 3 * body), ModelQuat(m.body_quat + 4 * body)} *
+  const Pose X_PJ = Pose{ToVec3(m.body_pos + 3 * body), ToQuat(m.body_quat + 4 * body)} *
                     Pose{anchor, Quat::Identity()};
   Relative r;
   r.qC = X_WB.q.normalized();
@@ -59,10 +57,8 @@ bool SetRelative(const mjModel& m, mjData* d, int joint, const Relative& r) {
   switch (m.jnt_type[joint]) {
     case mjJNT_HINGE: {
       if (rel.w() < 0.0) rel.coeffs() *= -1.0;
-      double angle = 2.0 * std::atan2(rel.vec().dot(axis_J), rel.w());
-      // Hinge angles are not wrapped: the turn nearest the current angle.
-      const double current = d->qpos[qadr] - m.qpos0[qadr];
-      angle += 2.0 * std::numbers::pi * std::round((current - angle) / (2.0 * std::numbers::pi));
+      const double angle = NearestTurn(2.0 * std::atan2(rel.vec().dot(axis_J), rel.w()),
+                                       d->qpos[qadr] - m.qpos0[qadr]);
       d->qpos[qadr] = m.qpos0[qadr] + angle;
       d->qvel[vadr] = axis_W.dot(r.w);
       return true;

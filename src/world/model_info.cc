@@ -12,11 +12,6 @@
 namespace mrh::world::internal {
 namespace {
 
-// MuJoCo quaternions are (w, x, y, z).
-Quat ToQuat(const mjtNum* q) {
-  return Quat(q[0], q[1], q[2], q[3]).normalized();
-}
-
 std::string NameOf(const mjModel& m, mjtObj type, int id) {
   const char* name = mj_id2name(&m, type, id);
   return name ? std::string(name) : std::string();

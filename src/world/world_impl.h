@@ -6,9 +6,11 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -20,6 +22,17 @@ namespace internal {
 /// A MuJoCo 3-vector (mjtNum[3]) as a Vec3.
 inline Vec3 ToVec3(const mjtNum* v) {
   return Vec3(v[0], v[1], v[2]);
+}
+
+/// A MuJoCo quaternion (mjtNum[4], w x y z) as a unit Quat.
+inline Quat ToQuat(const mjtNum* q) {
+  return Quat(q[0], q[1], q[2], q[3]).normalized();
+}
+
+/// Hinge angles are not wrapped: `angle` (rad) moved by whole turns to the one nearest
+/// `current`.
+inline double NearestTurn(double angle, double current) {
+  return angle + 2.0 * std::numbers::pi * std::round((current - angle) / (2.0 * std::numbers::pi));
 }
 
 struct ModelDeleter {
