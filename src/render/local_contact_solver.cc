@@ -343,6 +343,7 @@ bool LocalContactSolver::Finish(double dt) noexcept {
 }
 
 bool LocalContactSolver::Step(double dt) noexcept {
+  PlaceJoints();
   AddJointSprings();
   Integrate(dt);
   PrepareRows(dt);

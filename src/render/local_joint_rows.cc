@@ -28,14 +28,6 @@ constexpr int kArmatureSlot = 9;
 constexpr int kFrictionSlot = 12;
 constexpr int kLimitSlot = 15;
 
-// The rotation vector of unit quaternion q (w >= 0 taken), in q's frame.
-Vec3 RotationVector(Quat q) {
-  if (q.w() < 0.0) q.coeffs() *= -1.0;
-  const double s = q.vec().norm();
-  if (s < 1e-12) return 2.0 * q.vec();
-  return (2.0 * std::atan2(s, q.w()) / s) * q.vec();
-}
-
 }  // namespace
 
 // Takes the model's joints. A joint at the same index joining the same two world bodies keeps
@@ -91,13 +83,19 @@ double LocalContactSolver::JointPosition(std::size_t j) const noexcept {
   return PlaceJoint(joints_[j]).q;
 }
 
+// Every joint's placement at this tick's poses, for the springs and the rows (positions change
+// only in Finish, after both).
+void LocalContactSolver::PlaceJoints() noexcept {
+  for (std::size_t i = 0; i < joints_count_; ++i) placements_[i] = PlaceJoint(joints_[i]);
+}
+
 // Joint springs, explicit as MuJoCo's passive forces: −k (q − spring_ref) on the coordinate (a
 // ball: −k times the rotation vector from the spring orientation, in the joint frame).
 void LocalContactSolver::AddJointSprings() noexcept {
   for (std::size_t i = 0; i < joints_count_; ++i) {
     const ir::LocalJoint& j = joints_[i];
     if (!(j.stiffness > 0.0) || j.type == LocalJointType::kWeld) continue;
-    const JointPlacement x = PlaceJoint(j);
+    const JointPlacement& x = placements_[i];
     Body& C = bodies_[static_cast<std::size_t>(j.child)];
     Body* P = j.parent >= 0 ? &bodies_[static_cast<std::size_t>(j.parent)] : nullptr;
     if (j.type == LocalJointType::kSlide) {
@@ -113,7 +111,7 @@ void LocalContactSolver::AddJointSprings() noexcept {
     const Vec3 tau =
         j.type == LocalJointType::kHinge
             ? Vec3(-j.stiffness * (x.q - j.spring_ref) * x.axis)
-            : Vec3(x.qC * (-j.stiffness * RotationVector(j.spring_q.conjugate() * x.rel)));
+            : Vec3(x.qC * (-j.stiffness * RotationVectorFromQuat(j.spring_q.conjugate() * x.rel)));
     C.tau += tau;
     if (P != nullptr) P->tau -= tau;
   }
@@ -124,7 +122,7 @@ void LocalContactSolver::PrepareJointRows(double dt) noexcept {
   jrows_count_ = 0;
   for (std::size_t i = 0; i < joints_count_; ++i) {
     const ir::LocalJoint& j = joints_[i];
-    const JointPlacement x = PlaceJoint(j);
+    const JointPlacement& x = placements_[i];
     const int base = static_cast<int>(i * kJointSlots);
     AddPositionRows(j, x, base, dt);
     if (j.type != LocalJointType::kWeld) AddDofRows(j, x, base, dt);
@@ -197,7 +195,7 @@ void LocalContactSolver::AddPositionRows(const ir::LocalJoint& j, const JointPla
     }
     return;
   }
-  const Vec3 phi = x.qP * RotationVector(x.rel);  // slide, weld: no relative rotation
+  const Vec3 phi = x.qP * RotationVectorFromQuat(x.rel);  // slide, weld: no relative rotation
   for (int k = 0; k < 3; ++k) {
     JointRow& r = AddAngularRow(j, base + kAngularSlot + k, Vec3::Unit(k));
     r.target = -gain * phi[k];

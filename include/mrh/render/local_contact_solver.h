@@ -221,6 +221,7 @@ class LocalContactSolver {
   bool Finish(double dt) noexcept;
   void AdoptJoints(const ir::LocalContactModel& model) noexcept;
   JointPlacement PlaceJoint(const ir::LocalJoint& j) const noexcept;
+  void PlaceJoints() noexcept;
   void AddJointSprings() noexcept;
   void PrepareJointRows(double dt) noexcept;
   void AddPositionRows(const ir::LocalJoint& j, const JointPlacement& x, int base,
@@ -246,6 +247,7 @@ class LocalContactSolver {
   std::size_t warm_count_ = 0;
   std::array<ir::LocalJoint, ir::kMaxLocalJoints> joints_{};
   std::size_t joints_count_ = 0;
+  std::array<JointPlacement, ir::kMaxLocalJoints> placements_{};  // this tick (PlaceJoints)
   std::array<JointRow, ir::kMaxLocalJoints * kJointSlots> jrows_{};
   std::size_t jrows_count_ = 0;
   std::array<double, ir::kMaxLocalJoints * kJointSlots> joint_lambda_{};
