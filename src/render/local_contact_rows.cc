@@ -97,15 +97,22 @@ void LocalContactSolver::PlaceContact(Row& r, Vec3* pA, Vec3* pB, Vec3* n, Vec3*
 }
 
 // The row's directions (normal n, friction along t), their angular terms and A_jj in r.inv_w.
-void LocalContactSolver::SetDirections(Row& r, const Vec3& n, const Vec3& t) const noexcept {
+// A side in a joint-space tree takes no body terms: SetTreeRow adds its coordinates' share.
+void LocalContactSolver::SetDirections(Row& r, const Vec3& n, const Vec3& t) noexcept {
   const Body& A = bodies_[static_cast<std::size_t>(r.c.a)];
+  r.a_tree = A.tree;
+  r.b_tree = r.c.b >= 0 && bodies_[static_cast<std::size_t>(r.c.b)].tree;
+  r.tree = -1;
   r.d[0] = n;
   FrictionDirections(n, t, r.c.pyramidal, &r.d[1], &r.d[2]);
   for (std::size_t j = 0; j < 3; ++j) {
-    r.jA[j] = r.rA.cross(r.d[j]);
-    r.mA[j] = A.I_W_inv * r.jA[j];
-    double w = A.inv_mass + r.jA[j].dot(r.mA[j]);
-    if (r.c.b >= 0) {
+    double w = 0.0;
+    if (!r.a_tree) {
+      r.jA[j] = r.rA.cross(r.d[j]);
+      r.mA[j] = A.I_W_inv * r.jA[j];
+      w = A.inv_mass + r.jA[j].dot(r.mA[j]);
+    }
+    if (r.c.b >= 0 && !r.b_tree) {
       const Body& B = bodies_[static_cast<std::size_t>(r.c.b)];
       r.jB[j] = r.rB.cross(r.d[j]);
       r.mB[j] = B.I_W_inv * r.jB[j];
@@ -114,7 +121,9 @@ void LocalContactSolver::SetDirections(Row& r, const Vec3& n, const Vec3& t) con
     r.inv_w[j] = w;  // A_jj for now; SetTargets makes it 1 / (A_jj + R)
   }
   // The tangents are orthogonal, so only the rotations couple them.
-  r.a12 = r.jA[1].dot(r.mA[2]) + (r.c.b >= 0 ? r.jB[1].dot(r.mB[2]) : 0.0);
+  r.a12 = (r.a_tree ? 0.0 : r.jA[1].dot(r.mA[2])) +
+          (r.c.b >= 0 && !r.b_tree ? r.jB[1].dot(r.mB[2]) : 0.0);
+  if (r.a_tree || r.b_tree) SetTreeRow(r);
 }
 
 // World frames, lever arms, effective masses and targets of row r this tick.
@@ -138,7 +147,7 @@ void LocalContactSolver::SetTargets(Row& r, double gap, double dt) const noexcep
     const double imp = Impedance(r.c.solimp, -gap);
     const Body& A = bodies_[static_cast<std::size_t>(r.c.a)];
     const double diag =
-        A.inv_mass + (r.c.b >= 0 ? bodies_[static_cast<std::size_t>(r.c.b)].inv_mass : 0.0);
+        A.inv_weight + (r.c.b >= 0 ? bodies_[static_cast<std::size_t>(r.c.b)].inv_weight : 0.0);
     r.R = std::max(1e-15, (1.0 - imp) / imp * diag);
     for (int j = 0; j < 3; ++j) {
       const double v0 = RelativeStartVelocity(r, r.d[static_cast<std::size_t>(j)]);

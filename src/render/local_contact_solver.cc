@@ -106,6 +106,7 @@ void LocalContactSolver::AdoptBodies(const ir::LocalContactModel& model, std::si
     b.motion = e.motion;
     b.p_BCm = e.p_BCm;
     b.inv_mass = e.mass > 0.0 ? 1.0 / e.mass : 0.0;
+    b.inv_weight = e.inv_weight > 0.0 ? e.inv_weight : b.inv_mass;
     b.I_B = e.inertia_B;
     b.I_B_inv = InverseOrZero(e.inertia_B);
     b.p = e.X_WB * e.p_BCm;
@@ -149,6 +150,7 @@ void LocalContactSolver::AdoptModel(const ir::LocalContactModel& model,
   }
   HoldRestingPenetration();
   AdoptJoints(model);
+  AdoptTrees();
   gravity_ = model.gravity;
   active_ = 0;
 }
@@ -225,12 +227,14 @@ void LocalContactSolver::AddForce(std::size_t i, const Vec3& f_W, const Vec3& p_
   b.tau += (p_W - b.p).cross(f_W);
 }
 
-// Free velocities: gravity, the added forces and the gyroscopic term, explicit.
+// Free velocities: gravity, the added forces and the gyroscopic term, explicit (the bodies of
+// joint-space trees: IntegrateTree).
 void LocalContactSolver::Integrate(double dt) noexcept {
   for (std::size_t i = 0; i < count_; ++i) {
     Body& b = bodies_[i];
     const Mat3 R = b.q.toRotationMatrix();
     b.I_W_inv = R * b.I_B_inv * R.transpose();
+    if (b.tree) continue;  // IntegrateTree
     const Vec3 Iw = R * (b.I_B * (R.transpose() * b.w));
     b.v0 = b.v;
     b.w0 = b.w;
@@ -242,29 +246,37 @@ void LocalContactSolver::Integrate(double dt) noexcept {
 // The sweep's two primitives, defined before their callers so that they inline.
 inline double LocalContactSolver::RelativeVelocity(const Row& r, int j) const noexcept {
   const auto u = static_cast<std::size_t>(j);
-  const Body& A = bodies_[static_cast<std::size_t>(r.c.a)];
-  double v = r.d[u].dot(A.v) + r.jA[u].dot(A.w);
-  if (r.c.b >= 0) {
+  double v = 0.0;
+  if (!r.a_tree) {
+    const Body& A = bodies_[static_cast<std::size_t>(r.c.a)];
+    v = r.d[u].dot(A.v) + r.jA[u].dot(A.w);
+  }
+  if (r.c.b >= 0 && !r.b_tree) {
     const Body& B = bodies_[static_cast<std::size_t>(r.c.b)];
     v -= r.d[u].dot(B.v) + r.jB[u].dot(B.w);
   }
+  if (r.tree >= 0) v += TreeVelocity(tree_rows_[static_cast<std::size_t>(r.tree)].g[u]);
   return v;
 }
 
 inline void LocalContactSolver::ApplyImpulse(Row& r, int j, double dl) noexcept {
   const auto u = static_cast<std::size_t>(j);
-  Body& A = bodies_[static_cast<std::size_t>(r.c.a)];
-  A.v += (A.inv_mass * dl) * r.d[u];
-  A.w += dl * r.mA[u];
-  if (r.c.b >= 0) {
+  if (!r.a_tree) {
+    Body& A = bodies_[static_cast<std::size_t>(r.c.a)];
+    A.v += (A.inv_mass * dl) * r.d[u];
+    A.w += dl * r.mA[u];
+  }
+  if (r.c.b >= 0 && !r.b_tree) {
     Body& B = bodies_[static_cast<std::size_t>(r.c.b)];
     B.v -= (B.inv_mass * dl) * r.d[u];
     B.w -= dl * r.mB[u];
   }
+  if (r.tree >= 0) ApplyTree(tree_rows_[static_cast<std::size_t>(r.tree)].h[u], dl);
 }
 
 // World frames, lever arms, effective masses and targets of this tick; warm start.
 void LocalContactSolver::PrepareRows(double dt) noexcept {
+  tree_rows_count_ = 0;
   for (std::size_t k = 0; k < rows_count_; ++k) {
     Row& r = rows_[k];
     PrepareRow(r, dt);
@@ -328,6 +340,7 @@ bool LocalContactSolver::Finish(double dt) noexcept {
     Body& b = bodies_[i];
     b.f.setZero();
     b.tau.setZero();
+    if (b.tree) continue;  // FinishTree
     const Vec3 p = b.p + dt * b.v;
     const Quat q = IntegrateWorldRotation(b.q, b.w, dt);
     if (!Finite(b.v) || !Finite(b.w) || !Finite(p) || !std::isfinite(q.norm())) {
@@ -344,13 +357,16 @@ bool LocalContactSolver::Finish(double dt) noexcept {
 
 bool LocalContactSolver::Step(double dt) noexcept {
   PlaceJoints();
+  PlaceTree();
   AddJointSprings();
   Integrate(dt);
+  IntegrateTree(dt);
   PrepareRows(dt);
   PrepareJointRows(dt);
+  PrepareDofRows(dt);
   // Symmetric Gauss–Seidel: the sweep direction alternates, so the order of the rows biases
-  // no direction (a box pushed straight stays straight). The joints' rows come first in a
-  // forward sweep and last in a backward one.
+  // no direction (a box pushed straight stays straight). The joints' rows and the trees'
+  // coordinate rows come first in a forward sweep and last in a backward one.
   sweeps_ = 0;
   for (int it = 0; it < settings_.iterations; ++it) {
     ++sweeps_;
@@ -359,16 +375,19 @@ bool LocalContactSolver::Step(double dt) noexcept {
     for (std::size_t i = 0; forward && i < jrows_count_; ++i) {
       change = std::max(change, SolveJointRow(jrows_[i]));
     }
+    if (forward) change = std::max(change, SolveDofRows(true));
     for (std::size_t i = 0; i < rows_count_; ++i) {
       const std::size_t k = forward ? i : rows_count_ - 1 - i;
       change = std::max(change, SolveRow(rows_[k], !forward));
     }
+    if (!forward) change = std::max(change, SolveDofRows(false));
     for (std::size_t i = 0; !forward && i < jrows_count_; ++i) {
       change = std::max(change, SolveJointRow(jrows_[jrows_count_ - 1 - i]));
     }
     if (change <= settings_.tolerance) break;
   }
-  return Finish(dt);
+  const bool ok = Finish(dt);
+  return FinishTree(dt) && ok;
 }
 
 }  // namespace mrh::render

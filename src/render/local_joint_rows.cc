@@ -20,14 +20,6 @@ using ir::LocalJointType;
 constexpr double kJointBaumgarte = 0.02;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// Slots of a joint's rows in joint_lambda_ (per joint, LocalContactSolver::kJointSlots).
-constexpr int kLinearSlot = 0;
-constexpr int kAngularSlot = 3;
-constexpr int kDampingSlot = 6;
-constexpr int kArmatureSlot = 9;
-constexpr int kFrictionSlot = 12;
-constexpr int kLimitSlot = 15;
-
 }  // namespace
 
 // Takes the model's joints. A joint at the same index joining the same two world bodies keeps
@@ -94,7 +86,7 @@ void LocalContactSolver::PlaceJoints() noexcept {
 void LocalContactSolver::AddJointSprings() noexcept {
   for (std::size_t i = 0; i < joints_count_; ++i) {
     const ir::LocalJoint& j = joints_[i];
-    if (!(j.stiffness > 0.0) || j.type == LocalJointType::kWeld) continue;
+    if (!(j.stiffness > 0.0) || j.type == LocalJointType::kWeld || joint_in_tree_[i]) continue;
     const JointPlacement& x = placements_[i];
     Body& C = bodies_[static_cast<std::size_t>(j.child)];
     Body* P = j.parent >= 0 ? &bodies_[static_cast<std::size_t>(j.parent)] : nullptr;
@@ -121,6 +113,7 @@ void LocalContactSolver::AddJointSprings() noexcept {
 void LocalContactSolver::PrepareJointRows(double dt) noexcept {
   jrows_count_ = 0;
   for (std::size_t i = 0; i < joints_count_; ++i) {
+    if (joint_in_tree_[i]) continue;  // joint space: IntegrateTree, PrepareDofRows
     const ir::LocalJoint& j = joints_[i];
     const JointPlacement& x = placements_[i];
     const int base = static_cast<int>(i * kJointSlots);

@@ -180,6 +180,7 @@ bool ContactExporter::AddOne(int body, int motion, ir::LocalContactModel* out) {
   b.motion = motion;
   b.mass = info.mass;
   b.inertia_B = info.inertia_B;
+  b.inv_weight = info.free ? 0.0 : info.inv_weight;
   b.X_WB = state.X_WB;
   b.p_BCm = info.p_BCm;
   b.V_WCm = state.V_WCm;

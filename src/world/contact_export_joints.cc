@@ -39,6 +39,7 @@ void FillJoint(const mjModel& m, int jnt, ir::LocalJoint* out) {
   j.damping = m.dof_damping[v];
   j.frictionloss = m.dof_frictionloss[v];
   j.armature = m.dof_armature[v];
+  j.inv_weight = m.dof_invweight0[v];
   j.limited = m.jnt_limited[jnt] != 0;
   j.range[0] = m.jnt_range[2 * jnt];
   j.range[1] = m.jnt_range[2 * jnt + 1];

@@ -123,6 +123,7 @@ BodyInfo DescribeBody(const mjModel& m, int b) {
   info.is_static = HasNoDofs(m, b);
   info.parent = b > 0 ? m.body_parentid[b] : -1;
   info.free = m.body_jntnum[b] == 1 && m.jnt_type[m.body_jntadr[b]] == mjJNT_FREE;
+  info.inv_weight = m.body_invweight0[2 * b];
   for (int g = 0; g < m.body_geomnum[b]; ++g) info.geoms.push_back(m.body_geomadr[b] + g);
   return info;
 }

@@ -23,9 +23,12 @@ struct LocalIslandBody {
   int motion = -1;    ///< index into PhysicsSnapshot::bodies, -1: not a pointer neighbor
   double mass = 0.0;  ///< kg
   Mat3 inertia_B = Mat3::Zero();  ///< rotational inertia about the COM, body axes (kg·m²)
-  Pose X_WB;                      ///< body pose (world)
-  Vec3 p_BCm = Vec3::Zero();      ///< COM in the body frame (m)
-  Twist V_WCm;                    ///< COM twist (world)
+  /// A jointed body's mobility that MuJoCo's soft contacts are regularised with (its
+  /// body_invweight0, translational, 1/kg; 0: a free body's, 1 / mass).
+  double inv_weight = 0.0;
+  Pose X_WB;                  ///< body pose (world)
+  Vec3 p_BCm = Vec3::Zero();  ///< COM in the body frame (m)
+  Twist V_WCm;                ///< COM twist (world)
   /// true: the haptic side must restart this body from X_WB / V_WCm even if it simulated it in
   /// the previous period (the world could not take its local state).
   bool reset = false;
@@ -109,6 +112,9 @@ struct LocalJoint {
   double damping = 0.0;
   double frictionloss = 0.0;
   double armature = 0.0;
+  /// MuJoCo's dof_invweight0 of the (first) coordinate, its mobility at qpos0 (1/kg or
+  /// 1/(kg·m²)): the regularisation of its dry friction and limit rows (0: the row's own).
+  double inv_weight = 0.0;
   bool limited = false;
   double range[2] = {0.0, 0.0};
   double margin = 0.0;  ///< the limit acts within this distance of the range (rad or m)

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 
 #include "mrh/core/spatial.h"
 #include "mrh/ir/local_contact.h"
@@ -29,9 +30,10 @@ struct LocalContactSolverSettings {
 
 /// The island of ir::LocalContactModel as a small rigid-body simulation: per tick, semi-implicit
 /// Euler with gravity, joint springs, the forces added by AddForce() (the pointer's reaction,
-/// eq. 4.12), the impulses of the island's joints (ir::LocalJoint as rows between maximal
-/// coordinates: bilateral position rows with a Baumgarte term, implicit damping, armature,
-/// dry friction and soft limits on the joint coordinate) and the
+/// eq. 4.12), the island's joints (ir::LocalJoint: a world-rooted tree of hinges, slides and
+/// welds in its joint coordinates, see kMaxTreeDofs; other joints as rows between maximal
+/// coordinates: bilateral position rows with a Baumgarte term, implicit damping, armature; both
+/// with dry friction and soft limits on the joint coordinate) and the
 /// contact impulses of a projected Gauss–Seidel solve of the island's contact rows (velocity
 /// level: non-penetration with a speculative term for open contacts, λ_n >= 0, friction in the
 /// scene's cone — MuJoCo's pyramid |λ_t1| + |λ_t2| <= μ λ_n about the contact frame, or the
@@ -42,6 +44,12 @@ struct LocalContactSolverSettings {
 /// member is RT-safe (haptic thread only).
 class LocalContactSolver {
  public:
+  /// Joint space: a tree of hinge, slide and weld joints rooted on the static world is
+  /// simulated in its joint coordinates (MuJoCo's own) with the joint-space mass matrix, while
+  /// the island's coordinates fit this many; the other joints (ball joints, trees on a free
+  /// body, trees beyond the capacity) are rows between maximal coordinates.
+  static constexpr std::size_t kMaxTreeDofs = 16;
+
   explicit LocalContactSolver(const LocalContactSolverSettings& settings = {}) noexcept
       : settings_(settings) {}
 
@@ -65,6 +73,8 @@ class LocalContactSolver {
     rows_count_ = 0;
     joints_count_ = 0;
     jrows_count_ = 0;
+    dof_count_ = 0;
+    dof_rows_count_ = 0;
   }
 
   std::size_t size() const noexcept { return count_; }
@@ -123,12 +133,19 @@ class LocalContactSolver {
     Vec3 v0 = Vec3::Zero();  // this tick's start (before Integrate)
     Vec3 w0 = Vec3::Zero();
     double inv_mass = 0.0;
+    double inv_weight = 0.0;  // soft contacts' regularisation (ir::LocalIslandBody::inv_weight)
     Mat3 I_B = Mat3::Zero();
     Mat3 I_B_inv = Mat3::Zero();
     Mat3 I_W_inv = Mat3::Zero();  // this tick
     Vec3 f = Vec3::Zero();        // accumulated this tick
     Vec3 tau = Vec3::Zero();      // about the COM
     bool pushed = false;          // AddForce was called since the latest Adopt
+    // Joint space: the body is in a tree solved in its coordinates (AdoptTrees); its pose and
+    // twist follow from them. dofs: bit k set when tree dof k moves it; joint: its first joint.
+    bool tree = false;
+    std::uint32_t dofs = 0;
+    int joint = -1;
+    int parent = -1;  // island index, -1: static
   };
 
   struct Row {
@@ -155,6 +172,40 @@ class LocalContactSolver {
     std::array<Vec3, 3> mA{};
     std::array<Vec3, 3> jB{};
     std::array<Vec3, 3> mB{};
+    // A side in a joint-space tree moves through the tree's coordinates, not its body twist:
+    // the row's Jacobian over them is tree_rows_[tree] (-1: neither side is in a tree).
+    bool a_tree = false;
+    bool b_tree = false;
+    int tree = -1;
+  };
+
+  // One coordinate of a tree: joint `joint` (hinge or slide) of body `body`; its axis a and a
+  // point o of it (world) at this tick's poses.
+  struct TreeDof {
+    int joint = -1;
+    int body = -1;
+    bool slide = false;
+    Vec3 a = Vec3::UnitZ();
+    Vec3 o = Vec3::Zero();
+  };
+
+  // A contact row's generalized Jacobian g over the tree coordinates and h = M⁻¹ g, per
+  // direction.
+  struct TreeRow {
+    std::array<std::array<double, kMaxTreeDofs>, 3> g{};
+    std::array<std::array<double, kMaxTreeDofs>, 3> h{};
+  };
+
+  // A row on one tree coordinate (dry friction or a limit): velocity sign·q̇[dof].
+  struct DofRow {
+    int dof = 0;
+    int slot = 0;  // joint_lambda_ slot
+    double sign = 1.0;
+    double inv_w = 0.0;
+    double target = 0.0;
+    double R = 0.0;
+    double lo = 0.0;
+    double hi = 0.0;
   };
 
   // One scalar row of a joint: relative velocity d·(v_A − v_B) + jA·ω_A − jB·ω_B of child A
@@ -187,8 +238,15 @@ class LocalContactSolver {
     double q = 0.0;               // hinge angle or slide position, qpos units
   };
 
-  // Rows one joint may take: 3 linear, 3 angular, 3 damping, 3 armature, 3 friction, 2 limits.
+  // Rows one joint may take: 3 linear, 3 angular, 3 damping, 3 armature, 3 friction, 2 limits;
+  // its slots in joint_lambda_ start at joint · kJointSlots, each kind at its k…Slot.
   static constexpr std::size_t kJointSlots = 17;
+  static constexpr int kLinearSlot = 0;
+  static constexpr int kAngularSlot = 3;
+  static constexpr int kDampingSlot = 6;
+  static constexpr int kArmatureSlot = 9;
+  static constexpr int kFrictionSlot = 12;
+  static constexpr int kLimitSlot = 15;
 
   // A previous period's row impulses, kept to warm-start the same contact in the next period.
   struct WarmRow {
@@ -209,7 +267,7 @@ class LocalContactSolver {
   void PrepareRow(Row& r, double dt) noexcept;
   void PlaceContact(Row& r, Vec3* pA, Vec3* pB, Vec3* n, Vec3* t) const noexcept;
   void PlaceB(Row& r, Vec3* pB, Vec3* n, Vec3* t) const noexcept;
-  void SetDirections(Row& r, const Vec3& n, const Vec3& t) const noexcept;
+  void SetDirections(Row& r, const Vec3& n, const Vec3& t) noexcept;
   void SetTargets(Row& r, double gap, double dt) const noexcept;
   double RelativeStartVelocity(const Row& r, const Vec3& dir) const noexcept;
   // The impulse change dl (N·s) along the row's direction j applied to A and, opposite, B.
@@ -236,6 +294,30 @@ class LocalContactSolver {
   double JointRowVelocity(const JointRow& r, bool start) const noexcept;
   void ApplyJointImpulse(JointRow& r, double dl) noexcept;
   double SolveJointRow(JointRow& r) noexcept;
+  void AdoptTrees() noexcept;
+  void ChooseTrees(std::array<int, ir::kMaxLocalBodies>* root,
+                   std::array<bool, ir::kMaxLocalBodies>* taken) const noexcept;
+  void BiasAcceleration(std::size_t i, std::array<Twist, ir::kMaxLocalBodies>& V,
+                        std::array<Twist, ir::kMaxLocalBodies>& A) const noexcept;
+  void SetTreeState() noexcept;
+  void PlaceTree() noexcept;
+  Twist TreeTwist(const Body& b, const std::array<double, kMaxTreeDofs>& qd) const noexcept;
+  void AddTreeJacobian(const Body& b, const Vec3& p, const Vec3& d, double sign,
+                       double* g) const noexcept;
+  void IntegrateTree(double dt) noexcept;
+  void TreeForces(double dt, double* M, double* Q) const noexcept;
+  void AddBodyToTree(const Body& b, const Vec3& f, const Vec3& tau, double* M,
+                     double* Q) const noexcept;
+  void InvertTreeMass(const double* M) noexcept;
+  void ApplyTree(const std::array<double, kMaxTreeDofs>& h, double dl) noexcept;
+  double TreeVelocity(const std::array<double, kMaxTreeDofs>& g) const noexcept;
+  void SetTreeRow(Row& r) noexcept;
+  void PrepareDofRows(double dt) noexcept;
+  DofRow& AddDofRow(std::size_t dof, int slot, double sign) noexcept;
+  void ApplyDof(const DofRow& r, double dl) noexcept;
+  double SolveDofRow(DofRow& r) noexcept;
+  double SolveDofRows(bool forward) noexcept;
+  bool FinishTree(double dt) noexcept;
 
   LocalContactSolverSettings settings_;
   std::array<Body, ir::kMaxLocalBodies> bodies_{};
@@ -251,6 +333,17 @@ class LocalContactSolver {
   std::array<JointRow, ir::kMaxLocalJoints * kJointSlots> jrows_{};
   std::size_t jrows_count_ = 0;
   std::array<double, ir::kMaxLocalJoints * kJointSlots> joint_lambda_{};
+  std::array<bool, ir::kMaxLocalJoints> joint_in_tree_{};
+  std::array<TreeDof, kMaxTreeDofs> dofs_{};
+  std::size_t dof_count_ = 0;
+  std::array<double, kMaxTreeDofs> q_{};                    // coordinates (qpos units)
+  std::array<double, kMaxTreeDofs> qd_{};                   // their velocities
+  std::array<double, kMaxTreeDofs> qd0_{};                  // at this tick's start
+  std::array<double, kMaxTreeDofs * kMaxTreeDofs> Minv_{};  // (M + armature + Δt D)⁻¹, this tick
+  std::array<TreeRow, ir::kMaxLocalContacts> tree_rows_{};
+  std::size_t tree_rows_count_ = 0;
+  std::array<DofRow, 3 * kMaxTreeDofs> dof_rows_{};
+  std::size_t dof_rows_count_ = 0;
   int sweeps_ = 0;
   Vec3 gravity_ = Vec3::Zero();
   int active_ = 0;

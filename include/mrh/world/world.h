@@ -60,8 +60,11 @@ struct BodyInfo {
   Vec3 p_BCm = Vec3::Zero();      ///< centre of mass in the body frame (m)
   bool is_static = true;          ///< world body or welded to it (no degrees of freedom)
   bool is_mocap = false;
-  int parent = -1;         ///< parent body id (0: the world body; -1 for the world body itself)
-  bool free = false;       ///< moves on one free joint (its state is its own, not its parent's)
+  int parent = -1;    ///< parent body id (0: the world body; -1 for the world body itself)
+  bool free = false;  ///< moves on one free joint (its state is its own, not its parent's)
+  /// MuJoCo's body_invweight0 (translational, 1/kg): the body's mobility under a force at
+  /// qpos0, which sets its soft contacts' regularisation (1 / mass for a free body).
+  double inv_weight = 0.0;
   std::vector<int> geoms;  ///< ids into World::geom()
 };
 
