@@ -115,6 +115,10 @@ class LocalContactSolver {
 
   std::size_t joint_count() const noexcept { return joints_count_; }
 
+  /// Joint coordinates the latest Adopt() or Restart() put in joint space (see kMaxTreeDofs; the
+  /// island's other joints are rows). RT-safe.
+  std::size_t tree_dof_count() const noexcept { return dof_count_; }
+
   /// Contact rows that carried a normal impulse in the latest Step(). RT-safe.
   int active_contacts() const noexcept { return active_; }
 
