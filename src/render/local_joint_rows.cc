@@ -330,12 +330,12 @@ void LocalContactSolver::ApplyJointImpulse(JointRow& r, double dl) noexcept {
 // rad/s).
 double LocalContactSolver::SolveJointRow(JointRow& r) noexcept {
   double& l = joint_lambda_[static_cast<std::size_t>(r.slot)];
-  const double v = JointRowVelocity(r, false);
-  const double next = std::clamp(l + (r.target - v - r.R * l) * r.inv_w, r.lo, r.hi);
+  const double next =
+      internal::RowUpdate(l, JointRowVelocity(r, false), r.target, r.R, r.inv_w, r.lo, r.hi);
   const double dl = next - l;
   ApplyJointImpulse(r, dl);
   l = next;
-  return r.inv_w > 0.0 ? std::abs(dl) / r.inv_w : 0.0;
+  return internal::RowChange(dl, r.inv_w);
 }
 
 }  // namespace mrh::render

@@ -131,12 +131,12 @@ double LocalContactSolver::SolveDofRows(bool forward) noexcept {
 // One Gauss–Seidel update of a coordinate's row; returns its velocity change (rad/s or m/s).
 double LocalContactSolver::SolveDofRow(DofRow& r) noexcept {
   double& l = joint_lambda_[static_cast<std::size_t>(r.slot)];
-  const double v = r.sign * qd_[static_cast<std::size_t>(r.dof)];
-  const double next = std::clamp(l + (r.target - v - r.R * l) * r.inv_w, r.lo, r.hi);
+  const double next = internal::RowUpdate(l, r.sign * qd_[static_cast<std::size_t>(r.dof)],
+                                          r.target, r.R, r.inv_w, r.lo, r.hi);
   const double dl = next - l;
   ApplyDof(r, dl);
   l = next;
-  return r.inv_w > 0.0 ? std::abs(dl) / r.inv_w : 0.0;
+  return internal::RowChange(dl, r.inv_w);
 }
 
 }  // namespace mrh::render

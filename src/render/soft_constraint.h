@@ -47,4 +47,16 @@ inline void SpringDamper(const double* solref, const double* solimp, double dt, 
   }
 }
 
+/// One projected Gauss–Seidel update of a scalar soft row: its impulse l (N·s or N·m·s) moved
+/// to satisfy v + A Δl = target − R l with 1/(A + R) = inv_w, clamped to [lo, hi].
+inline double RowUpdate(double l, double v, double target, double R, double inv_w, double lo,
+                        double hi) {
+  return std::clamp(l + (target - v - R * l) * inv_w, lo, hi);
+}
+
+/// The row's relative velocity change (m/s or rad/s) of an impulse change dl.
+inline double RowChange(double dl, double inv_w) {
+  return inv_w > 0.0 ? std::abs(dl) / inv_w : 0.0;
+}
+
 }  // namespace mrh::render::internal
