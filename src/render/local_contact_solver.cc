@@ -232,9 +232,9 @@ void LocalContactSolver::AddForce(std::size_t i, const Vec3& f_W, const Vec3& p_
 void LocalContactSolver::Integrate(double dt) noexcept {
   for (std::size_t i = 0; i < count_; ++i) {
     Body& b = bodies_[i];
+    if (b.tree) continue;  // IntegrateTree; a tree side's rows use M⁻¹, not I_W⁻¹
     const Mat3 R = b.q.toRotationMatrix();
     b.I_W_inv = R * b.I_B_inv * R.transpose();
-    if (b.tree) continue;  // IntegrateTree
     const Vec3 Iw = R * (b.I_B * (R.transpose() * b.w));
     b.v0 = b.v;
     b.w0 = b.w;
@@ -356,8 +356,7 @@ bool LocalContactSolver::Finish(double dt) noexcept {
 }
 
 bool LocalContactSolver::Step(double dt) noexcept {
-  PlaceJoints();
-  PlaceTree();
+  PlaceJoints();  // the trees' axes were placed where their poses last changed (FinishTree)
   AddJointSprings();
   Integrate(dt);
   IntegrateTree(dt);

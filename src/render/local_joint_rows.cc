@@ -75,10 +75,12 @@ double LocalContactSolver::JointPosition(std::size_t j) const noexcept {
   return PlaceJoint(joints_[j]).q;
 }
 
-// Every joint's placement at this tick's poses, for the springs and the rows (positions change
-// only in Finish, after both).
+// Every row joint's placement at this tick's poses, for the springs and the rows (positions
+// change only in Finish, after both); joint-space trees use their coordinates instead.
 void LocalContactSolver::PlaceJoints() noexcept {
-  for (std::size_t i = 0; i < joints_count_; ++i) placements_[i] = PlaceJoint(joints_[i]);
+  for (std::size_t i = 0; i < joints_count_; ++i) {
+    if (!joint_in_tree_[i]) placements_[i] = PlaceJoint(joints_[i]);
+  }
 }
 
 // Joint springs, explicit as MuJoCo's passive forces: −k (q − spring_ref) on the coordinate (a
@@ -217,14 +219,12 @@ void LocalContactSolver::AddDofRows(const ir::LocalJoint& j, const JointPlacemen
     }
     if (j.frictionloss > 0.0) {
       JointRow& r = add(base + kFrictionSlot + k);
-      double stiff = 0.0, damp = 0.0;
-      internal::SpringDamper(j.solref_friction, j.solimp_friction, dt, &stiff, &damp);
-      const double v0 = JointRowVelocity(r, true);
-      const double imp = internal::Impedance(j.solimp_friction, 0.0);
-      r.target = v0 - dt * damp * v0;
+      const internal::SoftRow s = internal::FrictionLossRow(j.solref_friction, j.solimp_friction,
+                                                            dt, JointRowVelocity(r, true), r.inv_w);
+      r.target = s.target;
       r.lo = -j.frictionloss * dt;
       r.hi = j.frictionloss * dt;
-      FinishJointRow(r, std::max(1e-15, (1.0 - imp) / imp * r.inv_w));
+      FinishJointRow(r, s.R);
     }
   }
 }
@@ -243,17 +243,10 @@ void LocalContactSolver::AddLimitRows(const ir::LocalJoint& j, const JointPlacem
                       : AddAngularRow(j, base + kLimitSlot + side, dir);
     r.lo = 0.0;
     r.hi = kInf;
-    double R = 0.0;
-    r.target = -gap / dt;
-    if (gap < 0.0) {
-      double stiff = 0.0, damp = 0.0;
-      internal::SpringDamper(j.solref_limit, j.solimp_limit, dt, &stiff, &damp);
-      const double imp = internal::Impedance(j.solimp_limit, -gap);
-      const double v0 = JointRowVelocity(r, true);
-      r.target = v0 + dt * (-damp * v0 - stiff * imp * gap);
-      R = std::max(1e-15, (1.0 - imp) / imp * r.inv_w);
-    }
-    FinishJointRow(r, R);
+    const internal::SoftRow s = internal::LimitRow(j.solref_limit, j.solimp_limit, dt, gap,
+                                                   JointRowVelocity(r, true), r.inv_w);
+    r.target = s.target;
+    FinishJointRow(r, s.R);
   }
 }
 

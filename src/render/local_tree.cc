@@ -161,10 +161,10 @@ void LocalContactSolver::AddTreeJacobian(const Body& b, const Vec3& p, const Vec
   });
 }
 
-// Adds body b's inertia to M (Σ Jᵀ diag(m, I_W) J) and the generalized force of the wrench
-// (f at its COM, tau) to Q.
-void LocalContactSolver::AddBodyToTree(const Body& b, const Vec3& f, const Vec3& tau, double* M,
-                                       double* Q) const noexcept {
+// Adds body b's inertia (mass, I_W about its COM, world) to M (Σ Jᵀ diag(m, I_W) J) and the
+// generalized force of the wrench (f at its COM, tau) to Q.
+void LocalContactSolver::AddBodyToTree(const Body& b, double mass, const Mat3& I_W, const Vec3& f,
+                                       const Vec3& tau, double* M, double* Q) const noexcept {
   std::array<Vec3, kMaxTreeDofs> Jv, Jw;
   std::array<std::size_t, kMaxTreeDofs> idx{};
   std::size_t m = 0;
@@ -174,9 +174,6 @@ void LocalContactSolver::AddBodyToTree(const Body& b, const Vec3& f, const Vec3&
     Jw[m] = d.slide ? Vec3::Zero() : d.a;
     idx[m++] = k;
   });
-  const double mass = b.inv_mass > 0.0 ? 1.0 / b.inv_mass : 0.0;
-  const Mat3 R = b.q.toRotationMatrix();
-  const Mat3 I_W = R * b.I_B * R.transpose();
   for (std::size_t r = 0; r < m; ++r) {
     Q[idx[r]] += Jv[r].dot(f) + Jw[r].dot(tau);
     const Vec3 IJw = I_W * Jw[r];
@@ -232,7 +229,7 @@ void LocalContactSolver::TreeForces(double dt, double* M, double* Q) const noexc
     const Mat3 I_W = R * b.I_B * R.transpose();
     const Vec3 f = b.f + mass * (gravity_ - A[i].v);
     const Vec3 tau = b.tau - I_W * A[i].w - V[i].w.cross(I_W * V[i].w);
-    AddBodyToTree(b, f, tau, M, Q);
+    AddBodyToTree(b, mass, I_W, f, tau, M, Q);
   }
   for (std::size_t k = 0; k < dof_count_; ++k) {
     const ir::LocalJoint& j = joints_[static_cast<std::size_t>(dofs_[k].joint)];

@@ -72,29 +72,25 @@ void LocalContactSolver::PrepareDofRows(double dt) noexcept {
   for (std::size_t k = 0; k < dof_count_; ++k) {
     const ir::LocalJoint& j = joints_[static_cast<std::size_t>(dofs_[k].joint)];
     const int base = dofs_[k].joint * static_cast<int>(kJointSlots);
-    double stiff = 0.0, damp = 0.0;
+    const double diag = j.inv_weight > 0.0 ? j.inv_weight : Minv_[k * kS + k];
     if (j.frictionloss > 0.0) {
       DofRow& r = AddDofRow(k, base + kFrictionSlot, 1.0);
-      internal::SpringDamper(j.solref_friction, j.solimp_friction, dt, &stiff, &damp);
-      const double imp = internal::Impedance(j.solimp_friction, 0.0);
-      r.target = qd0_[k] - dt * damp * qd0_[k];
+      const internal::SoftRow s =
+          internal::FrictionLossRow(j.solref_friction, j.solimp_friction, dt, qd0_[k], diag);
+      r.target = s.target;
+      r.R = s.R;
       r.lo = -j.frictionloss * dt;
       r.hi = j.frictionloss * dt;
-      r.R = std::max(1e-15, (1.0 - imp) / imp * (j.inv_weight > 0.0 ? j.inv_weight : r.inv_w));
     }
     for (int side = 0; j.limited && side < 2; ++side) {
       const double sign = side == 0 ? 1.0 : -1.0;
       const double gap = sign * (q_[k] - j.range[side]) - j.margin;
       DofRow& r = AddDofRow(k, base + kLimitSlot + side, sign);
+      const internal::SoftRow s =
+          internal::LimitRow(j.solref_limit, j.solimp_limit, dt, gap, sign * qd0_[k], diag);
+      r.target = s.target;
+      r.R = s.R;
       r.lo = 0.0;
-      r.target = -gap / dt;
-      if (gap < 0.0) {
-        internal::SpringDamper(j.solref_limit, j.solimp_limit, dt, &stiff, &damp);
-        const double imp = internal::Impedance(j.solimp_limit, -gap);
-        const double v0 = sign * qd0_[k];
-        r.target = v0 + dt * (-damp * v0 - stiff * imp * gap);
-        r.R = std::max(1e-15, (1.0 - imp) / imp * (j.inv_weight > 0.0 ? j.inv_weight : r.inv_w));
-      }
     }
   }
   for (std::size_t i = 0; i < dof_rows_count_; ++i) {

@@ -47,6 +47,34 @@ inline void SpringDamper(const double* solref, const double* solimp, double dt, 
   }
 }
 
+/// A soft row's velocity target (m/s or rad/s) and regularisation R.
+struct SoftRow {
+  double target = 0.0;
+  double R = 0.0;
+};
+
+/// MuJoCo's dry-friction (friction-loss) row of a coordinate moving at v0 at the tick's start:
+/// its reference acceleration damps v0 (no position term); R from diag, the row's A_ii (or
+/// MuJoCo's approximation of it).
+inline SoftRow FrictionLossRow(const double* solref, const double* solimp, double dt, double v0,
+                               double diag) {
+  double k = 0.0, b = 0.0;
+  SpringDamper(solref, solimp, dt, &k, &b);
+  const double imp = Impedance(solimp, 0.0);
+  return SoftRow{v0 - dt * b * v0, std::max(1e-15, (1.0 - imp) / imp * diag)};
+}
+
+/// A limit row at gap (m or rad; < 0: past the limit) moving at v0 along the row: hard and
+/// speculative (may close within the tick) while open, MuJoCo's soft limit past it.
+inline SoftRow LimitRow(const double* solref, const double* solimp, double dt, double gap,
+                        double v0, double diag) {
+  if (!(gap < 0.0)) return SoftRow{-gap / dt, 0.0};
+  double k = 0.0, b = 0.0;
+  SpringDamper(solref, solimp, dt, &k, &b);
+  const double imp = Impedance(solimp, -gap);
+  return SoftRow{v0 + dt * (-b * v0 - k * imp * gap), std::max(1e-15, (1.0 - imp) / imp * diag)};
+}
+
 /// One projected Gauss–Seidel update of a scalar soft row: its impulse l (N·s or N·m·s) moved
 /// to satisfy v + A Δl = target − R l with 1/(A + R) = inv_w, clamped to [lo, hi].
 inline double RowUpdate(double l, double v, double target, double R, double inv_w, double lo,

@@ -310,8 +310,8 @@ class LocalContactSolver {
                        double* g) const noexcept;
   void IntegrateTree(double dt) noexcept;
   void TreeForces(double dt, double* M, double* Q) const noexcept;
-  void AddBodyToTree(const Body& b, const Vec3& f, const Vec3& tau, double* M,
-                     double* Q) const noexcept;
+  void AddBodyToTree(const Body& b, double mass, const Mat3& I_W, const Vec3& f, const Vec3& tau,
+                     double* M, double* Q) const noexcept;
   void InvertTreeMass(const double* M) noexcept;
   void ApplyTree(const std::array<double, kMaxTreeDofs>& h, double dl) noexcept;
   double TreeVelocity(const std::array<double, kMaxTreeDofs>& g) const noexcept;
